@@ -1,0 +1,53 @@
+// CLI11 definition of the mpmxdem command line: see cli.hpp and README.md.
+#include "app/cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <sstream>
+
+#include "app/version.hpp"
+
+namespace app {
+
+std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_code) {
+  Options o;
+  CLI::App cli{"mpmxdem: multi-scale granular mechanics. Every material point of an MPM grid takes its\n"
+               "stress from its own periodic DEM cell (an RVE). Run in parallel with\n"
+               "  mpirun -n N mpmxdem run JOB.toml\n"
+               "Job files are TOML; `mpmxdem schema` prints the reference of every key.",
+               "mpmxdem"};
+  cli.set_version_flag("--version", std::string("mpmxdem ") + kVersion);
+  cli.require_subcommand(1);
+  cli.add_flag("-v,--verbose", o.verbosity, "More log output (-v debug, -vv trace; all ranks at -vv)");
+
+  auto* run = cli.add_subcommand("run", "Run a job: validate it, then simulate, writing results into --out");
+  run->add_option("job", o.job, "Job file (TOML)")->required();
+  run->add_option("-o,--out", o.out, "Output directory (default: results/<job file name>)");
+  run->add_option("--restart", o.restart, "Continue from this checkpoint file (HDF5)");
+  run->add_option("--max-steps", o.max_steps, "Stop after this many steps (for tests and trials)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--force", o.force, "Write into a non-empty output directory (files of the same name are replaced)");
+
+  auto* check = cli.add_subcommand("check", "Validate a job file and print the resolved job (no output written)");
+  check->add_option("job", o.job, "Job file (TOML)")->required();
+
+  cli.add_subcommand("schema", "Print the job-file reference (Markdown) generated from the schema");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::ostringstream out;
+    std::ostringstream err;
+    exit_code = cli.exit(e, out, err);
+    if (print) {
+      std::fputs(out.str().c_str(), stdout);
+      std::fputs(err.str().c_str(), stderr);
+    }
+    return std::nullopt;
+  }
+  for (const auto* sub : cli.get_subcommands()) o.command = sub->get_name();
+  exit_code = 0;
+  return o;
+}
+
+}  // namespace app

@@ -1,0 +1,24 @@
+// Command-line interface (CLI11 is confined to cli.cpp to keep compile times down).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace app {
+
+struct Options {
+  std::string command;       ///< "run", "check", "schema"
+  std::string job;           ///< job file
+  std::string out;           ///< output directory ("" = results/<job stem>)
+  std::string restart;       ///< checkpoint to continue from
+  std::int64_t max_steps = -1;  ///< stop after this many steps (-1: no limit)
+  bool force = false;        ///< write into a non-empty output directory
+  int verbosity = 0;         ///< -v count
+};
+
+/// Parses the command line. Returns nullopt when the program should exit at once (help, version,
+/// usage error) with `exit_code`; prints only when `print` is true (rank 0).
+[[nodiscard]] std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_code);
+
+}  // namespace app

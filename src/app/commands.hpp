@@ -1,0 +1,26 @@
+// The subcommands of mpmxdem. Each runs on every MPI rank (collective), returns the exit code,
+// and throws common::InputError for bad input (the same on every rank).
+#pragma once
+
+#include <mpi.h>
+
+#include "app/cli.hpp"
+#include "app/job.hpp"
+
+namespace app {
+
+struct Comm {
+  MPI_Comm comm = MPI_COMM_WORLD;
+  int rank = 0;
+  int size = 1;
+};
+
+/// Rank 0 reads the job file and broadcasts its text; every rank parses and validates it, so an
+/// error is seen (and thrown) on every rank alike.
+[[nodiscard]] Job load_job_collective(const std::string& path, const Comm& comm);
+
+int command_check(const Options& o, const Comm& comm);
+int command_run(const Options& o, const Comm& comm);
+int command_schema(const Options& o, const Comm& comm);
+
+}  // namespace app

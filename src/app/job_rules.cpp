@@ -1,0 +1,130 @@
+// Cross-key rules of a job file: what one key requires of others (sample source, loading type,
+// materials of the bodies, geometry). Single-key rules live in the schema.
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "app/job.hpp"
+#include "common/errors.hpp"
+
+namespace app {
+
+namespace {
+
+class Rules {
+ public:
+  explicit Rules(const Job& job) : job_(job) {}
+
+  void require(const std::string& path, const std::string& why) {
+    if (!job_.has(path)) errors_.push_back(job_.missing_message(path, "required " + why));
+  }
+  void fail(const std::string& path, const std::string& rule) { errors_.push_back(job_.message(path, rule)); }
+  void fail_missing(const std::string& path, const std::string& rule) {
+    errors_.push_back(job_.missing_message(path, rule));
+  }
+  [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
+
+ private:
+  const Job& job_;
+  std::vector<std::string> errors_;
+};
+
+void sample_rules(const Job& job, Rules& r) {
+  if (!job.has_section("dem.sample")) return;
+  if (job.has("dem.sample.packing")) {
+    for (const char* k : {"dem.sample.spheres", "dem.sample.psd_diameters", "dem.sample.psd_passing"}) {
+      if (job.has(k)) r.fail(k, "not used when dem.sample.packing is given: remove one of them");
+    }
+    std::filesystem::path p(job.text("dem.sample.packing"));
+    if (p.is_relative()) p = std::filesystem::path(job.directory()) / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) {
+      r.fail("dem.sample.packing", fmt::format("no such file '{}' (paths are relative to the job file)", p.string()));
+    }
+    return;
+  }
+  const std::string why = "when no packing file is given (dem.sample.packing)";
+  r.require("dem.sample.spheres", why);
+  r.require("dem.sample.psd_diameters", why);
+  r.require("dem.sample.psd_passing", why);
+  if (!job.has("dem.sample.psd_diameters") || !job.has("dem.sample.psd_passing")) return;
+  const auto& d = job.numbers("dem.sample.psd_diameters");
+  const auto& f = job.numbers("dem.sample.psd_passing");
+  if (d.size() != f.size()) {
+    r.fail("dem.sample.psd_passing",
+           fmt::format("must have as many entries as dem.sample.psd_diameters ({}), not {}", d.size(), f.size()));
+    return;
+  }
+  for (std::size_t i = 1; i < d.size(); ++i) {
+    if (!(d[i] > d[i - 1])) return r.fail("dem.sample.psd_diameters", "must be strictly increasing");
+    if (f[i] < f[i - 1]) return r.fail("dem.sample.psd_passing", "must be non-decreasing");
+  }
+  if (f.front() != 0.0 || f.back() != 1.0) r.fail("dem.sample.psd_passing", "must start at 0 and end at 1");
+}
+
+void loading_rules(const Job& job, Rules& r) {
+  if (!job.has_section("dem.loading")) return;
+  const std::string& type = job.text("dem.loading.type");
+  const std::string why = fmt::format("for dem.loading.type = \"{}\"", type);
+  if (type == "triaxial") {
+    for (const char* k : {"dem.loading.inertial_number", "dem.loading.axial_strain", "dem.loading.confining_pressure"})
+      r.require(k, why);
+  } else if (type == "isotropic") {
+    for (const char* k : {"dem.loading.inertial_number", "dem.loading.confining_pressure"}) r.require(k, why);
+  } else {
+    for (const char* k : {"dem.loading.velocity_gradient", "dem.loading.duration"}) r.require(k, why);
+  }
+}
+
+void mpm_rules(const Job& job, Rules& r) {
+  if (!job.has_section("mpm")) return;
+  const auto& origin = job.numbers("mpm.grid.origin");
+  const auto& h = job.numbers("mpm.grid.spacing");
+  const auto& n = job.integers("mpm.grid.cells");
+  bool any_dem = false;
+  bool any_elastic = false;
+  for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+    const std::string base = fmt::format("mpm.body[{}].", b);
+    const auto& lo = job.numbers(base + "min");
+    const auto& hi = job.numbers(base + "max");
+    for (int a = 0; a < 3; ++a) {
+      if (!(hi[a] > lo[a])) {
+        r.fail(base + "max", fmt::format("must be greater than min on every axis (axis {})", "xyz"[a]));
+        break;
+      }
+      const double top = origin[a] + h[a] * static_cast<double>(n[a]);
+      if (lo[a] < origin[a] || hi[a] > top) {
+        r.fail(base + "max", fmt::format("the box must lie inside the grid [{}, {}] on axis {}", origin[a], top, "xyz"[a]));
+        break;
+      }
+    }
+    const std::string& m = job.text(base + "material");
+    any_dem = any_dem || m == "dem";
+    any_elastic = any_elastic || m == "elastic";
+  }
+  if (any_elastic && !job.has_section("mpm.elastic")) {
+    r.fail_missing("mpm.elastic", "required section when a body has material = \"elastic\"");
+  }
+  if (any_dem && !job.has_section("dem.coupling")) {
+    r.fail_missing("dem.coupling", "required section when a body has material = \"dem\"");
+  }
+  if (any_dem && !job.has_section("dem")) r.fail_missing("dem", "required section when a body has material = \"dem\"");
+  for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
+    const std::string base = fmt::format("mpm.velocity[{}].", i);
+    if (!job.has(base + "x") && !job.has(base + "y") && !job.has(base + "z")) {
+      r.fail(base + "face", "a velocity constraint needs at least one of x, y, z");
+    }
+  }
+}
+
+}  // namespace
+
+void check_job_rules(const Job& job) {
+  Rules r(job);
+  sample_rules(job, r);
+  loading_rules(job, r);
+  mpm_rules(job, r);
+  if (!r.errors().empty()) throw common::InputError(fmt::format("{}", fmt::join(r.errors(), "\n")));
+}
+
+}  // namespace app

@@ -1,0 +1,51 @@
+// mpmxdem entry point: MPI set-up, command-line parsing, dispatch, and the error policy
+// (input errors: message on rank 0, exit 2; numerical failures: exit 3; anything else: exit 1).
+#include <mpi.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/cli.hpp"
+#include "app/commands.hpp"
+#include "app/logging.hpp"
+#include "common/errors.hpp"
+
+int main(int argc, char** argv) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  app::Comm comm;
+  MPI_Comm_rank(comm.comm, &comm.rank);
+  MPI_Comm_size(comm.comm, &comm.size);
+
+  int code = 0;
+  const auto options = app::parse_cli(argc, argv, comm.rank == 0, code);
+  if (!options) {
+    MPI_Finalize();
+    return code;
+  }
+  app::setup_logging(comm.rank, options->verbosity);
+  try {
+    if (options->command == "check") {
+      code = app::command_check(*options, comm);
+    } else if (options->command == "run") {
+      code = app::command_run(*options, comm);
+    } else if (options->command == "schema") {
+      code = app::command_schema(*options, comm);
+    }
+  } catch (const common::InputError& e) {
+    // Input errors are collective: every rank read the same input and threw the same error.
+    if (comm.rank == 0) std::fprintf(stderr, "error: %s\n", e.what());
+    code = 2;
+  } catch (const common::NumericalError& e) {
+    spdlog::error("numerical failure: {}", e.what());
+    code = 3;
+  } catch (const std::exception& e) {
+    // A failure that only this rank may have seen: report it and take the whole job down.
+    std::fprintf(stderr, "rank %d: fatal: %s\n", comm.rank, e.what());
+    std::fflush(stderr);
+    MPI_Abort(comm.comm, 1);
+  }
+  MPI_Finalize();
+  return code;
+}

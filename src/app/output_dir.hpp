@@ -1,0 +1,21 @@
+// Output directory safety: a run never writes into a directory holding earlier results unless
+// asked (--force) or continuing them (--restart); files are written atomically.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace app {
+
+/// Checks, without writing anything, that `dir` may receive a run's output. Throws
+/// common::InputError naming the directory and the way out when it may not.
+void check_output_dir(const std::filesystem::path& dir, bool force, bool restart);
+/// Creates the directory (and parents).
+void create_output_dir(const std::filesystem::path& dir);
+/// Writes `content` to `path` through a temporary file and a rename: readers see the old file or
+/// the new one, never a partial one.
+void write_file_atomic(const std::filesystem::path& path, const std::string& content);
+/// Default output directory of a job: results/<job file stem>.
+[[nodiscard]] std::filesystem::path default_output_dir(const std::string& job_path);
+
+}  // namespace app
