@@ -1,0 +1,37 @@
+// Contacts SoA helpers: resize and the per-sphere pair lists (fixed order for the force sums).
+#include "dem/contacts.hpp"
+
+namespace dem {
+
+void Contacts::resize(std::size_t n) {
+  i.resize(n);
+  j.resize(n);
+  k.resize(n, common::Vec3i::Zero());
+  active.resize(n, 0);
+  props.resize(n);
+  hist.resize(n, CohFrictHistory{common::Vec3::Zero(), common::Vec3::Zero(), common::Vec3::Zero(),
+                                 common::Vec3::Zero()});
+  force.resize(n, common::Vec3::Zero());
+  torque_i.resize(n, common::Vec3::Zero());
+  torque_j.resize(n, common::Vec3::Zero());
+  branch.resize(n, common::Vec3::Zero());
+  fn.resize(n, 0.0);
+}
+
+void Contacts::build_sphere_lists(std::size_t n_spheres) {
+  sphere_offset.assign(n_spheres + 1, 0);
+  for (std::size_t p = 0; p < size(); ++p) {
+    ++sphere_offset[i[p] + 1];
+    ++sphere_offset[j[p] + 1];
+  }
+  for (std::size_t s = 0; s < n_spheres; ++s) sphere_offset[s + 1] += sphere_offset[s];
+  sphere_pairs.assign(sphere_offset[n_spheres], 0);
+  std::vector<std::int64_t> fill(sphere_offset.begin(), sphere_offset.end() - 1);
+  for (std::size_t p = 0; p < size(); ++p) {
+    const auto ip = static_cast<std::int64_t>(p);
+    sphere_pairs[fill[i[p]]++] = ip;
+    sphere_pairs[fill[j[p]]++] = -ip - 1;
+  }
+}
+
+}  // namespace dem

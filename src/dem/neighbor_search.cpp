@@ -1,0 +1,221 @@
+// Verlet lists over fractional-coordinate bins; lattice re-mapping of skewed cells; rebuild test.
+#include "dem/neighbor_search.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <tuple>
+
+#include "common/errors.hpp"
+
+namespace dem {
+
+using common::Mat3;
+using common::Vec3;
+using common::Vec3i;
+
+namespace {
+
+using Key = std::tuple<std::int32_t, std::int32_t, int, int, int>;
+Key key_of(const Contacts& c, std::size_t p) {
+  return {c.i[p], c.j[p], c.k[p][0], c.k[p][1], c.k[p][2]};
+}
+
+}  // namespace
+
+bool remap_and_wrap(Spheres& s, PeriodicCell& cell, Contacts& c, double max_skew) {
+  // Lattice reduction: c_b <- c_b - round(c_b . c_a / |c_a|^2) c_a, i.e. H <- H U.
+  Eigen::Matrix3i u = Eigen::Matrix3i::Identity();
+  bool remapped = false;
+  for (int pass = 0; pass < 4; ++pass) {
+    bool changed = false;
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        if (a == b) continue;
+        const Vec3 ca = cell.h.col(a);
+        const double ratio = cell.h.col(b).dot(ca) / ca.squaredNorm();
+        if (std::abs(ratio) > max_skew) {
+          const double n = std::round(ratio);
+          if (n == 0.0) continue;
+          cell.h.col(b) -= n * ca;
+          u.col(b) -= static_cast<int>(n) * u.col(a);
+          changed = true;
+        }
+      }
+    }
+    if (!changed) break;
+    remapped = true;
+  }
+  if (remapped) {
+    // branch = x_j - x_i + H_old k = x_j - x_i + H_new U^-1 k.
+    const Eigen::Matrix3d uinv_d = u.cast<double>().inverse();
+    const Eigen::Matrix3i uinv = uinv_d.array().round().cast<int>().matrix();
+    for (std::size_t p = 0; p < c.size(); ++p) c.k[p] = uinv * c.k[p];
+  }
+  // Wrap positions into [0,1)^3 in fractional coordinates, shifting pair images accordingly.
+  const Mat3 hinv = cell.h.inverse();
+  std::vector<Vec3i> shift(s.size(), Vec3i::Zero());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Vec3 xi = hinv * s.x[i];
+    Vec3i m(static_cast<int>(std::floor(xi[0])), static_cast<int>(std::floor(xi[1])),
+            static_cast<int>(std::floor(xi[2])));
+    if (m != Vec3i::Zero()) {
+      s.x[i] -= cell.h * m.cast<double>();
+      shift[i] = m;
+    }
+  }
+  for (std::size_t p = 0; p < c.size(); ++p) c.k[p] += shift[c.j[p]] - shift[c.i[p]];
+  return remapped;
+}
+
+void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, VerletState& vs) {
+  const std::size_t n = s.size();
+  vs.r_max = n > 0 ? *std::max_element(s.r.begin(), s.r.end()) : 0.0;
+  const double cutoff = 2.0 * vs.r_max + vs.skin;
+  std::array<int, 3> nb{};
+  std::size_t nbins_total = 1;
+  // Keep the bin count comparable to the sphere count (a huge cell must not make huge grids).
+  const int nb_cap = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(n))) + 1);
+  for (int a = 0; a < 3; ++a) {
+    const double w = cell.width(a);
+    if (w < cutoff) {
+      throw common::NumericalError("dem: periodic cell width " + std::to_string(w) +
+                                   " m is below 2 r_max + skin = " + std::to_string(cutoff) +
+                                   " m (cell too small or too flat for its spheres)");
+    }
+    nb[a] = std::clamp(static_cast<int>(w / cutoff), 1, nb_cap);
+    nbins_total *= static_cast<std::size_t>(nb[a]);
+  }
+  const Mat3 hinv = cell.h.inverse();
+  std::vector<Vec3> frac(n);
+  std::vector<std::array<int, 3>> bin3(n);
+  std::vector<std::int64_t> bin_of(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    frac[i] = hinv * s.x[i];
+    for (int a = 0; a < 3; ++a) {
+      bin3[i][a] = std::clamp(static_cast<int>(std::floor(frac[i][a] * nb[a])), 0, nb[a] - 1);
+    }
+    bin_of[i] = (static_cast<std::int64_t>(bin3[i][2]) * nb[1] + bin3[i][1]) * nb[0] + bin3[i][0];
+  }
+  // Counting sort of spheres into bins (stable: ids ascending inside a bin).
+  std::vector<std::int64_t> start(nbins_total + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++start[bin_of[i] + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::int32_t> members(n);
+  {
+    std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) members[fill[bin_of[i]]++] = static_cast<std::int32_t>(i);
+  }
+
+  struct Cand {
+    std::int32_t j;
+    Vec3i k;
+  };
+  std::vector<std::vector<Cand>> per_sphere(n);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    auto& out = per_sphere[i];
+    for (int oz = -1; oz <= 1; ++oz) {
+      for (int oy = -1; oy <= 1; ++oy) {
+        for (int ox = -1; ox <= 1; ++ox) {
+          const std::array<int, 3> o{ox, oy, oz};
+          std::array<int, 3> b{};
+          Vec3i k;
+          for (int a = 0; a < 3; ++a) {
+            const int raw = bin3[i][a] + o[a];
+            // With fewer than 3 bins an offset can revisit a bin under another image; distinct
+            // offsets always give distinct (bin, image) pairs, and nb == 1 needs only offset 0 and
+            // the two images, which ox = -1, 0, 1 provide.
+            const int q = static_cast<int>(std::floor(static_cast<double>(raw) / nb[a]));
+            b[a] = raw - q * nb[a];
+            k[a] = q;
+          }
+          const std::int64_t bin = (static_cast<std::int64_t>(b[2]) * nb[1] + b[1]) * nb[0] + b[0];
+          const Vec3 shift = cell.h * k.cast<double>();
+          for (std::int64_t q = start[bin]; q < start[bin + 1]; ++q) {
+            const std::int32_t j = members[q];
+            if (static_cast<std::size_t>(j) <= i) continue;
+            const Vec3 d = s.x[j] + shift - s.x[i];
+            const double rc = s.r[i] + s.r[j] + vs.skin;
+            if (d.squaredNorm() < rc * rc) out.push_back({j, k});
+          }
+        }
+      }
+    }
+    std::sort(out.begin(), out.end(), [](const Cand& a, const Cand& b) {
+      return std::tie(a.j, a.k[0], a.k[1], a.k[2]) < std::tie(b.j, b.k[0], b.k[1], b.k[2]);
+    });
+  }
+
+  // Active contacts of the old list, sorted by key, to carry their history over.
+  std::vector<std::size_t> old_active;
+  for (std::size_t p = 0; p < c.size(); ++p) {
+    if (c.active[p]) old_active.push_back(p);
+  }
+  std::sort(old_active.begin(), old_active.end(),
+            [&](std::size_t a, std::size_t b) { return key_of(c, a) < key_of(c, b); });
+
+  Contacts fresh;
+  std::size_t total = 0;
+  for (const auto& v : per_sphere) total += v.size();
+  fresh.resize(total);
+  std::size_t p = 0;
+  std::size_t q = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const Cand& cd : per_sphere[i]) {
+      fresh.i[p] = static_cast<std::int32_t>(i);
+      fresh.j[p] = cd.j;
+      fresh.k[p] = cd.k;
+      const Key kp = key_of(fresh, p);
+      while (q < old_active.size() && key_of(c, old_active[q]) < kp) {
+        // An active contact vanished from the list: only possible if the skin was violated.
+        throw common::InternalError("dem: active contact lost by the neighbour search (pair " +
+                                    std::to_string(c.i[old_active[q]]) + "-" +
+                                    std::to_string(c.j[old_active[q]]) + ")");
+      }
+      if (q < old_active.size() && key_of(c, old_active[q]) == kp) {
+        const std::size_t o = old_active[q++];
+        fresh.active[p] = 1;
+        fresh.props[p] = c.props[o];
+        fresh.hist[p] = c.hist[o];
+        fresh.force[p] = c.force[o];
+        fresh.torque_i[p] = c.torque_i[o];
+        fresh.torque_j[p] = c.torque_j[o];
+        fresh.branch[p] = c.branch[o];
+        fresh.fn[p] = c.fn[o];
+      }
+      ++p;
+    }
+  }
+  if (q != old_active.size()) {
+    throw common::InternalError("dem: active contact lost by the neighbour search");
+  }
+  fresh.build_sphere_lists(n);
+  c = std::move(fresh);
+
+  vs.x_ref = s.x;
+  vs.h_ref_inv = hinv;
+  ++vs.builds;
+}
+
+bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState& vs) {
+  if (vs.x_ref.size() != s.size()) return true;
+  // Branch change of any pair: d = F d0 + (a_j - a_i), F = H H0^-1, a = x - F x0. A pair outside
+  // the list had |d0| >= R_i + R_j + skin; it cannot touch while
+  // 2 max|a| + ||F - I|| (2 r_max + skin) < skin.
+  const Mat3 f = cell.h * vs.h_ref_inv;
+  const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
+  double amax2 = 0.0;
+  const auto n = static_cast<std::int64_t>(s.size());
+#pragma omp parallel for reduction(max : amax2) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double a2 = (s.x[i] - f * vs.x_ref[i]).squaredNorm();
+    amax2 = std::max(amax2, a2);
+  }
+  return 2.0 * std::sqrt(amax2) + eps * (2.0 * vs.r_max + vs.skin) >= vs.skin;
+}
+
+}  // namespace dem

@@ -1,0 +1,38 @@
+// Neighbour search: Verlet pair lists with a skin, built over bins in reduced (fractional)
+// coordinates of a possibly sheared periodic cell; rebuilt only when displacements or the cell
+// deformation since the last build exceed what the skin allows.
+#pragma once
+
+#include <vector>
+
+#include "common/types.hpp"
+#include "dem/contacts.hpp"
+#include "dem/periodic_cell.hpp"
+#include "dem/spheres.hpp"
+
+namespace dem {
+
+/// Reference state of the last build, for the rebuild criterion.
+struct VerletState {
+  std::vector<common::Vec3> x_ref;   ///< positions at the last build [m]
+  common::Mat3 h_ref_inv = common::Mat3::Identity();  ///< inverse cell matrix at the last build
+  double skin = 0.0;                 ///< skin distance [m]
+  double r_max = 0.0;                ///< largest radius [m]
+  std::int64_t builds = 0;           ///< number of builds so far
+};
+
+/// Re-map the cell to a less skewed cell of the same lattice when some |c_b . c_a| / |c_a|^2
+/// exceeds max_skew (H <- H U, U unimodular), then wrap positions into the cell. Pair images are
+/// updated so that every branch vector is unchanged. Returns true if H was re-mapped.
+bool remap_and_wrap(Spheres& s, PeriodicCell& cell, Contacts& c, double max_skew);
+
+/// New candidate pair list: all (i < j, k) with |x_j + H k - x_i| < r_i + r_j + skin, sorted by
+/// (i, j, k). Contact history of active pairs of `old` is carried over (they are always found
+/// again, the skin guarantees it). Builds the per-sphere lists. Throws NumericalError if the cell
+/// is thinner than 2 r_max + skin.
+void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, VerletState& vs);
+
+/// True when some pair not in the list may have come into contact since the last build.
+[[nodiscard]] bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState& vs);
+
+}  // namespace dem

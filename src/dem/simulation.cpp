@@ -1,0 +1,199 @@
+// Simulation: force loop (per pair, parallel), fixed-order per-sphere sums, leap-frog with Cundall
+// damping, cell deformation. Determinism: no floating-point sum depends on the thread count.
+#include "dem/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "common/errors.hpp"
+
+namespace dem {
+
+using common::Mat3;
+using common::Vec3;
+
+namespace {
+constexpr std::int64_t kStressBlock = 512;  // fixed reduction blocks, independent of threads
+
+inline double sgn(double v) { return (v > 0.0) - (v < 0.0); }
+}  // namespace
+
+Simulation::Simulation(Spheres spheres, const PeriodicCell& cell, const Material& mat,
+                       const Numerics& num)
+    : spheres_(std::move(spheres)), cell_(cell), law_(mat), num_(num) {
+  mat.validate();
+  num.validate();
+  if (cell_.volume() <= 0.0) throw common::InputError("dem: cell matrix H has det(H) <= 0");
+  spheres_.set_density(mat.density);
+  double rmax = 0.0;
+  for (double r : spheres_.r) {
+    if (!(r > 0.0)) throw common::InputError("dem: sphere radius must be > 0");
+    rmax = std::max(rmax, r);
+  }
+  verlet_.skin = num.skin_factor * rmax;
+  contacts_.resize(0);
+}
+
+void Simulation::set_friction_deg(double phi_deg, bool existing) {
+  law_.set_friction_deg(phi_deg);
+  if (existing) {
+    const double t = law_.create(1.0, 1.0).tan_phi;
+    for (auto& p : contacts_.props) p.tan_phi = t;
+  }
+}
+
+void Simulation::update_neighbors() {
+  if (force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_)) {
+    remap_and_wrap(spheres_, cell_, contacts_, num_.max_skew);
+    build_pairs(spheres_, cell_, contacts_, verlet_);
+    force_rebuild_ = false;
+  }
+}
+
+void Simulation::compute_forces() {
+  update_neighbors();
+  const auto np = static_cast<std::int64_t>(contacts_.size());
+  const Mat3 h = cell_.h;
+  const Mat3 l = cell_.l;
+  const double dt = dt_;
+  Contacts& c = contacts_;
+  const Spheres& s = spheres_;
+  const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
+  std::vector<Mat3> block_stress(static_cast<std::size_t>(nblocks), Mat3::Zero());
+
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < nblocks; ++b) {
+    Mat3 sum = Mat3::Zero();
+    const std::int64_t end = std::min(np, (b + 1) * kStressBlock);
+    for (std::int64_t p = b * kStressBlock; p < end; ++p) {
+      const std::int32_t i = c.i[p];
+      const std::int32_t j = c.j[p];
+      const Vec3 d = s.x[j] + h * c.k[p].cast<double>() - s.x[i];
+      const double rs = s.r[i] + s.r[j];
+      const double l2 = d.squaredNorm();
+      if (l2 >= rs * rs) {
+        if (c.active[p]) {
+          c.active[p] = 0;
+          c.force[p].setZero();
+          c.torque_i[p].setZero();
+          c.torque_j[p].setZero();
+          c.fn[p] = 0.0;
+        }
+        continue;
+      }
+      const bool is_new = c.active[p] == 0;
+      if (is_new) {
+        c.props[p] = law_.create(s.r[i], s.r[j]);
+        c.active[p] = 1;
+      }
+      const ContactKinematics kin{d, s.u[j] - s.u[i] + l * d, s.w[i], s.w[j], s.r[i], s.r[j]};
+      ContactResult res;
+      law_.apply(c.props[p], c.hist[p], kin, is_new, dt, res);
+      c.force[p] = res.force;
+      c.torque_i[p] = res.torque1;
+      c.torque_j[p] = res.torque2;
+      c.branch[p] = d;
+      c.fn[p] = res.fn;
+      sum += res.force * d.transpose();
+    }
+    block_stress[static_cast<std::size_t>(b)] = sum;
+  }
+  Mat3 total = Mat3::Zero();
+  for (const Mat3& m : block_stress) total += m;
+  stress_ = total / cell_.volume();
+
+  // Per-sphere sums in the fixed pair order of the CSR lists.
+  const auto ns = static_cast<std::int64_t>(s.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < ns; ++q) {
+    Vec3 f = Vec3::Zero();
+    Vec3 t = Vec3::Zero();
+    for (std::int64_t e = c.sphere_offset[q]; e < c.sphere_offset[q + 1]; ++e) {
+      const std::int64_t p = c.sphere_pairs[e];
+      if (p >= 0) {
+        if (!c.active[p]) continue;
+        f -= c.force[p];
+        t += c.torque_i[p];
+      } else {
+        const std::int64_t pj = -p - 1;
+        if (!c.active[pj]) continue;
+        f += c.force[pj];
+        t += c.torque_j[pj];
+      }
+    }
+    spheres_.force[q] = f;
+    spheres_.torque[q] = t;
+  }
+}
+
+void Simulation::integrate() {
+  Spheres& s = spheres_;
+  const double dt = dt_;
+  const double lambda = num_.damping;
+  const Mat3 l = cell_.l;
+  const auto ns = static_cast<std::int64_t>(s.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < ns; ++q) {
+    if (!s.fixed[q]) {
+      Vec3 a = s.force[q] / s.m[q];
+      Vec3 al = s.torque[q] / s.inertia[q];
+      for (int k = 0; k < 3; ++k) {
+        a[k] *= 1.0 - lambda * sgn(a[k] * (s.u[q][k] + 0.5 * dt * a[k]));
+        al[k] *= 1.0 - lambda * sgn(al[k] * (s.w[q][k] + 0.5 * dt * al[k]));
+      }
+      s.u[q] += dt * a;
+      s.w[q] += dt * al;
+    }
+    s.x[q] += dt * (s.u[q] + l * s.x[q]);
+  }
+  cell_.deform(dt);
+  time_ += dt;
+  ++steps_;
+}
+
+void Simulation::step() {
+  compute_forces();
+  integrate();
+}
+
+double Simulation::critical_dt() const {
+  const Spheres& s = spheres_;
+  const Contacts& c = contacts_;
+  const auto ns = static_cast<std::int64_t>(s.size());
+  double best = std::numeric_limits<double>::infinity();
+  if (!c.sphere_offset.empty()) {
+#pragma omp parallel for reduction(min : best) schedule(static)
+    for (std::int64_t q = 0; q < ns; ++q) {
+      Vec3 kt = Vec3::Zero();
+      Vec3 kr = Vec3::Zero();
+      bool any = false;
+      for (std::int64_t e = c.sphere_offset[q]; e < c.sphere_offset[q + 1]; ++e) {
+        const std::int64_t p0 = c.sphere_pairs[e];
+        const std::int64_t p = p0 >= 0 ? p0 : -p0 - 1;
+        if (!c.active[p]) continue;
+        any = true;
+        const CohFrictProps& pr = c.props[p];
+        const Vec3 n2 = c.hist[p].normal.cwiseAbs2();
+        const double r = s.r[q];
+        for (int k = 0; k < 3; ++k) {
+          kt[k] += pr.ks + (pr.kn - pr.ks) * n2[k];
+          kr[k] += pr.ks * r * r * (1.0 - n2[k]) + (pr.kt - pr.kr) * n2[k] + pr.kr;
+        }
+      }
+      if (!any) continue;
+      const double v = std::min(s.m[q] / kt.maxCoeff(), s.inertia[q] / kr.maxCoeff());
+      best = std::min(best, std::sqrt(2.0 * v));
+    }
+  }
+  if (std::isfinite(best)) return best;
+  // No contact: P-wave estimate scaled as on the reference packing.
+  const double rmin = s.size() > 0 ? *std::min_element(s.r.begin(), s.r.end()) : 1.0;
+  const Material& mat = law_.material();
+  return 0.44 * rmin * std::sqrt(mat.density / mat.young) / num_.dt_safety;
+}
+
+void Simulation::refresh_dt() { dt_ = num_.dt_safety * critical_dt(); }
+
+}  // namespace dem

@@ -1,0 +1,77 @@
+// One periodic DEM cell: spheres, cell, contacts, contact law and the leap-frog integrator with
+// Cundall non-viscous damping on fluctuating velocities and spins (YADE's NewtonIntegrator).
+#pragma once
+
+#include <cstdint>
+
+#include "common/types.hpp"
+#include "dem/contact_law_cohfrict.hpp"
+#include "dem/contacts.hpp"
+#include "dem/neighbor_search.hpp"
+#include "dem/params.hpp"
+#include "dem/periodic_cell.hpp"
+#include "dem/spheres.hpp"
+
+namespace dem {
+
+/// The DEM system of one RVE. Results are bit-for-bit independent of the OpenMP thread count.
+class Simulation {
+ public:
+  /// @pre spheres inside or near the cell, material and numerics valid (checked).
+  Simulation(Spheres spheres, const PeriodicCell& cell, const Material& mat, const Numerics& num);
+
+  /// One step: neighbour update if needed, contact forces, integration, cell deformation with
+  /// cell().l. Equivalent to compute_forces(); integrate().
+  void step();
+  /// Neighbour update if needed, contact forces and torques, Love-Weber stress.
+  void compute_forces();
+  /// Leap-frog update of velocities, positions and the cell with the forces of compute_forces().
+  void integrate();
+
+  /// Critical time step from summed per-body stiffnesses (YADE GlobalStiffnessTimeStepper),
+  /// without the safety factor [s]. Without contacts: 0.44 min r sqrt(rho / E) (P-wave based).
+  [[nodiscard]] double critical_dt() const;
+  /// dt <- safety * critical_dt().
+  void refresh_dt();
+  void set_dt(double dt) { dt_ = dt; }
+  [[nodiscard]] double dt() const { return dt_; }  ///< [s]
+
+  /// Love-Weber stress of the last force computation, tension positive [Pa].
+  [[nodiscard]] const common::Mat3& stress() const { return stress_; }
+  /// Friction angle for new contacts and, if `existing`, for current contacts too [deg].
+  void set_friction_deg(double phi_deg, bool existing);
+
+  Spheres& spheres() { return spheres_; }
+  [[nodiscard]] const Spheres& spheres() const { return spheres_; }
+  PeriodicCell& cell() { return cell_; }
+  [[nodiscard]] const PeriodicCell& cell() const { return cell_; }
+  Contacts& contacts() { return contacts_; }
+  [[nodiscard]] const Contacts& contacts() const { return contacts_; }
+  VerletState& verlet() { return verlet_; }
+  [[nodiscard]] const VerletState& verlet() const { return verlet_; }
+  [[nodiscard]] const CohFrictLaw& law() const { return law_; }
+  [[nodiscard]] const Numerics& numerics() const { return num_; }
+
+  [[nodiscard]] double time() const { return time_; }            ///< [s]
+  [[nodiscard]] std::int64_t steps() const { return steps_; }    ///< steps done
+  void set_counters(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
+  /// Force a neighbour rebuild at the next compute_forces().
+  void invalidate_neighbors() { force_rebuild_ = true; }
+
+ private:
+  void update_neighbors();
+
+  Spheres spheres_;
+  PeriodicCell cell_;
+  CohFrictLaw law_;
+  Numerics num_;
+  Contacts contacts_;
+  VerletState verlet_;
+  common::Mat3 stress_ = common::Mat3::Zero();
+  double dt_ = 0.0;
+  double time_ = 0.0;
+  std::int64_t steps_ = 0;
+  bool force_rebuild_ = true;
+};
+
+}  // namespace dem
