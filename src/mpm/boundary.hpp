@@ -1,0 +1,77 @@
+// Boundary conditions on the grid: velocity constraints on node sets (e.g. the moving top platen,
+// Duverger et al. 2022 eq. 13) and pressures/tractions on the material's current faces (the
+// 100 kPa confinement of section 3), turned into nodal forces (eq. 6, f^trac).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "mpm/grid.hpp"
+#include "mpm/material_points.hpp"
+#include "mpm/shape_function.hpp"
+
+namespace mpm {
+
+/// Prescribed velocity components on the nodes whose position lies in the box [lo, hi]
+/// (tolerance 1e-9 cell). Applied to the nodal velocity before the velocity gradient is taken,
+/// and to the nodal acceleration before G2P (a = (V(t + dt) - V(t)) / dt, zero for a constant
+/// velocity), so the points next to these nodes follow them.
+struct VelocityConstraint {
+  common::Vec3 lo;                        ///< box lower corner [m]
+  common::Vec3 hi;                        ///< box upper corner [m]
+  std::array<bool, 3> fixed{};            ///< which components are prescribed
+  common::Vec3 velocity = common::Vec3::Zero();  ///< prescribed velocity [m/s]
+  /// Optional: velocity as a function of the node position [m] and time [s]; replaces
+  /// `velocity` when set (e.g. a rigid rotation field for verification).
+  std::function<common::Vec3(const common::Vec3&, double)> field;
+};
+
+/// The grid's boundary node plane on one side: a box selecting those nodes.
+/// axis in {0, 1, 2}, side -1 (lower) or +1 (upper).
+VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::array<bool, 3> fixed,
+                                   const common::Vec3& velocity = common::Vec3::Zero());
+
+/// A constraint with its node list resolved (sorted), built once by the solver.
+struct ResolvedConstraint {
+  VelocityConstraint spec;
+  std::vector<std::int64_t> nodes;
+};
+ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c);
+
+/// Sets the prescribed components of the active constrained nodes' velocity at time t [s].
+void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
+                                double t, GridFields& fields);
+/// Sets the prescribed components of the active constrained nodes' acceleration:
+/// (V(t + dt) - V(t)) / dt [m/s^2].
+void apply_acceleration_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
+                                    double t, double dt, GridFields& fields);
+
+/// A load on one face of the material: pressure and/or traction over the face's CURRENT area.
+/// The face is the side of the material's current bounding box (see material_extent) normal to
+/// `axis`; its area is the product of the box's two other extents.
+struct TractionLoad {
+  int axis = 0;            ///< normal axis of the face, 0..2
+  int side = -1;           ///< -1: the face at the material's lowest coordinate, +1 the highest
+  double pressure = 0.0;   ///< [Pa], positive pushes into the material (force -p n A)
+  common::Vec3 traction = common::Vec3::Zero();  ///< additional traction vector [Pa]
+};
+
+/// Axis-aligned box of the material's current domains: each point spans x_p +- e_p with
+/// e_p,d = sum_k |F_dk| hw0_k (the bounding box of its deformed parallelepiped, CPDI-like).
+struct MaterialExtent {
+  common::Vec3 lo;  ///< [m]
+  common::Vec3 hi;  ///< [m]
+};
+MaterialExtent material_extent(const MaterialPoints& points);
+
+/// Adds the nodal forces of one load: f_v = t A N_n(x_face) I_1,v I_2,v / (sum over active v),
+/// with I the integrals of the grid basis (linear hat for linear and uGIMP, the B-spline for
+/// bspline2) over the tangential extents, clipped to the grid; the sum of the nodal forces is
+/// exactly t A. Throws common::NumericalError if no active node is loaded.
+/// Returns the loaded area A [m^2].
+double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
+                      const MaterialExtent& extent, GridFields& fields);
+
+}  // namespace mpm

@@ -1,0 +1,323 @@
+// MPM time stepping: USF / MUSL step, time step, state save/load (see header, docs/mpm.md).
+#include "mpm/solver.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "common/errors.hpp"
+
+namespace mpm {
+namespace {
+
+std::string vec_str(const common::Vec3& v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+  return s.str();
+}
+
+std::string num_str(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+void config_error(const std::string& key, double value, const std::string& rule) {
+  throw common::InputError("mpm config: " + key + " = " + num_str(value) + ": " + rule);
+}
+
+}  // namespace
+
+void SolverConfig::validate() const {
+  grid.validate();
+  if (!(pic_fraction >= 0.0 && pic_fraction <= 1.0)) {
+    config_error("pic_fraction", pic_fraction, "must be in [0, 1] (0 = pure NFLIP)");
+  }
+  if (!(damping >= 0.0 && damping < 1.0)) {
+    config_error("damping", damping, "must be in [0, 1) (Cundall damping ratio D of eq. 8)");
+  }
+  if (!(dt >= 0.0) || !std::isfinite(dt)) config_error("dt", dt, "must be >= 0 s (0 = CFL)");
+  if (dt == 0.0 && !(cfl > 0.0 && cfl <= 1.0)) {
+    config_error("cfl", cfl, "must be in (0, 1] when dt = 0");
+  }
+  if (!(mass_threshold >= 0.0 && mass_threshold < 1.0)) {
+    config_error("mass_threshold", mass_threshold, "must be in [0, 1) (relative to the mean nodal mass)");
+  }
+  if (!gravity.allFinite()) throw common::InputError("mpm config: gravity is not finite");
+}
+
+Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials)
+    : config_(std::move(config)), points_(std::move(points)), materials_(std::move(materials)) {
+  config_.validate();
+  points_.validate();
+  if (materials_.empty()) throw common::InputError("mpm solver: no material model given");
+  for (std::size_t k = 0; k < materials_.size(); ++k) {
+    if (materials_[k] == nullptr) {
+      throw common::InputError("mpm solver: material " + std::to_string(k) + " is null");
+    }
+  }
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    if (static_cast<std::size_t>(points_.material[p]) >= materials_.size()) {
+      throw common::InputError("mpm solver: point id " + std::to_string(points_.id[p]) +
+                               " has material " + std::to_string(points_.material[p]) + " but only " +
+                               std::to_string(materials_.size()) + " material model(s) were given");
+    }
+  }
+  if (config_.shape == ShapeKind::ugimp) {
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      if ((points_.half_width0[p].array() > 0.5 * config_.grid.spacing.array()).any()) {
+        throw common::InputError("mpm solver: point id " + std::to_string(points_.id[p]) +
+                                 ": uGIMP needs half-widths <= spacing / 2");
+      }
+    }
+  }
+  fields_.resize(config_.grid);
+}
+
+void Solver::add_constraint(const VelocityConstraint& constraint) {
+  constraints_.push_back(resolve(config_.grid, constraint));
+}
+
+void Solver::add_traction(const TractionLoad& load) {
+  if (load.axis < 0 || load.axis > 2 || (load.side != -1 && load.side != 1)) {
+    throw common::InputError("mpm traction load: axis = " + std::to_string(load.axis) +
+                             ", side = " + std::to_string(load.side) +
+                             ": axis must be 0..2 and side -1 or +1");
+  }
+  tractions_.push_back(load);
+  traction_areas_.push_back(0.0);
+}
+
+double Solver::next_dt() const {
+  if (config_.dt > 0.0) return config_.dt;
+  double c = 0.0;
+  for (const MaterialModel* m : materials_) c = std::max(c, m->wave_speed());
+  double vmax = 0.0;
+  for (const common::Vec3& v : points_.v) vmax = std::max(vmax, v.norm());
+  const double speed = c + vmax;
+  if (!(speed > 0.0) || !std::isfinite(speed)) {
+    throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " + num_str(time_) +
+                                 " s): CFL time step needs a positive finite wave speed, got " +
+                                 num_str(speed) + " m/s");
+  }
+  return config_.cfl * config_.grid.spacing.minCoeff() / speed;
+}
+
+void Solver::prepare_grid(std::int64_t step, double t) {
+  const std::int64_t bad = compute_stencils(config_.shape, config_.grid, points_, cache_);
+  if (bad >= 0) {
+    const auto p = static_cast<std::size_t>(bad);
+    throw common::NumericalError(
+        "mpm step " + std::to_string(step) + " (t = " + num_str(t) + " s): point id " +
+        std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
+        " m has left the grid [" + vec_str(config_.grid.origin) + ", " +
+        vec_str(config_.grid.upper()) + "] (its " + std::string(to_string(config_.shape)) +
+        " stencil needs nodes outside it)");
+  }
+  bin_points(config_.grid, cache_, bins_);
+  activate_nodes(config_.grid, cache_, bins_, fields_);
+  p2g_mass_momentum(config_.grid, cache_, bins_, points_, config_.gravity, fields_);
+  threshold_ = config_.mass_threshold * typical_nodal_mass(fields_);
+  compute_nodal_velocity(threshold_, fields_);
+  apply_velocity_constraints(config_.grid, constraints_, t, fields_);
+}
+
+void Solver::update_stress(double dt) {
+  const auto n = static_cast<std::int64_t>(points_.size());
+  const common::Mat3 I = common::Mat3::Identity();
+  // Kinematics: F <- (I + L dt) F, V <- det(I + L dt) V.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < n; ++q) {
+    const auto p = static_cast<std::size_t>(q);
+    const common::Mat3 dF = I + dt * points_.L[p];
+    points_.F[p] = dF * points_.F[p];
+    points_.volume[p] *= dF.determinant();
+  }
+  if (materials_.size() == 1) {
+    materials_[0]->update_stress(points_.id, points_.L, dt, points_.stress);
+    return;
+  }
+  for (std::size_t k = 0; k < materials_.size(); ++k) {
+    gather_ids_.clear();
+    gather_L_.clear();
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      if (static_cast<std::size_t>(points_.material[p]) != k) continue;
+      gather_ids_.push_back(points_.id[p]);
+      gather_L_.push_back(points_.L[p]);
+    }
+    if (gather_ids_.empty()) continue;
+    gather_stress_.resize(gather_ids_.size());
+    materials_[k]->update_stress(gather_ids_, gather_L_, dt, gather_stress_);
+    std::size_t j = 0;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      if (static_cast<std::size_t>(points_.material[p]) == k) points_.stress[p] = gather_stress_[j++];
+    }
+  }
+}
+
+void Solver::check_points(double t_end) const {
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const double vol = points_.volume[p];
+    if (!(vol > 0.0) || !std::isfinite(vol)) {
+      throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " +
+                                   num_str(t_end) + " s): point id " + std::to_string(points_.id[p]) +
+                                   " at x = " + vec_str(points_.x[p]) + " m: volume = " +
+                                   num_str(vol) + " m^3 (must be positive and finite)");
+    }
+    if (!points_.stress[p].allFinite()) {
+      throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " +
+                                   num_str(t_end) + " s): point id " + std::to_string(points_.id[p]) +
+                                   ": stress is not finite (trace = " +
+                                   num_str(points_.stress[p].trace()) + " Pa)");
+    }
+  }
+}
+
+void Solver::add_external_loads() {
+  if (tractions_.empty()) return;
+  const MaterialExtent extent = material_extent(points_);
+  for (std::size_t k = 0; k < tractions_.size(); ++k) {
+    traction_areas_[k] = apply_traction(config_.grid, config_.shape, tractions_[k], extent, fields_);
+  }
+}
+
+void Solver::step() {
+  const double dt = next_dt();
+  const double t = time_;
+  prepare_grid(step_, t);
+  const Grid& grid = config_.grid;
+  if (config_.stress_update == StressUpdate::usf) {
+    // USF: L from V_v(t), stress first, then forces from the new stress (eqs. 5, 6, 8-10).
+    g2p_velocity_gradient(grid, cache_, fields_, points_);
+    update_stress(dt);
+    check_points(t + dt);
+    p2g_internal_force(grid, cache_, bins_, points_, fields_);
+    add_external_loads();
+    compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
+    apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
+    g2p_update(grid, cache_, fields_, config_.pic_fraction, dt, points_);
+  } else {
+    // MUSL: forces from the old stress, move the points, re-project their new momentum with the
+    // start-of-step weights, then L and the stress from it.
+    p2g_internal_force(grid, cache_, bins_, points_, fields_);
+    add_external_loads();
+    compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
+    apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
+    g2p_update(grid, cache_, fields_, config_.pic_fraction, dt, points_);
+    p2g_momentum(grid, cache_, bins_, points_, fields_);
+    compute_nodal_velocity(threshold_, fields_);
+    apply_velocity_constraints(grid, constraints_, t + dt, fields_);
+    g2p_velocity_gradient(grid, cache_, fields_, points_);
+    update_stress(dt);
+    check_points(t + dt);
+  }
+  time_ = t + dt;
+  ++step_;
+}
+
+void Solver::run(std::int64_t n) {
+  for (std::int64_t k = 0; k < n; ++k) step();
+}
+
+namespace {
+
+std::vector<double> flatten(const std::vector<common::Vec3>& v) {
+  std::vector<double> out;
+  out.reserve(v.size() * 3);
+  for (const common::Vec3& a : v) out.insert(out.end(), {a[0], a[1], a[2]});
+  return out;
+}
+
+std::vector<double> flatten(const std::vector<common::Mat3>& v) {
+  std::vector<double> out;
+  out.reserve(v.size() * 9);
+  for (const common::Mat3& a : v) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) out.push_back(a(i, j));
+    }
+  }
+  return out;
+}
+
+std::vector<double> read_sized(const common::StateReader& r, const std::string& name,
+                               std::size_t expected) {
+  std::vector<double> d = r.read_f64(name);
+  if (d.size() != expected) {
+    throw common::InputError("mpm checkpoint: field " + name + " has " + std::to_string(d.size()) +
+                             " values, expected " + std::to_string(expected));
+  }
+  return d;
+}
+
+void unflatten(const std::vector<double>& d, std::vector<common::Vec3>& v) {
+  for (std::size_t p = 0; p < v.size(); ++p) v[p] = common::Vec3(d[3 * p], d[3 * p + 1], d[3 * p + 2]);
+}
+
+void unflatten(const std::vector<double>& d, std::vector<common::Mat3>& v) {
+  for (std::size_t p = 0; p < v.size(); ++p) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) v[p](i, j) = d[9 * p + static_cast<std::size_t>(3 * i + j)];
+    }
+  }
+}
+
+}  // namespace
+
+void Solver::save(common::StateWriter& w) const {
+  w.write("solver/step", std::vector<std::int64_t>{step_});
+  w.write("solver/time", std::vector<double>{time_});
+  w.write("points/id", points_.id);
+  w.write("points/x", flatten(points_.x));
+  w.write("points/v", flatten(points_.v));
+  w.write("points/mass", points_.mass);
+  w.write("points/volume", points_.volume);
+  w.write("points/volume0", points_.volume0);
+  w.write("points/half_width0", flatten(points_.half_width0));
+  w.write("points/stress", flatten(points_.stress));
+  w.write("points/F", flatten(points_.F));
+  w.write("points/L", flatten(points_.L));
+  std::vector<std::int64_t> mat(points_.material.begin(), points_.material.end());
+  w.write("points/material", mat);
+}
+
+void Solver::load(const common::StateReader& r) {
+  const std::vector<std::int64_t> step = r.read_i64("solver/step");
+  const std::vector<double> time = r.read_f64("solver/time");
+  if (step.size() != 1 || time.size() != 1) {
+    throw common::InputError("mpm checkpoint: solver/step and solver/time must hold one value");
+  }
+  MaterialPoints pts;
+  const std::vector<std::int64_t> ids = r.read_i64("points/id");
+  const std::size_t n = ids.size();
+  pts.resize(n);
+  pts.id = ids;
+  unflatten(read_sized(r, "points/x", 3 * n), pts.x);
+  unflatten(read_sized(r, "points/v", 3 * n), pts.v);
+  pts.mass = read_sized(r, "points/mass", n);
+  pts.volume = read_sized(r, "points/volume", n);
+  pts.volume0 = read_sized(r, "points/volume0", n);
+  unflatten(read_sized(r, "points/half_width0", 3 * n), pts.half_width0);
+  unflatten(read_sized(r, "points/stress", 9 * n), pts.stress);
+  unflatten(read_sized(r, "points/F", 9 * n), pts.F);
+  unflatten(read_sized(r, "points/L", 9 * n), pts.L);
+  const std::vector<std::int64_t> mat = r.read_i64("points/material");
+  if (mat.size() != n) throw common::InputError("mpm checkpoint: points/material has the wrong size");
+  for (std::size_t p = 0; p < n; ++p) {
+    if (mat[p] < 0 || static_cast<std::size_t>(mat[p]) >= materials_.size()) {
+      throw common::InputError("mpm checkpoint: points/material of point id " +
+                               std::to_string(ids[p]) + " = " + std::to_string(mat[p]) +
+                               ": no such material model");
+    }
+    pts.material[p] = static_cast<std::int32_t>(mat[p]);
+  }
+  pts.validate();
+  points_ = std::move(pts);
+  step_ = step[0];
+  time_ = time[0];
+}
+
+}  // namespace mpm

@@ -1,0 +1,107 @@
+// MPM time stepping (Duverger et al. 2022, section 2.1): Update Stress First (the paper) or
+// MUSL, NFLIP velocity update (eqs. 9-10) with an optional PIC blend, Cundall damping (eq. 8).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/state_io.hpp"
+#include "mpm/boundary.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/grid_solve.hpp"
+#include "mpm/material_model.hpp"
+#include "mpm/material_points.hpp"
+#include "mpm/shape_function.hpp"
+#include "mpm/transfers.hpp"
+
+namespace mpm {
+
+/// When the stress is updated within a step.
+enum class StressUpdate {
+  usf,   ///< Update Stress First: L from the start-of-step nodal velocities (the paper)
+  musl,  ///< Modified Update Stress Last: L from re-projected end-of-step point velocities
+};
+
+/// Plain run configuration (the app maps the job file onto it). Units in each comment.
+struct SolverConfig {
+  Grid grid;                                     ///< background grid [m]
+  ShapeKind shape = ShapeKind::linear;           ///< shape function (the paper: linear)
+  StressUpdate stress_update = StressUpdate::usf;
+  double pic_fraction = 0.0;                     ///< PIC share in [0, 1]; 0 = pure NFLIP (eq. 9)
+  common::Vec3 gravity = common::Vec3::Zero();   ///< g of eq. 6 [m/s^2]; zero = no gravity
+  double damping = 0.0;                          ///< D of eq. 8, in [0, 1) [-]
+  DampingMode damping_mode = DampingMode::cundall_vector;
+  double dt = 0.0;                               ///< fixed time step [s]; 0 = use cfl
+  double cfl = 0.0;                              ///< CFL number in (0, 1] when dt == 0 [-]
+  /// Nodes with m_v < mass_threshold * (mean active nodal mass) get zero velocity and
+  /// acceleration [-]; in [0, 1).
+  double mass_threshold = 1e-6;
+  /// Throws common::InputError naming the field, its value and the rule.
+  void validate() const;
+};
+
+/// Owns the points and the grid fields; materials are not owned and must outlive the solver.
+class Solver {
+ public:
+  /// materials[k] serves the points with material == k. Throws common::InputError on a bad
+  /// configuration, bad points, or a point whose material index has no model.
+  Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials);
+
+  /// Velocity constraint on a node set (resolved once, here).
+  void add_constraint(const VelocityConstraint& constraint);
+  /// Pressure/traction on a face of the material (recomputed every step from the current area).
+  void add_traction(const TractionLoad& load);
+
+  /// Advances one step. Throws common::NumericalError (step, time, point id, value) when a point
+  /// leaves the grid, or a volume becomes non-positive or NaN, or a stress non-finite.
+  void step();
+  /// n steps.
+  void run(std::int64_t n);
+
+  /// Time step the next step() will use [s] (fixed, or CFL from the materials' wave speeds).
+  [[nodiscard]] double next_dt() const;
+
+  [[nodiscard]] const MaterialPoints& points() const { return points_; }
+  /// Mutable access, e.g. to set initial velocities or stresses before the first step.
+  [[nodiscard]] MaterialPoints& points() { return points_; }
+  [[nodiscard]] const GridFields& grid_fields() const { return fields_; }
+  [[nodiscard]] const SolverConfig& config() const { return config_; }
+  [[nodiscard]] double time() const { return time_; }            ///< [s]
+  [[nodiscard]] std::int64_t step_count() const { return step_; }
+  /// Loaded area of each traction load in the last step [m^2], in add_traction order.
+  [[nodiscard]] const std::vector<double>& traction_areas() const { return traction_areas_; }
+
+  /// Writes the MPM state as named fields (docs/mpm.md, "Checkpoint"): solver/step,
+  /// solver/time, points/id, points/x, points/v, points/mass, points/volume, points/volume0,
+  /// points/half_width0, points/stress, points/F, points/L, points/material. The materials'
+  /// own state is written by their owner (MaterialModel::write_state).
+  void save(common::StateWriter& writer) const;
+  /// Restores what save wrote; a run continued from it is bit-for-bit the uninterrupted one.
+  /// Throws common::InputError on a missing field or inconsistent sizes.
+  void load(const common::StateReader& reader);
+
+ private:
+  void prepare_grid(std::int64_t step, double t);
+  void update_stress(double dt);
+  void add_external_loads();
+  void check_points(double t_end) const;
+
+  SolverConfig config_;
+  MaterialPoints points_;
+  std::vector<MaterialModel*> materials_;
+  std::vector<ResolvedConstraint> constraints_;
+  std::vector<TractionLoad> tractions_;
+  std::vector<double> traction_areas_;
+  GridFields fields_;
+  StencilCache cache_;
+  PointBins bins_;
+  double threshold_ = 0.0;
+  double time_ = 0.0;
+  std::int64_t step_ = 0;
+  // Per-material gather buffers (used when there is more than one material).
+  std::vector<std::int64_t> gather_ids_;
+  std::vector<common::Mat3> gather_L_;
+  std::vector<common::Mat3> gather_stress_;
+};
+
+}  // namespace mpm

@@ -1,0 +1,219 @@
+// Point <-> grid transfers (see header). Kernels use location suffixes: _p point, _i node.
+#include "mpm/transfers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mpm {
+namespace {
+
+/// Calls f(node_i, S, grad S) for the width^3 nodes of point p.
+template <class Fn>
+inline void for_each_node(const Grid& grid, const StencilCache& c, std::size_t p, Fn&& f) {
+  const int ns = c.width;
+  const std::array<int, 3>& b = c.base[p];
+  const double* w = &c.w[p * 9];
+  const double* dw = &c.dw[p * 9];
+  for (int k = 0; k < ns; ++k) {
+    for (int j = 0; j < ns; ++j) {
+      const double wyz = w[3 + j] * w[6 + k];
+      for (int i = 0; i < ns; ++i) {
+        const std::int64_t node_i = grid.node_index(b[0] + i, b[1] + j, b[2] + k);
+        const double S = w[i] * wyz;
+        const common::Vec3 grad(dw[i] * wyz, w[i] * dw[3 + j] * w[6 + k],
+                                w[i] * w[3 + j] * dw[6 + k]);
+        f(node_i, S, grad);
+      }
+    }
+  }
+}
+
+/// Runs kernel(p) for every point, colour by colour; bins of one colour in parallel.
+template <class Fn>
+inline void for_points_coloured(const PointBins& bins, Fn&& kernel) {
+  for (const std::vector<std::int64_t>& colour : bins.by_colour) {
+    const auto nb = static_cast<std::int64_t>(colour.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t q = 0; q < nb; ++q) {
+      const auto b = static_cast<std::size_t>(colour[static_cast<std::size_t>(q)]);
+      for (std::int64_t o = bins.offset[b]; o < bins.offset[b + 1]; ++o) {
+        kernel(static_cast<std::size_t>(bins.order[static_cast<std::size_t>(o)]));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
+                              StencilCache& cache) {
+  const std::size_t n = points.size();
+  const int ns = stencil_width(kind);
+  cache.width = ns;
+  cache.base.resize(n);
+  cache.w.resize(n * 9);
+  cache.dw.resize(n * 9);
+  const common::Vec3i cells = grid.cells;
+  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+  const auto nn = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (std::int64_t q = 0; q < nn; ++q) {
+    const auto p = static_cast<std::size_t>(q);
+    bool inside = true;
+    for (int d = 0; d < 3; ++d) {
+      const double h = grid.spacing[d];
+      const double s = (points.x[p][d] - grid.origin[d]) / h;
+      const double lp = points.half_width0[p][d] / h;
+      if (!std::isfinite(s) || s < -1.0 || s > cells[d] + 1.0) {
+        inside = false;
+        cache.base[p][d] = 0;
+        continue;
+      }
+      const Weights1D w1 = weights_1d(kind, s, lp, h);
+      cache.base[p][d] = w1.base;
+      for (int a = 0; a < 3; ++a) {
+        cache.w[p * 9 + static_cast<std::size_t>(d * 3 + a)] = w1.w[static_cast<std::size_t>(a)];
+        cache.dw[p * 9 + static_cast<std::size_t>(d * 3 + a)] = w1.dw[static_cast<std::size_t>(a)];
+      }
+      if (w1.base < 0 || w1.base + ns - 1 > cells[d]) inside = false;
+    }
+    if (!inside) bad = std::min(bad, q);
+  }
+  return bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;
+}
+
+void bin_points(const Grid& grid, const StencilCache& cache, PointBins& bins) {
+  const std::size_t n = cache.base.size();
+  const auto num_nodes = static_cast<std::size_t>(grid.num_nodes());
+  if (bins.scratch.size() != num_nodes) bins.scratch.assign(num_nodes, -1);
+  std::vector<std::int64_t> keys(n);
+  bins.key.clear();
+  // Count points per base node; scratch holds counts for used keys, -1 elsewhere.
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::array<int, 3>& b = cache.base[p];
+    keys[p] = grid.node_index(b[0], b[1], b[2]);
+    std::int64_t& c = bins.scratch[static_cast<std::size_t>(keys[p])];
+    if (c < 0) {
+      c = 0;
+      bins.key.push_back(keys[p]);
+    }
+    ++c;
+  }
+  std::sort(bins.key.begin(), bins.key.end());
+  const std::size_t nb = bins.key.size();
+  bins.offset.assign(nb + 1, 0);
+  for (std::size_t b = 0; b < nb; ++b) {
+    std::int64_t& c = bins.scratch[static_cast<std::size_t>(bins.key[b])];
+    bins.offset[b + 1] = bins.offset[b] + c;
+    c = bins.offset[b];  // scratch now holds the next write position of the bin
+  }
+  bins.order.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    std::int64_t& pos = bins.scratch[static_cast<std::size_t>(keys[p])];
+    bins.order[static_cast<std::size_t>(pos++)] = static_cast<std::int64_t>(p);
+  }
+  const int ns = cache.width;
+  bins.by_colour.assign(static_cast<std::size_t>(ns * ns * ns), {});
+  for (std::size_t b = 0; b < nb; ++b) {
+    bins.scratch[static_cast<std::size_t>(bins.key[b])] = -1;
+    const common::Vec3i ijk = grid.node_ijk(bins.key[b]);
+    const int colour = ijk[0] % ns + ns * (ijk[1] % ns + ns * (ijk[2] % ns));
+    bins.by_colour[static_cast<std::size_t>(colour)].push_back(static_cast<std::int64_t>(b));
+  }
+}
+
+void activate_nodes(const Grid& grid, const StencilCache& cache, const PointBins& bins,
+                    GridFields& fields) {
+  fields.clear_active();
+  const int ns = cache.width;
+  for (std::size_t b = 0; b + 1 < bins.offset.size(); ++b) {
+    const auto p = static_cast<std::size_t>(bins.order[static_cast<std::size_t>(bins.offset[b])]);
+    const std::array<int, 3>& base = cache.base[p];
+    for (int k = 0; k < ns; ++k) {
+      for (int j = 0; j < ns; ++j) {
+        for (int i = 0; i < ns; ++i) {
+          const std::int64_t node_i = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
+          char& flag = fields.is_active[static_cast<std::size_t>(node_i)];
+          if (!flag) {
+            flag = 1;
+            fields.active.push_back(node_i);
+          }
+        }
+      }
+    }
+  }
+  std::sort(fields.active.begin(), fields.active.end());
+}
+
+void p2g_mass_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
+                       const MaterialPoints& points, const common::Vec3& gravity,
+                       GridFields& fields) {
+  for_points_coloured(bins, [&](std::size_t p) {
+    const double m_p = points.mass[p];
+    const common::Vec3 mv_p = m_p * points.v[p];
+    const common::Vec3 mg_p = m_p * gravity;
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+      const auto i = static_cast<std::size_t>(node_i);
+      fields.mass[i] += S * m_p;
+      fields.momentum[i] += S * mv_p;
+      fields.force[i] += S * mg_p;
+    });
+  });
+}
+
+void p2g_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
+                  const MaterialPoints& points, GridFields& fields) {
+  for (const std::int64_t i : fields.active) fields.momentum[static_cast<std::size_t>(i)].setZero();
+  for_points_coloured(bins, [&](std::size_t p) {
+    const common::Vec3 mv_p = points.mass[p] * points.v[p];
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+      fields.momentum[static_cast<std::size_t>(node_i)] += S * mv_p;
+    });
+  });
+}
+
+void p2g_internal_force(const Grid& grid, const StencilCache& cache, const PointBins& bins,
+                        const MaterialPoints& points, GridFields& fields) {
+  for_points_coloured(bins, [&](std::size_t p) {
+    const common::Mat3 Vsigma_p = points.volume[p] * points.stress[p];
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double, const common::Vec3& grad) {
+      fields.force[static_cast<std::size_t>(node_i)] -= Vsigma_p * grad;
+    });
+  });
+}
+
+void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const GridFields& fields,
+                           MaterialPoints& points) {
+  const auto n = static_cast<std::int64_t>(points.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < n; ++q) {
+    const auto p = static_cast<std::size_t>(q);
+    common::Mat3 L_p = common::Mat3::Zero();
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double, const common::Vec3& grad) {
+      L_p += fields.velocity[static_cast<std::size_t>(node_i)] * grad.transpose();
+    });
+    points.L[p] = L_p;
+  }
+}
+
+void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
+                double pic_fraction, double dt, MaterialPoints& points) {
+  const auto n = static_cast<std::int64_t>(points.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < n; ++q) {
+    const auto p = static_cast<std::size_t>(q);
+    common::Vec3 a_p = common::Vec3::Zero();
+    common::Vec3 v_pic = common::Vec3::Zero();
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+      const auto i = static_cast<std::size_t>(node_i);
+      a_p += S * fields.acceleration[i];
+      v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+    });
+    const common::Vec3 v_flip = points.v[p] + dt * a_p;
+    points.v[p] = pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
+    points.x[p] += dt * points.v[p];
+  }
+}
+
+}  // namespace mpm
