@@ -36,12 +36,31 @@ std::string join_path(const std::string& prefix, std::string_view key) {
   return prefix.empty() ? std::string(key) : prefix + "." + std::string(key);
 }
 
-std::string node_text(const toml::node& node) {
+std::string float_text(double x) {
+  std::string t = fmt::format("{}", x);
+  if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
+  return t;
+}
+
+// The value as the user would write it (shortest round-trip floats, double-quoted strings).
+std::string node_text_full(const toml::node& node) {
   if (node.is_table()) return "(a table)";
+  if (const auto* a = node.as_array()) {
+    std::vector<std::string> parts;
+    for (const auto& el : *a) parts.push_back(node_text_full(el));
+    return fmt::format("[{}]", fmt::join(parts, ", "));
+  }
+  if (const auto* i = node.as_integer()) return fmt::format("{}", i->get());
+  if (const auto* f = node.as_floating_point()) return float_text(f->get());
+  if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* str = node.as_string()) return "\"" + str->get() + "\"";
   std::ostringstream os;
   node.visit([&os](const auto& n) { os << n; });
-  std::string s = os.str();
-  std::replace(s.begin(), s.end(), '\n', ' ');
+  return os.str();
+}
+
+std::string node_text(const toml::node& node) {
+  std::string s = node_text_full(node);
   if (s.size() > 60) s = s.substr(0, 57) + "...";
   return s;
 }
@@ -136,7 +155,9 @@ class Validator {
         if (present && child->required) {
           error(section_line(cprefix), fmt::format("[{}] is missing: required section ({})", cpath, child->doc));
         }
-        fill_absent(cpath, child->path, false);
+        // An absent section with required keys is physics or a feature switched off: no
+        // defaults. An absent section of knobs only (output, numerics) takes its defaults.
+        if (!has_required_descendant(child->path)) fill_absent(cpath, child->path, false);
         continue;
       }
       if (job_.entries_.count(cpath) != 0) continue;
@@ -146,6 +167,14 @@ class Validator {
         error(section_line(cprefix), fmt::format("{} is missing: required ({})", cpath, describe(*child)));
       }
     }
+  }
+
+  bool has_required_descendant(const std::string& spath) const {
+    for (const Key* k : schema_.children(spath)) {
+      if (k->required || ((k->type == Type::Table || k->type == Type::TableList) && has_required_descendant(k->path)))
+        return true;
+    }
+    return false;
   }
 
   int section_line(const std::string& cpath) const {

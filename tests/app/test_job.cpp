@@ -1,0 +1,111 @@
+// Tests of app::Job: validation messages, defaults, cross-key rules, resolved output.
+#include "app/job.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+
+namespace {
+
+const char* kDemJob = R"(title = "t"
+[dem.material]
+density = "2650 kg/m^3"
+young_modulus = 3e8
+stiffness_ratio = 0.5
+friction_angle = 30
+rolling_stiffness = 2.0
+rolling_strength = 0.3
+
+[dem.sample]
+spheres = 100
+psd_diameters = ["130 um", "270 um"]
+psd_passing = [0.0, 1.0]
+
+[dem.preparation]
+pressure = "100 kPa"
+friction_angle = 1.0
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    (void)app::Job::parse(text, "job.toml");
+  } catch (const common::InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string replace(std::string s, const std::string& a, const std::string& b) {
+  const auto pos = s.find(a);
+  EXPECT_NE(pos, std::string::npos) << a;
+  return s.replace(pos, a.size(), b);
+}
+
+}  // namespace
+
+TEST(Job, ResolvesValuesInCanonicalUnitsAndFillsDefaults) {
+  const auto job = app::Job::parse(kDemJob, "job.toml");
+  EXPECT_DOUBLE_EQ(job.number("dem.material.density"), 2650.0);
+  EXPECT_DOUBLE_EQ(job.number("dem.material.friction_angle"), 30.0);  // an int where a number is asked
+  EXPECT_DOUBLE_EQ(job.numbers("dem.sample.psd_diameters")[1], 270e-6);
+  EXPECT_EQ(job.integer("dem.sample.spheres"), 100);
+  EXPECT_DOUBLE_EQ(job.number("dem.numerics.damping"), 0.2);  // default of an absent section
+  EXPECT_TRUE(job.entries().at("dem.numerics.damping").defaulted);
+  EXPECT_FALSE(job.has("dem.material.twisting.stiffness"));  // optional physics stays off
+  EXPECT_FALSE(job.has_section("mpm"));
+}
+
+TEST(Job, ResolvedTomlParsesBackToTheSameValues) {
+  const auto job = app::Job::parse(kDemJob, "job.toml");
+  const auto again = app::Job::parse(job.resolved_toml(), "resolved.toml");
+  ASSERT_EQ(job.entries().size(), again.entries().size());
+  for (const auto& [path, e] : job.entries()) {
+    ASSERT_TRUE(again.has(path)) << path;
+    EXPECT_EQ(e.value, again.entries().at(path).value) << path;
+  }
+}
+
+TEST(Job, ReportsEveryErrorWithFileLineKeyValueAndRule) {
+  std::string text = replace(kDemJob, "friction_angle = 30", "friction_angle = 95");
+  text = replace(text, "spheres = 100", "spheres = 1.5");
+  const std::string err = error_of(text);
+  EXPECT_NE(err.find("job.toml:6: dem.material.friction_angle = 95: must be in [0, 90) deg "
+                     "[Inter-particle friction angle phi. [deg]]"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("job.toml:11: dem.sample.spheres = 1.5: must be an integer"), std::string::npos) << err;
+}
+
+TEST(Job, UnknownKeySuggestsTheClosestOne) {
+  const std::string err = error_of(replace(kDemJob, "rolling_strength", "roling_strength"));
+  EXPECT_NE(err.find("job.toml:8: dem.material.roling_strength: unknown key; did you mean 'rolling_strength'?"),
+            std::string::npos)
+      << err;
+}
+
+TEST(Job, CrossKeyRulesNameBothKeys) {
+  const std::string err = error_of(replace(kDemJob, "psd_passing = [0.0, 1.0]", "psd_passing = [0.2, 1.0]"));
+  EXPECT_NE(err.find("job.toml:13: dem.sample.psd_passing = [0.2, 1.0]: must start at 0 and end at 1"),
+            std::string::npos)
+      << err;
+  const std::string err2 = error_of(replace(kDemJob, "spheres = 100\n", ""));
+  EXPECT_NE(err2.find("job.toml:10: dem.sample.spheres is missing: required when no packing file is given"),
+            std::string::npos)
+      << err2;
+}
+
+TEST(Job, OptionalPhysicsNeedsAllItsParametersOnceSwitchedOn) {
+  const std::string text = std::string(kDemJob) + "\n[dem.material.twisting]\nstiffness = 0.5\n";
+  const std::string err = error_of(text);
+  EXPECT_NE(err.find("dem.material.twisting.strength is missing: required"), std::string::npos) << err;
+}
+
+TEST(Job, MissingFileIsAnInputError) {
+  EXPECT_THROW((void)app::Job::load("/nonexistent/job.toml"), common::InputError);
+}
+
+TEST(EditDistance, Basics) {
+  EXPECT_EQ(app::edit_distance("", "abc"), 3u);
+  EXPECT_EQ(app::edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(app::edit_distance("same", "same"), 0u);
+}
