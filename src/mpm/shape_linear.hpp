@@ -20,10 +20,10 @@ struct LinearShape {
     const double a = std::abs(r);
     return a < 1.0 ? 1.0 - a : 0.0;
   }
-  /// dS/dr [-] (divide by h for dS/dx); at r = 0 the right-hand derivative (-1), so that the
-  /// gradients of a stencil sum to zero.
+  /// dS/dr [-] (divide by h for dS/dx); at the kinks r = -1, 0 the right-hand derivative (the
+  /// one of the point's cell), so that the gradients of a stencil sum to zero.
   static double gradient(double r, double /*half_width*/) {
-    if (r >= 1.0 || r <= -1.0) return 0.0;
+    if (r >= 1.0 || r < -1.0) return 0.0;
     return r >= 0.0 ? -1.0 : 1.0;
   }
 };

@@ -28,7 +28,7 @@ struct UgimpShape {
   static double gradient(double r, double lp) {
     const double a = std::abs(r);
     const double sign = r >= 0.0 ? 1.0 : -1.0;
-    if (lp <= 0.0) return a < 1.0 ? -sign : 0.0;
+    if (lp <= 0.0) return (r < 1.0 && r >= -1.0) ? -sign : 0.0;  // linear, right-hand at kinks
     if (a < lp) return -r / lp;
     if (a < 1.0 - lp) return -sign;
     if (a < 1.0 + lp) return -sign * (1.0 + lp - a) / (2.0 * lp);

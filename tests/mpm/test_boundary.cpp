@@ -1,0 +1,83 @@
+// Tests of boundary.hpp: face node selection, traction nodal forces (current area, exact sum),
+// material extent from F and the domain half-widths.
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+#include "mpm/boundary.hpp"
+#include "mpm/transfers.hpp"
+
+namespace {
+
+using common::Vec3;
+
+struct CellSetup {
+  mpm::Grid g;
+  mpm::MaterialPoints pts;
+  mpm::GridFields f;
+};
+
+CellSetup single_cell(mpm::ShapeKind kind, int pad) {
+  CellSetup s;
+  s.g = {Vec3::Constant(-pad), Vec3::Ones(), common::Vec3i::Constant(1 + 2 * pad)};
+  mpm::fill_box(s.pts, s.g, Vec3::Zero(), Vec3::Ones(), 2, 1000.0, 0);
+  mpm::StencilCache c;
+  mpm::PointBins b;
+  s.f.resize(s.g);
+  EXPECT_EQ(mpm::compute_stencils(kind, s.g, s.pts, c), -1);
+  mpm::bin_points(s.g, c, b);
+  mpm::activate_nodes(s.g, c, b, s.f);
+  return s;
+}
+
+TEST(Boundary, FaceConstraintSelectsTheNodePlane) {
+  mpm::Grid g{Vec3::Zero(), Vec3(1, 0.5, 2), common::Vec3i(2, 3, 4)};
+  const mpm::ResolvedConstraint r = mpm::resolve(g, mpm::face_constraint(g, 2, +1, {false, false, true}));
+  EXPECT_EQ(r.nodes.size(), 3u * 4u);
+  for (auto i : r.nodes) EXPECT_EQ(g.node_ijk(i)[2], 4);
+  EXPECT_THROW(mpm::face_constraint(g, 3, 1, {}), common::InputError);
+}
+
+TEST(Boundary, SingleCellPressureGivesQuarterFaceForcePerNode) {
+  CellSetup s = single_cell(mpm::ShapeKind::linear, 0);
+  const mpm::MaterialExtent e = mpm::material_extent(s.pts);
+  EXPECT_EQ(e.lo, Vec3::Zero());
+  EXPECT_EQ(e.hi, Vec3::Ones());
+  const double A = mpm::apply_traction(s.g, mpm::ShapeKind::linear, {0, -1, 100e3, Vec3::Zero()}, e, s.f);
+  EXPECT_EQ(A, 1.0);
+  for (auto i : s.f.active) {
+    const common::Vec3i ijk = s.g.node_ijk(i);
+    // Pressure on the x = 0 face pushes +x: p h^2 / 4 on each of its 4 nodes (to round-off of
+    // the Gauss-point integration, 1e-9 N of 2.5e4 N).
+    const Vec3 expected = ijk[0] == 0 ? Vec3(25e3, 0, 0) : Vec3::Zero();
+    EXPECT_LT((s.f.force[i] - expected).norm(), 1e-9) << ijk.transpose();
+  }
+}
+
+TEST(Boundary, TractionSumIsPressureTimesCurrentArea) {
+  for (auto kind : {mpm::ShapeKind::linear, mpm::ShapeKind::ugimp, mpm::ShapeKind::bspline2}) {
+    CellSetup s = single_cell(kind, 1);
+    // Stretch the points' domains: F = diag(1.02, 0.97, 1.05) without moving them.
+    for (auto& F : s.pts.F) F = Vec3(1.02, 0.97, 1.05).asDiagonal();
+    const mpm::MaterialExtent e = mpm::material_extent(s.pts);
+    // Extent along d: 0.5 + 2 * 0.25 * F_dd.
+    EXPECT_NEAR(e.hi[1] - e.lo[1], 0.5 + 0.5 * 0.97, 1e-15);
+    const double A = mpm::apply_traction(s.g, kind, {1, +1, 1e5, Vec3(0, 0, 2e3)}, e, s.f);
+    EXPECT_NEAR(A, (0.5 + 0.5 * 1.05) * (0.5 + 0.5 * 1.02), 1e-15);
+    Vec3 sum = Vec3::Zero();
+    for (auto i : s.f.active) sum += s.f.force[i];
+    // Pressure on the upper y face pushes -y; the shear traction adds +z; exact to round-off.
+    EXPECT_LT((sum - A * Vec3(0, -1e5, 2e3)).norm(), 1e-10 * 1e5) << mpm::to_string(kind);
+  }
+}
+
+TEST(Boundary, ExtentFollowsRotation) {
+  mpm::MaterialPoints pts;
+  pts.add(0, Vec3::Zero(), 1, 1, Vec3(0.5, 0.1, 0.1), 0);
+  const double c = std::cos(0.3), sn = std::sin(0.3);
+  pts.F[0] << c, -sn, 0, sn, c, 0, 0, 0, 1;
+  const mpm::MaterialExtent e = mpm::material_extent(pts);
+  EXPECT_NEAR(e.hi[0], c * 0.5 + sn * 0.1, 1e-15);
+  EXPECT_NEAR(e.hi[1], sn * 0.5 + c * 0.1, 1e-15);
+}
+
+}  // namespace

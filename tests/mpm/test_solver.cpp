@@ -1,0 +1,156 @@
+// Tests of solver.hpp: checkpoint continues bit for bit, failures carry their context,
+// configuration errors name the key, CFL time step, multi-material dispatch.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "common/state_store.hpp"
+#include "mpm/linear_elastic.hpp"
+#include "mpm/solver.hpp"
+
+namespace {
+
+using common::Vec3;
+
+mpm::SolverConfig small_config(mpm::ShapeKind kind) {
+  mpm::SolverConfig cfg;
+  cfg.grid = {Vec3::Zero(), Vec3::Constant(0.25), common::Vec3i(6, 6, 8)};
+  cfg.shape = kind;
+  cfg.gravity = Vec3(0, 0, -9.81);
+  cfg.cfl = 0.5;
+  cfg.damping = 0.05;
+  return cfg;
+}
+
+mpm::MaterialPoints small_block(const mpm::Grid& g) {
+  mpm::MaterialPoints pts;
+  mpm::fill_box(pts, g, Vec3(0.25, 0.25, 0.25), Vec3(1.25, 1.0, 1.5), 2, 1800.0, 0);
+  return pts;
+}
+
+void expect_message(const std::function<void()>& f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    FAIL() << "no exception";
+  } catch (const std::exception& e) {
+    for (const auto& part : parts) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+          << "'" << part << "' not in: " << e.what();
+    }
+  }
+}
+
+TEST(Solver, CheckpointContinuesBitForBit) {
+  for (auto scheme : {mpm::StressUpdate::usf, mpm::StressUpdate::musl}) {
+    mpm::SolverConfig cfg = small_config(mpm::ShapeKind::ugimp);
+    cfg.stress_update = scheme;
+    cfg.pic_fraction = 0.05;
+    mpm::LinearElastic mat_a(1e5, 0.3, 1800.0);
+    mpm::Solver a(cfg, small_block(cfg.grid), {&mat_a});
+    a.add_constraint(mpm::face_constraint(cfg.grid, 2, -1, {true, true, true}));
+    a.add_constraint({Vec3(0, 0, 0), Vec3(2, 2, 0.25), {false, false, true}, Vec3::Zero(), {}});
+    a.add_traction({0, +1, 500.0, Vec3::Zero()});
+    a.run(8);
+    common::StateStore store;
+    a.save(store);
+    mat_a.write_state(store, "material/0/");
+    a.run(8);
+
+    mpm::LinearElastic mat_b(1e5, 0.3, 1800.0);
+    mpm::MaterialPoints other = small_block(cfg.grid);
+    mpm::Solver b(cfg, other, {&mat_b});
+    b.add_constraint(mpm::face_constraint(cfg.grid, 2, -1, {true, true, true}));
+    b.add_constraint({Vec3(0, 0, 0), Vec3(2, 2, 0.25), {false, false, true}, Vec3::Zero(), {}});
+    b.add_traction({0, +1, 500.0, Vec3::Zero()});
+    b.load(store);
+    mat_b.read_state(store, "material/0/");
+    EXPECT_EQ(b.step_count(), 8);
+    b.run(8);
+    EXPECT_EQ(a.time(), b.time());
+    for (std::size_t p = 0; p < a.points().size(); ++p) {
+      ASSERT_EQ(a.points().x[p], b.points().x[p]);
+      ASSERT_EQ(a.points().v[p], b.points().v[p]);
+      ASSERT_EQ(a.points().stress[p], b.points().stress[p]);
+      ASSERT_EQ(a.points().F[p], b.points().F[p]);
+      ASSERT_EQ(a.points().volume[p], b.points().volume[p]);
+    }
+  }
+}
+
+TEST(Solver, CheckpointMissingFieldIsInputError) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::Solver s(cfg, small_block(cfg.grid), {&mat});
+  common::StateStore store;
+  s.save(store);
+  common::StateStore partial;
+  for (const auto& [name, field] : store.fields()) {
+    if (name == "points/v") continue;
+    std::visit([&](const auto& v) { partial.write(name, v); }, field);
+  }
+  expect_message([&] { s.load(partial); }, {"points/v"});
+}
+
+TEST(Solver, PointLeavingTheGridNamesIdStepAndPosition) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.dt = 0.01;
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  pts.v[5] = Vec3(100.0, 0, 0);  // leaves the 1.5 m grid within two steps
+  mpm::Solver s(cfg, pts, {&mat});
+  expect_message([&] { s.run(5); },
+                 {"point id 5", "mpm step", "left the grid", "x = ("});
+  EXPECT_EQ(s.points().size(), pts.size());  // nothing deleted
+}
+
+TEST(Solver, NegativeVolumeStopsWithContext) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.dt = 1.0;
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = Vec3(0, 0, -2.0 * (pts.x[p][2] - 0.9));
+  mpm::Solver s(cfg, pts, {&mat});
+  expect_message([&] { s.step(); }, {"mpm step 0", "t = 1", "point id", "volume = -"});
+}
+
+TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.damping = 1.5;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"damping = 1.5", "[0, 1)"});
+  cfg = small_config(mpm::ShapeKind::linear);
+  cfg.cfl = 0.0;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"cfl = 0", "dt = 0"});
+  cfg = small_config(mpm::ShapeKind::linear);
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  pts.material[0] = 1;
+  expect_message([&] { mpm::Solver(cfg, pts, {&mat}); }, {"point id 0", "material 1"});
+}
+
+TEST(Solver, CflTimeStepUsesWaveSpeedAndPointSpeed) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  pts.v[0] = Vec3(0, 3, 4);
+  mpm::Solver s(cfg, pts, {&mat});
+  EXPECT_DOUBLE_EQ(s.next_dt(), 0.5 * 0.25 / (mat.wave_speed() + 5.0));
+}
+
+TEST(Solver, TwoMaterialsEachSeeTheirPoints) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  mpm::LinearElastic soft(1e5, 0.3, 1800.0), stiff(1e7, 0.3, 1800.0);
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  for (std::size_t p = 0; p < pts.size(); p += 2) pts.material[p] = 1;
+  mpm::Solver s(cfg, pts, {&soft, &stiff});
+  s.add_constraint(mpm::face_constraint(cfg.grid, 2, -1, {true, true, true}));
+  s.run(3);
+  for (std::size_t p = 0; p < s.points().size(); ++p) {
+    const auto& m = s.points().material[p] == 0 ? soft : stiff;
+    EXPECT_EQ(s.points().stress[p], m.stress(s.points().id[p]));
+  }
+}
+
+}  // namespace

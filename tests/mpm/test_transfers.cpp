@@ -1,0 +1,148 @@
+// Tests of transfers.hpp and grid_solve.hpp: conservation in P2G, colouring, bit-for-bit
+// independence of the OpenMP thread count, mass threshold, Cundall damping (eq. 8).
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <set>
+
+#include "mpm/grid_solve.hpp"
+#include "mpm/linear_elastic.hpp"
+#include "mpm/solver.hpp"
+#include "mpm/transfers.hpp"
+
+namespace {
+
+using common::Vec3;
+
+mpm::MaterialPoints jittered_block(const mpm::Grid& g, int ppc, unsigned seed) {
+  mpm::MaterialPoints pts;
+  mpm::fill_box(pts, g, Vec3(1, 1, 1) * g.spacing[0], Vec3(5, 4, 4) * g.spacing[0], ppc, 1000.0, 0);
+  std::srand(seed);
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    pts.x[p] += 0.2 * g.spacing[0] / ppc * Vec3::Random();
+    pts.v[p] = Vec3::Random();
+  }
+  return pts;
+}
+
+class Transfers : public ::testing::TestWithParam<mpm::ShapeKind> {};
+
+TEST_P(Transfers, P2GConservesMassMomentumAndGravity) {
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(7, 6, 6)};
+  mpm::MaterialPoints pts = jittered_block(g, 2, 3);
+  mpm::StencilCache cache;
+  mpm::PointBins bins;
+  mpm::GridFields f;
+  f.resize(g);
+  ASSERT_EQ(mpm::compute_stencils(GetParam(), g, pts, cache), -1);
+  mpm::bin_points(g, cache, bins);
+  mpm::activate_nodes(g, cache, bins, f);
+  const Vec3 grav(0, 0, -9.81);
+  mpm::p2g_mass_momentum(g, cache, bins, pts, grav, f);
+  double m_p = 0, m_i = 0;
+  Vec3 mv_p = Vec3::Zero(), mv_i = Vec3::Zero(), fg_i = Vec3::Zero();
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    m_p += pts.mass[p];
+    mv_p += pts.mass[p] * pts.v[p];
+  }
+  for (auto i : f.active) {
+    m_i += f.mass[i];
+    mv_i += f.momentum[i];
+    fg_i += f.force[i];
+  }
+  // Partition of unity: conserved to round-off (sums of ~1e3 terms, relative 1e-13).
+  EXPECT_NEAR(m_i, m_p, 1e-13 * m_p);
+  EXPECT_LT((mv_i - mv_p).norm(), 1e-13 * m_p);
+  EXPECT_LT((fg_i - m_p * grav).norm(), 1e-13 * m_p * 9.81);
+  // Every point in exactly one bin; bins of a colour touch disjoint nodes.
+  EXPECT_EQ(bins.order.size(), pts.size());
+  const int ns = cache.width;
+  for (const auto& colour : bins.by_colour) {
+    std::set<std::int64_t> nodes;
+    for (auto b : colour) {
+      const common::Vec3i base = g.node_ijk(bins.key[b]);
+      for (int k = 0; k < ns; ++k)
+        for (int j = 0; j < ns; ++j)
+          for (int i = 0; i < ns; ++i)
+            EXPECT_TRUE(nodes.insert(g.node_index(base[0] + i, base[1] + j, base[2] + k)).second);
+    }
+  }
+}
+
+TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(7, 6, 6)};
+  auto run = [&](int threads) {
+    mpm::LinearElastic mat(1e5, 0.3, 1000.0);
+    mpm::SolverConfig cfg;
+    cfg.grid = g;
+    cfg.shape = GetParam();
+    cfg.gravity = Vec3(0, 0, -9.81);
+    cfg.cfl = 0.4;
+    cfg.damping = 0.1;
+    mpm::Solver s(cfg, jittered_block(g, 2, 5), {&mat});
+    s.add_constraint({Vec3(-1, -1, -1), Vec3(1, 1, 0.15), {true, true, true}, Vec3::Zero(), {}});
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    s.run(10);
+    omp_set_num_threads(saved);
+    return s.points();
+  };
+  const mpm::MaterialPoints a = run(1);
+  for (int threads : {2, 3}) {
+    const mpm::MaterialPoints b = run(threads);
+    for (std::size_t p = 0; p < a.size(); ++p) {
+      ASSERT_EQ(a.x[p], b.x[p]) << threads << " threads, point " << p;
+      ASSERT_EQ(a.v[p], b.v[p]);
+      ASSERT_EQ(a.stress[p], b.stress[p]);
+      ASSERT_EQ(a.volume[p], b.volume[p]);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, Transfers,
+                         ::testing::Values(mpm::ShapeKind::linear, mpm::ShapeKind::ugimp,
+                                           mpm::ShapeKind::bspline2),
+                         [](const auto& info) { return std::string(mpm::to_string(info.param)); });
+
+TEST(GridSolve, CundallDampingVectorAndComponent) {
+  mpm::Grid g{Vec3::Zero(), Vec3::Ones(), common::Vec3i(1, 1, 1)};
+  mpm::GridFields f;
+  f.resize(g);
+  f.active = {0, 1};
+  f.is_active[0] = f.is_active[1] = 1;
+  f.mass[0] = 2.0;
+  f.mass[1] = 1e-12;  // below the threshold
+  f.force[0] = Vec3(3, 4, 0);
+  f.force[1] = Vec3(1, 1, 1);
+  f.velocity[0] = Vec3(0, 2, 0);
+  mpm::compute_nodal_acceleration(1e-6, 0.5, mpm::DampingMode::cundall_vector, f);
+  // Eq. 8: (f - D |f| v/|v|) / m = ((3, 4, 0) - 0.5 * 5 * (0, 1, 0)) / 2.
+  EXPECT_EQ(f.acceleration[0], Vec3(1.5, 0.75, 0.0));
+  EXPECT_EQ(f.acceleration[1], Vec3::Zero());
+  mpm::compute_nodal_acceleration(1e-6, 0.5, mpm::DampingMode::cundall_component, f);
+  // Per component: x has v_x = 0, no damping; y: (4 - 0.5 * 4) / 2.
+  EXPECT_EQ(f.acceleration[0], Vec3(1.5, 1.0, 0.0));
+  // No velocity: no damping at all.
+  f.velocity[0].setZero();
+  mpm::compute_nodal_acceleration(1e-6, 0.5, mpm::DampingMode::cundall_vector, f);
+  EXPECT_EQ(f.acceleration[0], Vec3(1.5, 2.0, 0.0));
+}
+
+TEST(GridSolve, MassThresholdZeroesLightNodes) {
+  mpm::Grid g{Vec3::Zero(), Vec3::Ones(), common::Vec3i(1, 1, 1)};
+  mpm::GridFields f;
+  f.resize(g);
+  f.active = {0, 1};
+  f.is_active[0] = f.is_active[1] = 1;
+  f.mass[0] = 1.0;
+  f.mass[1] = 1e-9;
+  f.momentum[0] = Vec3(1, 2, 3);
+  f.momentum[1] = Vec3(1, 1, 1);
+  const double thr = 1e-6 * mpm::typical_nodal_mass(f);
+  mpm::compute_nodal_velocity(thr, f);
+  EXPECT_EQ(f.velocity[0], Vec3(1, 2, 3));
+  EXPECT_EQ(f.velocity[1], Vec3::Zero());
+}
+
+}  // namespace
