@@ -62,6 +62,7 @@ std::vector<char> StateStore::serialize() const {
     std::visit(
         [&out](const auto& v) {
           append_pod(out, static_cast<std::uint64_t>(v.size()));
+          if (v.empty()) return;
           const auto* p = reinterpret_cast<const char*>(v.data());
           out.insert(out.end(), p, p + v.size() * sizeof(v[0]));
         },
@@ -85,7 +86,7 @@ StateStore StateStore::deserialize(std::span<const char> bytes) {
       using T = decltype(tag);
       if (pos + n * sizeof(T) > bytes.size()) throw InputError("state buffer is truncated");
       std::vector<T> v(n);
-      std::memcpy(v.data(), bytes.data() + pos, n * sizeof(T));
+      if (n > 0) std::memcpy(v.data(), bytes.data() + pos, n * sizeof(T));
       pos += n * sizeof(T);
       store.write(name, std::span<const T>(v));
     };
