@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "mpm/parallel.hpp"
+
 namespace mpm {
 
 double typical_nodal_mass(const GridFields& fields) {
@@ -14,7 +16,7 @@ double typical_nodal_mass(const GridFields& fields) {
 
 void compute_nodal_velocity(double threshold, GridFields& fields) {
   const auto n = static_cast<std::int64_t>(fields.active.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
     const auto i = static_cast<std::size_t>(fields.active[static_cast<std::size_t>(q)]);
     const double m_i = fields.mass[i];
@@ -26,7 +28,7 @@ void compute_nodal_velocity(double threshold, GridFields& fields) {
 void compute_nodal_acceleration(double threshold, double damping, DampingMode mode,
                                 GridFields& fields) {
   const auto n = static_cast<std::int64_t>(fields.active.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
     const auto i = static_cast<std::size_t>(fields.active[static_cast<std::size_t>(q)]);
     const double m_i = fields.mass[i];

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "mpm/parallel.hpp"
 
 namespace mpm {
 
@@ -41,7 +42,7 @@ void LinearElastic::update_stress(std::span<const std::int64_t> ids,
   for (const std::int64_t id : ids) ensure(id);
   const auto n = static_cast<std::int64_t>(ids.size());
   const common::Mat3 I = common::Mat3::Identity();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t p = 0; p < n; ++p) {
     const common::Mat3& L_p = L[static_cast<std::size_t>(p)];
     const common::Mat3 D = 0.5 * (L_p + L_p.transpose());

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "mpm/transfers.hpp"
 
 namespace mpm {
 namespace {
@@ -130,7 +131,7 @@ void Solver::update_stress(double dt) {
   const auto n = static_cast<std::int64_t>(points_.size());
   const common::Mat3 I = common::Mat3::Identity();
   // Kinematics: F <- (I + L dt) F, V <- det(I + L dt) V.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
     const auto p = static_cast<std::size_t>(q);
     const common::Mat3 dF = I + dt * points_.L[p];

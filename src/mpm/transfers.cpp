@@ -29,12 +29,15 @@ inline void for_each_node(const Grid& grid, const StencilCache& c, std::size_t p
   }
 }
 
-/// Runs kernel(p) for every point, colour by colour; bins of one colour in parallel.
+/// Runs kernel(p) for every point, colour by colour; bins of one colour in parallel. One
+/// parallel region per call; small problems stay serial (results are identical either way).
 template <class Fn>
 inline void for_points_coloured(const PointBins& bins, Fn&& kernel) {
+  const bool parallel = static_cast<std::int64_t>(bins.order.size()) >= kMinParallelPoints;
+#pragma omp parallel if (parallel)
   for (const std::vector<std::int64_t>& colour : bins.by_colour) {
     const auto nb = static_cast<std::int64_t>(colour.size());
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static)
     for (std::int64_t q = 0; q < nb; ++q) {
       const auto b = static_cast<std::size_t>(colour[static_cast<std::size_t>(q)]);
       for (std::int64_t o = bins.offset[b]; o < bins.offset[b + 1]; ++o) {
@@ -57,7 +60,7 @@ std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPo
   const common::Vec3i cells = grid.cells;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   const auto nn = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) reduction(min : bad)
+#pragma omp parallel for schedule(static) reduction(min : bad) if (nn >= kMinParallelPoints)
   for (std::int64_t q = 0; q < nn; ++q) {
     const auto p = static_cast<std::size_t>(q);
     bool inside = true;
@@ -186,7 +189,7 @@ void p2g_internal_force(const Grid& grid, const StencilCache& cache, const Point
 void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                            MaterialPoints& points) {
   const auto n = static_cast<std::int64_t>(points.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
     const auto p = static_cast<std::size_t>(q);
     common::Mat3 L_p = common::Mat3::Zero();
@@ -200,7 +203,7 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, double dt, MaterialPoints& points) {
   const auto n = static_cast<std::int64_t>(points.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
     const auto p = static_cast<std::size_t>(q);
     common::Vec3 a_p = common::Vec3::Zero();

@@ -9,6 +9,7 @@
 
 #include "mpm/grid.hpp"
 #include "mpm/material_points.hpp"
+#include "mpm/parallel.hpp"
 #include "mpm/shape_function.hpp"
 
 namespace mpm {

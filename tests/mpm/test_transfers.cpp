@@ -15,9 +15,11 @@ namespace {
 
 using common::Vec3;
 
+// Points filling cells 1 .. cells - 2 of every axis, jittered, random velocities.
 mpm::MaterialPoints jittered_block(const mpm::Grid& g, int ppc, unsigned seed) {
   mpm::MaterialPoints pts;
-  mpm::fill_box(pts, g, Vec3(1, 1, 1) * g.spacing[0], Vec3(5, 4, 4) * g.spacing[0], ppc, 1000.0, 0);
+  const Vec3 hi = (g.cells.cast<double>() - Vec3::Ones()).cwiseProduct(g.spacing);
+  mpm::fill_box(pts, g, g.spacing, hi, ppc, 1000.0, 0);
   std::srand(seed);
   for (std::size_t p = 0; p < pts.size(); ++p) {
     pts.x[p] += 0.2 * g.spacing[0] / ppc * Vec3::Random();
@@ -71,7 +73,8 @@ TEST_P(Transfers, P2GConservesMassMomentumAndGravity) {
 }
 
 TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
-  mpm::Grid g{Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(7, 6, 6)};
+  // 12 x 10 x 8 cells x 8 points = 7680 points: above kMinParallelPoints, so loops run threaded.
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(14, 12, 10)};
   auto run = [&](int threads) {
     mpm::LinearElastic mat(1e5, 0.3, 1000.0);
     mpm::SolverConfig cfg;
@@ -84,7 +87,8 @@ TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
     s.add_constraint({Vec3(-1, -1, -1), Vec3(1, 1, 0.15), {true, true, true}, Vec3::Zero(), {}});
     const int saved = omp_get_max_threads();
     omp_set_num_threads(threads);
-    s.run(10);
+    EXPECT_GE(static_cast<std::int64_t>(s.points().size()), mpm::kMinParallelPoints);
+    s.run(4);
     omp_set_num_threads(saved);
     return s.points();
   };
