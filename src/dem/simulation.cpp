@@ -102,7 +102,8 @@ void Simulation::compute_forces() {
   }
   Mat3 total = Mat3::Zero();
   for (const Mat3& m : block_stress) total += m;
-  stress_ = total / cell_.volume();
+  // Love-Weber with the force on sphere 1 (-F) and the branch from 1 to 2: tension positive.
+  stress_ = -total / cell_.volume();
 
   // Per-sphere sums in the fixed pair order of the CSR lists.
   const auto ns = static_cast<std::int64_t>(s.size());

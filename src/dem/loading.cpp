@@ -1,0 +1,196 @@
+// Mixed-control servo, step driver, equilibration, random cloud and compaction.
+#include "dem/loading.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "common/errors.hpp"
+#include "dem/measures.hpp"
+
+namespace dem {
+
+using common::Mat3;
+using common::Vec3;
+
+void MixedController::update(Simulation& sim) {
+  Mat3 l = ctl_.l_imposed;
+  const double dt = sim.dt();
+  const double tau = ctl_.tau_steps * dt;
+  if (sim.steps() - last_modulus_step_ >= 50 || last_modulus_step_ < 0) {
+    // Contact-stiffness modulus, fixed-order sum.
+    const Contacts& c = sim.contacts();
+    Vec3 m = Vec3::Zero();
+    for (std::size_t p = 0; p < c.size(); ++p) {
+      if (!c.active[p]) continue;
+      const Vec3& d = c.branch[p];
+      const Vec3& n = c.hist[p].normal;
+      for (int a = 0; a < 3; ++a) m[a] += c.props[p].kn * (n[a] * d[a]) * (n[a] * d[a]);
+    }
+    modulus_ = m / sim.cell().volume();
+    last_modulus_step_ = sim.steps();
+  }
+  const Mat3& sigma = sim.stress();
+  // Scale for an empty cell: no modulus, the rate bound governs.
+  const double p_ref = std::max(std::abs(ctl_.target.maxCoeff()), std::abs(ctl_.target.minCoeff()));
+  for (int a = 0; a < 3; ++a) {
+    if (!ctl_.stress_axis[a]) continue;
+    const double err = ctl_.target[a] - sigma(a, a);
+    double rate = 0.0;
+    if (modulus_[a] > 1e-3 * p_ref) {
+      const double e = err / modulus_[a];  // strain error [-]
+      integral_[a] += e * dt / (4.0 * tau * tau);
+      integral_[a] = std::clamp(integral_[a], -ctl_.max_rate, ctl_.max_rate);
+      rate = e / tau + integral_[a];
+    } else {
+      // No stiffness: move toward the target at the bound.
+      rate = err > 0.0 ? ctl_.max_rate : -ctl_.max_rate;
+      integral_[a] = 0.0;
+    }
+    l(a, a) = std::clamp(rate, -ctl_.max_rate, ctl_.max_rate);
+  }
+  sim.cell().l = l;
+}
+
+void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
+             const std::function<void(const Simulation&)>& observer) {
+  const std::int64_t refresh = sim.numerics().dt_refresh;
+  for (std::int64_t s = 0; s < n; ++s) {
+    sim.compute_forces();
+    if (sim.steps() % refresh == 0) sim.refresh_dt();
+    if (ctl != nullptr) ctl->update(sim);
+    sim.integrate();
+    if (observer) observer(sim);
+  }
+}
+
+Simulation make_simulation(const Packing& pk, const Material& mat, const Numerics& num) {
+  Spheres s;
+  for (std::size_t i = 0; i < pk.r.size(); ++i) s.add(pk.x[i], pk.r[i], mat.density);
+  PeriodicCell cell = pk.cell;
+  cell.l.setZero();
+  Simulation sim(std::move(s), cell, mat, num);
+  // Detect the initial contacts with a zero step, then size dt on them.
+  sim.set_dt(0.0);
+  sim.compute_forces();
+  sim.refresh_dt();
+  return sim;
+}
+
+std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t) {
+  MixedControl mc;
+  mc.stress_axis = {true, true, true};
+  mc.target = Vec3::Constant(-t.pressure);
+  mc.max_rate = t.max_rate;
+  MixedController ctl(mc);
+  std::int64_t done = 0;
+  while (done < t.max_steps) {
+    advance(sim, &ctl, t.check_every);
+    done += t.check_every;
+    const Measures m = measure(sim);
+    double worst = 0.0;
+    for (int a = 0; a < 3; ++a) worst = std::max(worst, std::abs(m.stress(a, a) + t.pressure));
+    if (worst <= t.stress_tol * t.pressure && m.unbalanced <= t.unbalanced_tol &&
+        m.n_contacts > 0) {
+      sim.cell().l.setZero();
+      return done;
+    }
+  }
+  throw common::NumericalError("dem: equilibrate: target p = " + std::to_string(t.pressure) +
+                               " Pa not reached in " + std::to_string(t.max_steps) +
+                               " steps (p = " + std::to_string(pressure(sim.stress())) + " Pa)");
+}
+
+namespace {
+double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+}  // namespace
+
+Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t seed) {
+  const std::size_t m = psd.diameter.size();
+  if (m < 2 || psd.passing.size() != m) {
+    throw common::InputError("dem: PSD needs >= 2 (diameter, passing) rows of equal length");
+  }
+  for (std::size_t a = 1; a < m; ++a) {
+    if (!(psd.diameter[a] > psd.diameter[a - 1]) || psd.passing[a] < psd.passing[a - 1]) {
+      throw common::InputError("dem: PSD diameters must increase and passing must not decrease");
+    }
+  }
+  if (!(solid > 0.0 && solid < 0.5)) throw common::InputError("dem: cloud solid fraction in (0, 0.5)");
+  // Number weights of fine sub-intervals: mass fraction / d^3.
+  constexpr int kSub = 64;
+  std::vector<double> d_lo;
+  std::vector<double> d_hi;
+  std::vector<double> cum;
+  double total = 0.0;
+  for (std::size_t a = 1; a < m; ++a) {
+    const double dm = psd.passing[a] - psd.passing[a - 1];
+    for (int s = 0; s < kSub; ++s) {
+      const double lo = psd.diameter[a - 1] + (psd.diameter[a] - psd.diameter[a - 1]) * s / kSub;
+      const double hi = psd.diameter[a - 1] + (psd.diameter[a] - psd.diameter[a - 1]) * (s + 1) / kSub;
+      const double dmid = 0.5 * (lo + hi);
+      total += dm / kSub / (dmid * dmid * dmid);
+      d_lo.push_back(lo);
+      d_hi.push_back(hi);
+      cum.push_back(total);
+    }
+  }
+  std::mt19937_64 gen(seed);
+  std::vector<double> r(static_cast<std::size_t>(n));
+  double vs = 0.0;
+  for (auto& ri : r) {
+    const double u = uniform01(gen) * total;
+    const std::size_t b = static_cast<std::size_t>(std::lower_bound(cum.begin(), cum.end(), u) - cum.begin());
+    const std::size_t bb = std::min(b, cum.size() - 1);
+    ri = 0.5 * (d_lo[bb] + (d_hi[bb] - d_lo[bb]) * uniform01(gen));
+    vs += 4.0 / 3.0 * std::numbers::pi * ri * ri * ri;
+  }
+  std::sort(r.begin(), r.end(), std::greater<>());  // big first: random addition succeeds
+  const double side = std::cbrt(vs / solid);
+  Packing pk;
+  pk.cell.h = Mat3::Identity() * side;
+  for (double ri : r) {
+    bool placed = false;
+    for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
+      const Vec3 x(uniform01(gen) * side, uniform01(gen) * side, uniform01(gen) * side);
+      bool ok = true;
+      for (std::size_t q = 0; q < pk.x.size() && ok; ++q) {
+        Vec3 d = pk.x[q] - x;
+        for (int a = 0; a < 3; ++a) d[a] -= side * std::round(d[a] / side);
+        ok = d.norm() > pk.r[q] + ri;
+      }
+      if (ok) {
+        pk.x.push_back(x);
+        pk.r.push_back(ri);
+        placed = true;
+      }
+    }
+    if (!placed) throw common::NumericalError("dem: make_cloud: could not place a sphere");
+  }
+  return pk;
+}
+
+std::int64_t prepare(Simulation& sim, const Preparation& prep) {
+  const double phi = sim.law().material().friction_deg;
+  sim.set_friction_deg(prep.friction_comp_deg, true);
+  EquilibriumTarget comp = prep.target;
+  comp.max_rate = prep.compaction_rate;
+  std::int64_t steps = equilibrate(sim, comp);
+  sim.set_friction_deg(phi, true);
+  steps += equilibrate(sim, prep.target);
+  return steps;
+}
+
+}  // namespace dem
+
+namespace dem {
+MixedControl triaxial_control(double axial_rate, double confining, double max_rate) {
+  MixedControl mc;
+  mc.l_imposed(2, 2) = -axial_rate;
+  mc.stress_axis = {true, true, false};
+  mc.target = Vec3(-confining, -confining, 0.0);
+  mc.max_rate = max_rate;
+  return mc;
+}
+}  // namespace dem

@@ -1,0 +1,94 @@
+// Loading of the periodic cell: imposed velocity gradient, mixed strain-rate / stress control by a
+// PI servo on the diagonal strain rates (drained triaxial, isotropic compaction), and sample
+// preparation (random cloud from a PSD, compaction with lowered friction, re-equilibration).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "common/types.hpp"
+#include "dem/packing_io.hpp"
+#include "dem/simulation.hpp"
+
+namespace dem {
+
+/// Mixed control: diagonal components in `stress_axis` follow a target stress, every other
+/// component of L follows `l_imposed`.
+struct MixedControl {
+  common::Mat3 l_imposed = common::Mat3::Zero();  ///< imposed velocity gradient [1/s]
+  std::array<bool, 3> stress_axis{false, false, false};  ///< sigma_aa controlled
+  common::Vec3 target = common::Vec3::Zero();  ///< target sigma_aa, tension positive [Pa]
+  double max_rate = 1.0;      ///< bound on |L_aa| of stress-controlled axes [1/s]
+  double tau_steps = 200.0;   ///< servo time constant, in DEM steps [-]
+};
+
+/// PI servo on the cell's diagonal strain rates. The stress error is turned into a strain error
+/// with the contact-stiffness modulus M_a = (1/V) sum_c k_n (n_a d_a)^2 (an upper bound of the
+/// tangent modulus: the servo is stable and errs on the slow side).
+class MixedController {
+ public:
+  explicit MixedController(const MixedControl& ctl) : ctl_(ctl) {}
+  /// Set sim.cell().l from the stress of the last compute_forces(). Deterministic.
+  void update(Simulation& sim);
+  [[nodiscard]] const MixedControl& control() const { return ctl_; }
+  MixedControl& control() { return ctl_; }
+  [[nodiscard]] const common::Vec3& integral() const { return integral_; }
+  void set_integral(const common::Vec3& v) { integral_ = v; }
+
+ private:
+  MixedControl ctl_;
+  common::Vec3 integral_ = common::Vec3::Zero();  ///< integral term [1/s]
+  common::Vec3 modulus_ = common::Vec3::Zero();   ///< M_a [Pa]
+  std::int64_t last_modulus_step_ = -1;
+};
+
+/// Run n steps: forces, servo (if any), integration; refresh dt every numerics().dt_refresh steps.
+/// `observer` (optional) is called after each step.
+void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
+             const std::function<void(const Simulation&)>& observer = {});
+
+/// Build a simulation from a packing (spheres at rest); computes contacts and sets dt.
+[[nodiscard]] Simulation make_simulation(const Packing& pk, const Material& mat,
+                                         const Numerics& num);
+
+/// Re-equilibration under isotropic stress control.
+struct EquilibriumTarget {
+  double pressure = 1e5;        ///< target p, compression positive [Pa]
+  double stress_tol = 0.01;     ///< |sigma_aa - target| / p <= this on every axis [-]
+  double unbalanced_tol = 0.01; ///< unbalanced force ratio below this [-]
+  double max_rate = 1.0;        ///< servo strain-rate bound [1/s]
+  std::int64_t check_every = 200;
+  std::int64_t max_steps = 2000000;
+};
+/// Run isotropic servo steps until the target is met; returns steps done (throws NumericalError
+/// if max_steps pass without reaching it).
+std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& target);
+
+/// Particle size distribution: diameters [m] ascending with the mass fraction passing [0..1].
+struct Psd {
+  std::vector<double> diameter;  ///< [m]
+  std::vector<double> passing;   ///< mass fraction passing, from 0 to 1, non-decreasing
+};
+
+/// Random loose cloud of n non-overlapping spheres in a cubic cell of solid fraction `solid`,
+/// radii drawn from the PSD by number (mass weights / d^3). Deterministic for a seed.
+[[nodiscard]] Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t seed);
+
+struct Preparation {
+  double friction_comp_deg = 1.0;  ///< friction during compaction [deg]
+  EquilibriumTarget target;        ///< target pressure and tolerances
+  double compaction_rate = 10.0;   ///< strain-rate bound while compacting [1/s]
+};
+/// Isotropic compaction with lowered friction, then friction restored (also on existing contacts)
+/// and re-equilibration. Returns the number of steps.
+std::int64_t prepare(Simulation& sim, const Preparation& prep);
+
+}  // namespace dem
+
+namespace dem {
+/// Drained triaxial along z: L_zz = -axial_rate (compression for rate > 0), sigma_xx and sigma_yy
+/// held at -confining (tension positive). @param axial_rate [1/s] @param confining [Pa]
+[[nodiscard]] MixedControl triaxial_control(double axial_rate, double confining, double max_rate);
+}  // namespace dem
