@@ -31,6 +31,20 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   auto* check = cli.add_subcommand("check", "Validate a job file and print the resolved job (no output written)");
   check->add_option("job", o.job, "Job file (TOML)")->required();
 
+  auto* demc = cli.add_subcommand("dem", "Run a pure DEM job: prepare a sample, then the loading of [dem.loading]");
+  demc->add_option("job", o.job, "Job file (TOML)")->required();
+  demc->add_option("-o,--out", o.out, "Output directory (default: results/<job file name>)");
+  demc->add_option("--max-steps", o.max_steps, "Stop the loading after this many DEM steps")
+      ->check(CLI::NonNegativeNumber);
+  demc->add_flag("--force", o.force, "Write into a non-empty output directory");
+
+  auto* bench = cli.add_subcommand("bench", "Print performance figures (never a test): `bench dem`, `bench mpm`");
+  bench->add_option("what", o.bench, "What to measure")->required()->check(CLI::IsMember({"dem", "mpm"}));
+  bench->add_option("--size", o.bench_size, "dem: tiling n of the reference packing (n^3 x 1000 spheres); "
+                                            "mpm: number of material points")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--steps", o.bench_steps, "Timed steps")->check(CLI::PositiveNumber);
+
   cli.add_subcommand("schema", "Print the job-file reference (Markdown) generated from the schema");
 
   try {

@@ -55,12 +55,7 @@ int command_schema(const Options& /*o*/, const Comm& comm) {
   return 0;
 }
 
-int command_run(const Options& o, const Comm& comm) {
-  const Job job = load_job_collective(o.job, comm);
-  if (!job.has_section("mpm")) {
-    throw common::InputError(fmt::format("{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)",
-                                         job.file()));
-  }
+std::filesystem::path open_output(const Options& o, const Job& job, const Comm& comm) {
   const std::filesystem::path out = o.out.empty() ? default_output_dir(o.job) : std::filesystem::path(o.out);
   check_output_dir(out, o.force, !o.restart.empty());
   MPI_Barrier(comm.comm);  // every rank has checked before anything is written
@@ -70,8 +65,19 @@ int command_run(const Options& o, const Comm& comm) {
     write_file_atomic(out / "job.toml", job.source_text());
     write_file_atomic(out / "job.resolved.toml", job.resolved_toml());
   }
-  spdlog::info("mpmxdem {} on {} rank(s); job {}; output {}", kVersion, comm.size, o.job, out.string());
+  spdlog::info("mpmxdem {} `{}` on {} rank(s); job {}; output {}", kVersion, o.command, comm.size, o.job,
+               out.string());
   spdlog::info("resolved job:\n{}", job.resolved_toml());
+  return out;
+}
+
+int command_run(const Options& o, const Comm& comm) {
+  const Job job = load_job_collective(o.job, comm);
+  if (!job.has_section("mpm")) {
+    throw common::InputError(fmt::format("{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)",
+                                         job.file()));
+  }
+  const std::filesystem::path out = open_output(o, job, comm);
   spdlog::warn("the MPM x DEM solver is not part of this build yet: the job was validated and its resolved "
                "parameters written to {}", out.string());
   return 0;

@@ -4,6 +4,8 @@
 
 #include <mpi.h>
 
+#include <filesystem>
+
 #include "app/cli.hpp"
 #include "app/job.hpp"
 
@@ -19,8 +21,14 @@ struct Comm {
 /// error is seen (and thrown) on every rank alike.
 [[nodiscard]] Job load_job_collective(const std::string& path, const Comm& comm);
 
+/// Checks the output directory on every rank, then (rank 0) creates it and writes the job, the
+/// resolved job and the log file there. Returns the directory.
+std::filesystem::path open_output(const Options& o, const Job& job, const Comm& comm);
+
 int command_check(const Options& o, const Comm& comm);
 int command_run(const Options& o, const Comm& comm);
 int command_schema(const Options& o, const Comm& comm);
+int command_dem(const Options& o, const Comm& comm);
+int command_bench(const Options& o, const Comm& comm);
 
 }  // namespace app

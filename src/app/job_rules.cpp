@@ -99,6 +99,9 @@ void mpm_rules(const Job& job, Rules& r) {
       }
     }
     const std::string& m = job.text(base + "material");
+    if (m == "dem" && job.has(base + "initial_stress")) {
+      r.fail(base + "initial_stress", "not used with material = \"dem\": the initial stress is the RVEs' own");
+    }
     any_dem = any_dem || m == "dem";
     any_elastic = any_elastic || m == "elastic";
   }

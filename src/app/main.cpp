@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
       code = app::command_check(*options, comm);
     } else if (options->command == "run") {
       code = app::command_run(*options, comm);
+    } else if (options->command == "dem") {
+      code = app::command_dem(*options, comm);
+    } else if (options->command == "bench") {
+      code = app::command_bench(*options, comm);
     } else if (options->command == "schema") {
       code = app::command_schema(*options, comm);
     }

@@ -14,6 +14,9 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.flip", Type::Float, "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP.")
       .in(0, 1).or_default(1.0);
   s.add("mpm.damping", Type::Float, "Cundall damping D of the nodal accelerations (eq. 8).").in(0, 1, false, true).or_default(0.0);
+  s.add("mpm.damping_mode", Type::String,
+        "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
+      .one_of({"vector", "component"}).or_default(std::string("vector"));
   s.add("mpm.dt", Type::Float, "Fixed MPM time step; absent: from the CFL condition.").unit(Q::Time).in(0, std::nullopt, true);
   s.add("mpm.cfl", Type::Float, "CFL number when dt is not given.").in(0, 1, true, false).or_default(0.5);
   s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.").unit(Q::Time).in(0, std::nullopt, true).need();
@@ -29,8 +32,9 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.body[]", Type::TableList, "A box of material points, regularly spaced in each cell it covers.").need();
   s.add("mpm.body[].min", Type::FloatList, "Lower corner of the box.").unit(Q::Length).len(3, 3).need();
   s.add("mpm.body[].max", Type::FloatList, "Upper corner of the box.").unit(Q::Length).len(3, 3).need();
-  s.add("mpm.body[].points_per_cell", Type::IntList, "Material points per cell along x, y, z.")
-      .in(1, std::nullopt).len(3, 3).need();
+  s.add("mpm.body[].points_per_cell", Type::Int,
+        "Material points per cell along each axis, at the regular positions (k + 1/2) / n of the cell.")
+      .in(1, 8).need();
   s.add("mpm.body[].density", Type::Float, "Bulk density of the material (mass per unit volume).")
       .unit(Q::Density).in(0, std::nullopt, true).need();
   s.add("mpm.body[].material", Type::String, "Material of the points: a DEM RVE each, or linear elastic.")

@@ -1,0 +1,117 @@
+// Job -> dem parameters and the prepared sample: see dem_setup.hpp.
+#include "app/dem_setup.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "dem/measures.hpp"
+#include "dem/packing_io.hpp"
+
+namespace app {
+
+dem::Material dem_material(const Job& job) {
+  dem::Material m;
+  m.density = job.number("dem.material.density");
+  m.young = job.number("dem.material.young_modulus");
+  m.ks_over_kn = job.number("dem.material.stiffness_ratio");
+  m.friction_deg = job.number("dem.material.friction_angle");
+  m.alpha_r = job.number("dem.material.rolling_stiffness");
+  m.eta_r = job.number("dem.material.rolling_strength");
+  if (job.has("dem.material.twisting.stiffness")) {
+    m.alpha_t = job.number("dem.material.twisting.stiffness");
+    m.eta_t = job.number("dem.material.twisting.strength");
+  }
+  m.validate();
+  return m;
+}
+
+dem::Numerics dem_numerics(const Job& job) {
+  dem::Numerics n;
+  n.damping = job.number("dem.numerics.damping");
+  n.dt_safety = job.number("dem.numerics.timestep_safety");
+  n.skin_factor = job.number("dem.numerics.verlet_skin");
+  n.validate();
+  return n;
+}
+
+dem::Preparation dem_preparation(const Job& job) {
+  dem::Preparation p;
+  p.friction_comp_deg = job.number("dem.preparation.friction_angle");
+  p.target.pressure = job.number("dem.preparation.pressure");
+  p.target.stress_tol = job.number("dem.preparation.stress_tolerance");
+  p.target.unbalanced_tol = job.number("dem.preparation.unbalanced_force");
+  return p;
+}
+
+dem::Packing dem_packing(const Job& job, bool& generated) {
+  if (job.has("dem.sample.packing")) {
+    generated = false;
+    std::filesystem::path path(job.text("dem.sample.packing"));
+    if (path.is_relative()) path = std::filesystem::path(job.directory()) / path;
+    return dem::read_packing(path.string());
+  }
+  generated = true;
+  dem::Psd psd;
+  psd.diameter = job.numbers("dem.sample.psd_diameters");
+  psd.passing = job.numbers("dem.sample.psd_passing");
+  return dem::make_cloud(psd, job.integer("dem.sample.spheres"), 0.3,
+                         static_cast<std::uint64_t>(job.integer("dem.sample.seed")));
+}
+
+double dem_d50(const Job& job, const dem::Packing& packing) {
+  if (job.has("dem.sample.psd_diameters")) {
+    // Linear interpolation of the passing curve at 0.5.
+    const auto& d = job.numbers("dem.sample.psd_diameters");
+    const auto& f = job.numbers("dem.sample.psd_passing");
+    for (std::size_t i = 1; i < d.size(); ++i) {
+      if (f[i] >= 0.5) return d[i - 1] + (d[i] - d[i - 1]) * (0.5 - f[i - 1]) / (f[i] - f[i - 1]);
+    }
+    return d.back();
+  }
+  // Mass median of the packing's spheres.
+  std::vector<std::pair<double, double>> rm;  // radius, mass weight r^3
+  double total = 0.0;
+  for (double r : packing.r) {
+    rm.emplace_back(r, r * r * r);
+    total += r * r * r;
+  }
+  std::sort(rm.begin(), rm.end());
+  double acc = 0.0;
+  for (const auto& [r, w] : rm) {
+    acc += w;
+    if (acc >= 0.5 * total) return 2.0 * r;
+  }
+  return rm.empty() ? 0.0 : 2.0 * rm.back().first;
+}
+
+dem::Simulation prepared_sample(const Job& job) {
+  bool generated = false;
+  const dem::Packing packing = dem_packing(job, generated);
+  dem::Simulation sim = dem::make_simulation(packing, dem_material(job), dem_numerics(job));
+  dem::Preparation prep = dem_preparation(job);
+  // Strain-rate bound of the servo from the inertial number: I / t_ref, t_ref = d50 sqrt(rho / p).
+  const double t_ref = dem_d50(job, packing) * std::sqrt(job.number("dem.material.density") / prep.target.pressure);
+  prep.compaction_rate = job.number("dem.preparation.inertial_number") / t_ref;
+  prep.target.max_rate = prep.compaction_rate;
+  std::int64_t steps = 0;
+  if (generated) {
+    spdlog::info("sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
+                 packing.r.size(), job.integer("dem.sample.seed"), prep.target.pressure, prep.friction_comp_deg);
+    steps = dem::prepare(sim, prep);
+  } else {
+    spdlog::info("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa", packing.r.size(),
+                 job.text("dem.sample.packing"), prep.target.pressure);
+    steps = dem::equilibrate(sim, prep.target);
+  }
+  const dem::Measures m = dem::measure(sim);
+  spdlog::info("prepared in {} DEM steps: p = {:.5g} Pa, q = {:.4g} Pa, e = {:.4f}, Z = {:.3f} (without rattlers {:.3f}), "
+               "unbalanced {:.3g}, dt = {:.4g} s",
+               steps, m.p, m.q, m.void_ratio, m.z, m.z_mech, m.unbalanced, sim.dt());
+  return sim;
+}
+
+}  // namespace app

@@ -1,0 +1,25 @@
+// Maps the [dem.*] sections of a job onto the dem module's parameter structs, and builds the
+// prepared sample (a loaded packing re-equilibrated, or a generated cloud compacted).
+#pragma once
+
+#include "app/job.hpp"
+#include "dem/loading.hpp"
+#include "dem/params.hpp"
+#include "dem/simulation.hpp"
+
+namespace app {
+
+[[nodiscard]] dem::Material dem_material(const Job& job);
+[[nodiscard]] dem::Numerics dem_numerics(const Job& job);
+[[nodiscard]] dem::Preparation dem_preparation(const Job& job);
+/// The packing of [dem.sample]: read (path relative to the job file) or generated as a cloud.
+/// `generated` tells which.
+[[nodiscard]] dem::Packing dem_packing(const Job& job, bool& generated);
+/// Median diameter by mass d50 [m]: of the PSD table, or of the packing's spheres.
+[[nodiscard]] double dem_d50(const Job& job, const dem::Packing& packing);
+/// A prepared simulation: generated clouds are compacted (lowered friction, restored, then
+/// re-equilibrated); loaded packings are re-equilibrated at the preparation pressure (their
+/// tangential forces are not stored). Logs what it did.
+[[nodiscard]] dem::Simulation prepared_sample(const Job& job);
+
+}  // namespace app

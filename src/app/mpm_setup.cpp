@@ -1,0 +1,91 @@
+// Job -> mpm configuration: see mpm_setup.hpp.
+#include "app/mpm_setup.hpp"
+
+#include <fmt/format.h>
+
+#include "common/errors.hpp"
+
+namespace app {
+
+void face_axis_side(const std::string& face, int& axis, int& side) {
+  axis = face[0] - 'x';
+  side = face[1] == '-' ? -1 : 1;
+}
+
+namespace {
+common::Vec3 vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+common::Mat3 voigt_stress(const std::vector<double>& s) {  // xx, yy, zz, yz, xz, xy
+  common::Mat3 m;
+  m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
+  return m;
+}
+}  // namespace
+
+MpmSetup mpm_setup(const Job& job) {
+  MpmSetup setup;
+  auto& cfg = setup.config;
+  cfg.grid.origin = vec3(job.numbers("mpm.grid.origin"));
+  cfg.grid.spacing = vec3(job.numbers("mpm.grid.spacing"));
+  const auto& cells = job.integers("mpm.grid.cells");
+  cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]), static_cast<int>(cells[2]));
+  cfg.shape = mpm::shape_kind_from_string(job.text("mpm.shape_function"));
+  cfg.stress_update = job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
+  cfg.pic_fraction = 1.0 - job.number("mpm.flip");
+  if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
+  cfg.damping = job.number("mpm.damping");
+  cfg.damping_mode = job.text("mpm.damping_mode") == "component" ? mpm::DampingMode::cundall_component
+                                                                   : mpm::DampingMode::cundall_vector;
+  cfg.dt = job.has("mpm.dt") ? job.number("mpm.dt") : 0.0;
+  cfg.cfl = job.number("mpm.cfl");
+  cfg.mass_threshold = job.number("mpm.mass_threshold");
+  setup.end_time = job.number("mpm.end_time");
+
+  for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+    const std::string base = fmt::format("mpm.body[{}].", b);
+    const bool is_dem = job.text(base + "material") == "dem";
+    const std::int32_t material = is_dem ? kDemMaterial : kElasticMaterial;
+    const std::size_t first = setup.points.size();
+    const std::size_t added = mpm::fill_box(setup.points, cfg.grid, vec3(job.numbers(base + "min")),
+                                            vec3(job.numbers(base + "max")),
+                                            static_cast<int>(job.integer(base + "points_per_cell")),
+                                            job.number(base + "density"), material);
+    if (added == 0) {
+      throw common::InputError(job.message(base + "max", "the box holds no material point (it covers no whole cell)"));
+    }
+    if (job.has(base + "initial_stress")) {
+      const common::Mat3 s0 = voigt_stress(job.numbers(base + "initial_stress"));
+      for (std::size_t p = first; p < setup.points.size(); ++p) setup.points.stress[p] = s0;
+      if (!is_dem) setup.elastic_initial_stress = s0;
+    }
+    setup.has_dem = setup.has_dem || is_dem;
+    setup.has_elastic = setup.has_elastic || !is_dem;
+  }
+
+  for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
+    const std::string base = fmt::format("mpm.velocity[{}].", i);
+    int axis = 0;
+    int side = 0;
+    face_axis_side(job.text(base + "face"), axis, side);
+    std::array<bool, 3> fixed{};
+    common::Vec3 v = common::Vec3::Zero();
+    for (int a = 0; a < 3; ++a) {
+      const std::string key = base + std::string(1, static_cast<char>('x' + a));
+      if (job.has(key)) {
+        fixed[static_cast<std::size_t>(a)] = true;
+        v[a] = job.number(key);
+      }
+    }
+    setup.constraints.push_back(mpm::face_constraint(cfg.grid, axis, side, fixed, v));
+  }
+  for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {
+    const std::string base = fmt::format("mpm.traction[{}].", i);
+    mpm::TractionLoad load;
+    face_axis_side(job.text(base + "face"), load.axis, load.side);
+    load.pressure = job.number(base + "pressure");
+    setup.tractions.push_back(load);
+  }
+  return setup;
+}
+
+}  // namespace app
