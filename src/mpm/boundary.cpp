@@ -1,9 +1,10 @@
 // Velocity constraints and face loads (see header and docs/mpm.md, "Tractions").
 #include "mpm/boundary.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <string>
 
 #include "common/errors.hpp"
@@ -53,7 +54,10 @@ void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedCons
       if (!fields.is_active[u]) continue;
       const common::Vec3 v = prescribed(grid, c.spec, i, t);
       for (int d = 0; d < 3; ++d) {
-        if (c.spec.fixed[static_cast<std::size_t>(d)]) fields.velocity[u][d] = v[d];
+        if (c.spec.fixed[static_cast<std::size_t>(d)]) {
+          fields.velocity[u][d] = v[d];
+          fields.fixed[u] = static_cast<std::uint8_t>(fields.fixed[u] | (1u << d));
+        }
       }
     }
   }
@@ -84,46 +88,40 @@ MaterialExtent material_extent(const MaterialPoints& points) {
   return e;
 }
 
-namespace {
-
-/// Range of s (cell units) where the stencil of `kind` lies inside the grid along one axis.
-void valid_range(ShapeKind kind, int cells, double& s_lo, double& s_hi) {
-  const double margin = kind == ShapeKind::bspline2 ? 0.5 : 0.0;
-  s_lo = margin;
-  s_hi = std::nextafter(cells - margin, 0.0);
+std::vector<std::int64_t> face_points(const MaterialPoints& points, int axis, int side) {
+  std::vector<std::int64_t> out;
+  if (points.size() == 0) return out;
+  const MaterialExtent e = material_extent(points);
+  double hw_min = INFINITY;
+  for (const common::Vec3& hw : points.half_width0) hw_min = std::min(hw_min, hw.minCoeff());
+  const double face = side < 0 ? e.lo[axis] : e.hi[axis];
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const double half = (points.F[p].cwiseAbs() * points.half_width0[p])[axis];
+    const double edge = points.x[p][axis] + side * half;
+    if (std::abs(edge - face) <= 1e-6 * hw_min) out.push_back(static_cast<std::int64_t>(p));
+  }
+  return out;
 }
+
+namespace {
 
 /// Basis used for face loads: the grid functions (uGIMP's grid basis is the linear hat).
 ShapeKind face_basis(ShapeKind kind) {
   return kind == ShapeKind::bspline2 ? ShapeKind::bspline2 : ShapeKind::linear;
 }
 
-/// Integrals over [a, b] (cell units) of the basis functions of each node, exact for the
-/// piecewise-quadratic bases: split at every half cell, 2-point Gauss on each piece.
-std::map<int, double> basis_integrals(ShapeKind kind, double a, double b, double h) {
-  std::map<int, double> out;
-  if (!(b > a)) return out;
-  const double g = 0.5 / std::sqrt(3.0);
-  double lo = a;
-  while (lo < b) {
-    const double hi = std::min(b, (std::floor(lo * 2.0) + 1.0) / 2.0);
-    const double mid = 0.5 * (lo + hi);
-    const double len = hi - lo;
-    for (const double xi : {mid - g * len, mid + g * len}) {
-      const Weights1D w = weights_1d(kind, xi, 0.0, h);
-      for (int k = 0; k < stencil_width(kind); ++k) {
-        out[w.base + k] += 0.5 * len * h * w.w[static_cast<std::size_t>(k)];
-      }
-    }
-    lo = hi;
-  }
-  return out;
+/// Position in cell units along axis d, clipped to where the basis stencil lies in the grid.
+double clipped_s(ShapeKind basis, const Grid& grid, int d, double x) {
+  const double margin = basis == ShapeKind::bspline2 ? 0.5 : 0.0;
+  const double s = (x - grid.origin[d]) / grid.spacing[d];
+  return std::clamp(s, margin, std::nextafter(grid.cells[d] - margin, 0.0));
 }
 
 }  // namespace
 
 double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
-                      const MaterialExtent& extent, GridFields& fields) {
+                      const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
+                      GridFields& fields) {
   const int n = load.axis;
   if (n < 0 || n > 2 || (load.side != -1 && load.side != 1)) {
     throw common::InputError("mpm traction load: axis = " + std::to_string(n) + ", side = " +
@@ -131,54 +129,59 @@ double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load
   }
   const int t1 = (n + 1) % 3;
   const int t2 = (n + 2) % 3;
-  const double area = (extent.hi[t1] - extent.lo[t1]) * (extent.hi[t2] - extent.lo[t2]);
-  common::Vec3 normal = common::Vec3::Zero();
-  normal[n] = load.side;
-  const common::Vec3 total = (load.traction - load.pressure * normal) * area;
-
   const ShapeKind basis = face_basis(kind);
-  std::array<std::map<int, double>, 3> integral;
-  for (const int d : {t1, t2}) {
-    double s_lo = 0.0;
-    double s_hi = 0.0;
-    valid_range(basis, grid.cells[d], s_lo, s_hi);
-    const double a = std::clamp((extent.lo[d] - grid.origin[d]) / grid.spacing[d], s_lo, s_hi);
-    const double b = std::clamp((extent.hi[d] - grid.origin[d]) / grid.spacing[d], s_lo, s_hi);
-    integral[static_cast<std::size_t>(d)] = basis_integrals(basis, a, b, grid.spacing[d]);
-  }
-  double s_lo = 0.0;
-  double s_hi = 0.0;
-  valid_range(basis, grid.cells[n], s_lo, s_hi);
-  const double face = load.side < 0 ? extent.lo[n] : extent.hi[n];
-  const double s_face = std::clamp((face - grid.origin[n]) / grid.spacing[n], s_lo, s_hi);
-  const Weights1D wn = weights_1d(basis, s_face, 0.0, grid.spacing[n]);
-
-  // Weights of the active nodes, in node order, then scaled to carry exactly total.
-  std::map<std::int64_t, double> weight;
-  double sum = 0.0;
-  for (int k = 0; k < stencil_width(basis); ++k) {
-    const double w_n = wn.w[static_cast<std::size_t>(k)];
-    if (w_n == 0.0) continue;
-    for (const auto& [i1, I1] : integral[static_cast<std::size_t>(t1)]) {
-      for (const auto& [i2, I2] : integral[static_cast<std::size_t>(t2)]) {
-        common::Vec3i ijk;
-        ijk[n] = wn.base + k;
-        ijk[t1] = i1;
-        ijk[t2] = i2;
-        const std::int64_t node = grid.node_index(ijk[0], ijk[1], ijk[2]);
-        const double w = w_n * I1 * I2;
-        if (w == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
-        weight[node] += w;
-        sum += w;
+  const int ns = stencil_width(basis);
+  common::Vec3 N = common::Vec3::Zero();
+  N[n] = load.side;
+  const double g = 1.0 / std::sqrt(3.0);
+  double area = 0.0;
+  for (const std::int64_t slot : facet_points) {
+    const auto p = static_cast<std::size_t>(slot);
+    const common::Mat3& F = points.F[p];
+    const common::Vec3& hw = points.half_width0[p];
+    // Nanson: deformed area vector of the facet, reference area 4 hw_t1 hw_t2.
+    const common::Vec3 a = F.determinant() * F.inverse().transpose() * N * (4.0 * hw[t1] * hw[t2]);
+    const double a_norm = a.norm();
+    area += a_norm;
+    const common::Vec3 f = -load.pressure * a + load.traction * a_norm;
+    const common::Vec3 centre = points.x[p] + F.col(n) * (load.side * hw[n]);
+    const common::Vec3 g1 = F.col(t1) * hw[t1];
+    const common::Vec3 g2 = F.col(t2) * hw[t2];
+    for (const double alpha : {-g, g}) {
+      for (const double beta : {-g, g}) {
+        const common::Vec3 x = centre + alpha * g1 + beta * g2;
+        std::array<Weights1D, 3> w;
+        for (int d = 0; d < 3; ++d) {
+          w[static_cast<std::size_t>(d)] =
+              weights_1d(basis, clipped_s(basis, grid, d, x[d]), 0.0, grid.spacing[d]);
+        }
+        double sum = 0.0;
+        for (int pass = 0; pass < 2; ++pass) {
+          for (int k = 0; k < ns; ++k) {
+            for (int j = 0; j < ns; ++j) {
+              for (int i = 0; i < ns; ++i) {
+                const std::int64_t node = grid.node_index(w[0].base + i, w[1].base + j, w[2].base + k);
+                const double S = w[0].w[static_cast<std::size_t>(i)] * w[1].w[static_cast<std::size_t>(j)] *
+                                 w[2].w[static_cast<std::size_t>(k)];
+                if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
+                if (pass == 0) {
+                  sum += S;
+                } else {
+                  fields.force[static_cast<std::size_t>(node)] += (0.25 * S / sum) * f;
+                }
+              }
+            }
+          }
+          if (pass == 0 && !(sum > 0.0)) {
+            throw common::NumericalError(
+                "mpm traction load on axis " + std::to_string(n) + " side " +
+                std::to_string(load.side) + ": the facet of point id " + std::to_string(points.id[p]) +
+                " touches no node holding material");
+          }
+        }
       }
     }
   }
-  if (!(sum > 0.0)) {
-    throw common::NumericalError("mpm traction load on axis " + std::to_string(n) + " side " +
-                                 std::to_string(load.side) +
-                                 ": the loaded face touches no node holding material");
-  }
-  for (const auto& [node, w] : weight) fields.force[static_cast<std::size_t>(node)] += (w / sum) * total;
   return area;
 }
 

@@ -49,29 +49,37 @@ void apply_acceleration_constraints(const Grid& grid, const std::vector<Resolved
                                     double t, double dt, GridFields& fields);
 
 /// A load on one face of the material: pressure and/or traction over the face's CURRENT area.
-/// The face is the side of the material's current bounding box (see material_extent) normal to
-/// `axis`; its area is the product of the box's two other extents.
+/// The face is made of the facets of the points whose initial domain touched the material's
+/// initial bounding face (normal `axis`, `side`); each facet is carried by its point and deforms
+/// with it (Nanson: a_p = J_p F_p^-T N A0_p), so a pressure stays a pressure on the deformed
+/// face, whatever the points' drift inside the grid (docs/mpm.md, "Tractions").
 struct TractionLoad {
   int axis = 0;            ///< normal axis of the face, 0..2
   int side = -1;           ///< -1: the face at the material's lowest coordinate, +1 the highest
-  double pressure = 0.0;   ///< [Pa], positive pushes into the material (force -p n A)
-  common::Vec3 traction = common::Vec3::Zero();  ///< additional traction vector [Pa]
+  double pressure = 0.0;   ///< [Pa], positive pushes into the material (force -p a)
+  common::Vec3 traction = common::Vec3::Zero();  ///< additional traction vector [Pa] (times |a|)
 };
 
 /// Axis-aligned box of the material's current domains: each point spans x_p +- e_p with
-/// e_p,d = sum_k |F_dk| hw0_k (the bounding box of its deformed parallelepiped, CPDI-like).
+/// e_p,d = sum_k |F_dk| hw0_k (the bounding box of its deformed parallelepiped).
 struct MaterialExtent {
   common::Vec3 lo;  ///< [m]
   common::Vec3 hi;  ///< [m]
 };
 MaterialExtent material_extent(const MaterialPoints& points);
 
-/// Adds the nodal forces of one load: f_v = t A N_n(x_face) I_1,v I_2,v / (sum over active v),
-/// with I the integrals of the grid basis (linear hat for linear and uGIMP, the B-spline for
-/// bspline2) over the tangential extents, clipped to the grid; the sum of the nodal forces is
-/// exactly t A. Throws common::NumericalError if no active node is loaded.
-/// Returns the loaded area A [m^2].
+/// Slots of the points whose domain face lies on the bounding face (axis, side) of the
+/// material's current extent (within 1e-6 of the smallest half-width). Call on the initial state.
+std::vector<std::int64_t> face_points(const MaterialPoints& points, int axis, int side);
+
+/// Adds the nodal forces of one load carried by the facets of `facet_points` (slots): facet
+/// force f_p = -p a_p + t |a_p|, spread over its 2 x 2 Gauss points on the deformed facet with
+/// the grid basis (linear hat for linear and uGIMP, the B-spline for bspline2), positions clipped
+/// to the grid, each Gauss point's weights renormalised over the active nodes, so the nodal
+/// forces sum exactly to sum_p f_p. Throws common::NumericalError if a Gauss point touches no
+/// active node. Returns the current loaded area sum_p |a_p| [m^2].
 double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
-                      const MaterialExtent& extent, GridFields& fields);
+                      const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
+                      GridFields& fields);
 
 }  // namespace mpm

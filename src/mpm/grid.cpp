@@ -42,6 +42,7 @@ void GridFields::resize(const Grid& grid) {
   velocity.assign(n, common::Vec3::Zero());
   acceleration.assign(n, common::Vec3::Zero());
   is_active.assign(n, 0);
+  fixed.assign(n, 0);
   active.clear();
 }
 
@@ -54,6 +55,7 @@ void GridFields::clear_active() {
     velocity[u].setZero();
     acceleration[u].setZero();
     is_active[u] = 0;
+    fixed[u] = 0;
   }
   active.clear();
 }

@@ -49,6 +49,9 @@ struct GridFields {
   std::vector<common::Vec3> acceleration;  ///< a_v, eq. 8 [m/s^2]
   std::vector<std::int64_t> active;        ///< sorted node indices touched this step
   std::vector<char> is_active;             ///< 1 for nodes in `active`
+  /// Bit d set: component d of the node's velocity is prescribed this step (set by
+  /// apply_velocity_constraints; the damping of eq. 8 then ignores that component).
+  std::vector<std::uint8_t> fixed;
 
   /// Sizes every array for `grid`, all zero.
   void resize(const Grid& grid);

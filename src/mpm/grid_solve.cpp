@@ -36,9 +36,17 @@ void compute_nodal_acceleration(double threshold, double damping, DampingMode mo
       fields.acceleration[i].setZero();
       continue;
     }
-    const common::Vec3& f_i = fields.force[i];
-    const common::Vec3& v_i = fields.velocity[i];
-    common::Vec3 f_damped = f_i;
+    // Eq. 8 on the free components only: the force along a prescribed component is reacted by
+    // the constraint (e.g. the platen load), not an out-of-balance force to damp.
+    common::Vec3 f_i = fields.force[i];
+    common::Vec3 v_i = fields.velocity[i];
+    for (int d = 0; d < 3; ++d) {
+      if (fields.fixed[i] & (1u << d)) {
+        f_i[d] = 0.0;
+        v_i[d] = 0.0;
+      }
+    }
+    common::Vec3 f_damped = fields.force[i];
     if (damping > 0.0) {
       if (mode == DampingMode::cundall_vector) {
         const double speed = v_i.norm();

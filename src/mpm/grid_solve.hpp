@@ -22,6 +22,8 @@ void compute_nodal_velocity(double threshold, GridFields& fields);
 
 /// a_v from eq. 8 with damping ratio D [-] on active nodes with m_v >= threshold; a_v = 0 below.
 /// V in the damping term is fields.velocity (the start-of-step nodal velocity, constrained).
+/// Components flagged in fields.fixed are left out of both |f| and V in the damping term (their
+/// acceleration is then overwritten by apply_acceleration_constraints).
 void compute_nodal_acceleration(double threshold, double damping, DampingMode mode,
                                 GridFields& fields);
 

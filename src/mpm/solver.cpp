@@ -89,7 +89,13 @@ void Solver::add_traction(const TractionLoad& load) {
                              ", side = " + std::to_string(load.side) +
                              ": axis must be 0..2 and side -1 or +1");
   }
+  std::vector<std::int64_t> facets = face_points(points_, load.axis, load.side);
+  if (facets.empty()) {
+    throw common::InputError("mpm traction load on axis " + std::to_string(load.axis) + " side " +
+                             std::to_string(load.side) + ": no material point lies on that face");
+  }
   tractions_.push_back(load);
+  traction_points_.push_back(std::move(facets));
   traction_areas_.push_back(0.0);
 }
 
@@ -179,10 +185,9 @@ void Solver::check_points(double t_end) const {
 }
 
 void Solver::add_external_loads() {
-  if (tractions_.empty()) return;
-  const MaterialExtent extent = material_extent(points_);
   for (std::size_t k = 0; k < tractions_.size(); ++k) {
-    traction_areas_[k] = apply_traction(config_.grid, config_.shape, tractions_[k], extent, fields_);
+    traction_areas_[k] = apply_traction(config_.grid, config_.shape, tractions_[k], points_,
+                                        traction_points_[k], fields_);
   }
 }
 
@@ -193,7 +198,7 @@ void Solver::step() {
   const Grid& grid = config_.grid;
   if (config_.stress_update == StressUpdate::usf) {
     // USF: L from V_v(t), stress first, then forces from the new stress (eqs. 5, 6, 8-10).
-    g2p_velocity_gradient(grid, cache_, fields_, points_);
+    g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
     update_stress(dt);
     check_points(t + dt);
     p2g_internal_force(grid, cache_, bins_, points_, fields_);
@@ -212,7 +217,7 @@ void Solver::step() {
     p2g_momentum(grid, cache_, bins_, points_, fields_);
     compute_nodal_velocity(threshold_, fields_);
     apply_velocity_constraints(grid, constraints_, t + dt, fields_);
-    g2p_velocity_gradient(grid, cache_, fields_, points_);
+    g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
     update_stress(dt);
     check_points(t + dt);
   }
@@ -283,6 +288,9 @@ void Solver::save(common::StateWriter& w) const {
   w.write("points/L", flatten(points_.L));
   std::vector<std::int64_t> mat(points_.material.begin(), points_.material.end());
   w.write("points/material", mat);
+  for (std::size_t k = 0; k < traction_points_.size(); ++k) {
+    w.write("loads/traction_" + std::to_string(k) + "/point_slots", traction_points_[k]);
+  }
 }
 
 void Solver::load(const common::StateReader& r) {
@@ -316,6 +324,18 @@ void Solver::load(const common::StateReader& r) {
     pts.material[p] = static_cast<std::int32_t>(mat[p]);
   }
   pts.validate();
+  std::vector<std::vector<std::int64_t>> facets(tractions_.size());
+  for (std::size_t k = 0; k < tractions_.size(); ++k) {
+    const std::string name = "loads/traction_" + std::to_string(k) + "/point_slots";
+    facets[k] = r.read_i64(name);
+    for (const std::int64_t slot : facets[k]) {
+      if (slot < 0 || static_cast<std::size_t>(slot) >= n) {
+        throw common::InputError("mpm checkpoint: " + name + " holds slot " + std::to_string(slot) +
+                                 " outside [0, " + std::to_string(n) + ")");
+      }
+    }
+  }
+  traction_points_ = std::move(facets);
   points_ = std::move(pts);
   step_ = step[0];
   time_ = time[0];

@@ -50,6 +50,8 @@ class Solver {
   /// Velocity constraint on a node set (resolved once, here).
   void add_constraint(const VelocityConstraint& constraint);
   /// Pressure/traction on a face of the material (recomputed every step from the current area).
+  /// The face's facets are the points on that face of the material NOW (call before stepping);
+  /// they are saved with the state.
   void add_traction(const TractionLoad& load);
 
   /// Advances one step. Throws common::NumericalError (step, time, point id, value) when a point
@@ -73,7 +75,8 @@ class Solver {
 
   /// Writes the MPM state as named fields (docs/mpm.md, "Checkpoint"): solver/step,
   /// solver/time, points/id, points/x, points/v, points/mass, points/volume, points/volume0,
-  /// points/half_width0, points/stress, points/F, points/L, points/material. The materials'
+  /// points/half_width0, points/stress, points/F, points/L, points/material,
+  /// loads/traction_<k>/point_slots. The materials'
   /// own state is written by their owner (MaterialModel::write_state).
   void save(common::StateWriter& writer) const;
   /// Restores what save wrote; a run continued from it is bit-for-bit the uninterrupted one.
@@ -91,6 +94,7 @@ class Solver {
   std::vector<MaterialModel*> materials_;
   std::vector<ResolvedConstraint> constraints_;
   std::vector<TractionLoad> tractions_;
+  std::vector<std::vector<std::int64_t>> traction_points_;  ///< facet point slots per load
   std::vector<double> traction_areas_;
   GridFields fields_;
   StencilCache cache_;

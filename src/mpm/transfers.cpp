@@ -187,14 +187,18 @@ void p2g_internal_force(const Grid& grid, const StencilCache& cache, const Point
 }
 
 void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const GridFields& fields,
-                           MaterialPoints& points) {
+                           double threshold, MaterialPoints& points) {
   const auto n = static_cast<std::int64_t>(points.size());
 #pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
     const auto p = static_cast<std::size_t>(q);
     common::Mat3 L_p = common::Mat3::Zero();
+    const common::Vec3 v_p = points.v[p];
     for_each_node(grid, cache, p, [&](std::int64_t node_i, double, const common::Vec3& grad) {
-      L_p += fields.velocity[static_cast<std::size_t>(node_i)] * grad.transpose();
+      const auto i = static_cast<std::size_t>(node_i);
+      if ((fields.mass[i] > 0.0 && fields.mass[i] >= threshold) || fields.fixed[i] == 7) {
+        L_p += (fields.velocity[i] - v_p) * grad.transpose();
+      }
     });
     points.L[p] = L_p;
   }

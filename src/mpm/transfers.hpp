@@ -58,9 +58,15 @@ void p2g_momentum(const Grid& grid, const StencilCache& cache, const PointBins& 
 void p2g_internal_force(const Grid& grid, const StencilCache& cache, const PointBins& bins,
                         const MaterialPoints& points, GridFields& fields);
 
-/// L_p = sum_v V_v (x) grad S_v(x_p) from fields.velocity (eq. 3).
+/// L_p = sum_v (V_v - v_p) (x) grad S_v(x_p) over the nodes with m_v >= threshold [kg] or a
+/// fully prescribed velocity
+/// (eq. 3 in difference form: equal to it where every stencil node holds mass, since the
+/// gradients sum to zero). Nodes without mass are left out instead of counting with V = 0,
+/// which would strain a point sitting on the material's edge (e.g. exactly on a node plane,
+/// where the empty neighbour still has a non-zero gradient): a rigid translation stays
+/// strain-free.
 void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const GridFields& fields,
-                           MaterialPoints& points);
+                           double threshold, MaterialPoints& points);
 
 /// Eqs. 9-10 blended with PIC: a_p = sum_v S a_v; v_flip = v_p + dt a_p;
 /// v_pic = sum_v S (V_v + dt a_v); v_p <- (1 - pic) v_flip + pic v_pic; x_p <- x_p + dt v_p.

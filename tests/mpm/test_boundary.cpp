@@ -42,32 +42,51 @@ TEST(Boundary, SingleCellPressureGivesQuarterFaceForcePerNode) {
   const mpm::MaterialExtent e = mpm::material_extent(s.pts);
   EXPECT_EQ(e.lo, Vec3::Zero());
   EXPECT_EQ(e.hi, Vec3::Ones());
-  const double A = mpm::apply_traction(s.g, mpm::ShapeKind::linear, {0, -1, 100e3, Vec3::Zero()}, e, s.f);
+  const std::vector<std::int64_t> facets = mpm::face_points(s.pts, 0, -1);
+  ASSERT_EQ(facets.size(), 4u);  // the 4 points at x = 1/4
+  const double A = mpm::apply_traction(s.g, mpm::ShapeKind::linear, {0, -1, 100e3, Vec3::Zero()},
+                                       s.pts, facets, s.f);
   EXPECT_EQ(A, 1.0);
   for (auto i : s.f.active) {
     const common::Vec3i ijk = s.g.node_ijk(i);
     // Pressure on the x = 0 face pushes +x: p h^2 / 4 on each of its 4 nodes (to round-off of
-    // the Gauss-point integration, 1e-9 N of 2.5e4 N).
+    // the Gauss-point weights, 1e-9 N of 2.5e4 N).
     const Vec3 expected = ijk[0] == 0 ? Vec3(25e3, 0, 0) : Vec3::Zero();
     EXPECT_LT((s.f.force[i] - expected).norm(), 1e-9) << ijk.transpose();
   }
 }
 
-TEST(Boundary, TractionSumIsPressureTimesCurrentArea) {
+TEST(Boundary, TractionFollowsTheDeformedAreaNanson) {
   for (auto kind : {mpm::ShapeKind::linear, mpm::ShapeKind::ugimp, mpm::ShapeKind::bspline2}) {
     CellSetup s = single_cell(kind, 1);
+    const std::vector<std::int64_t> facets = mpm::face_points(s.pts, 1, +1);
+    ASSERT_EQ(facets.size(), 4u);
     // Stretch the points' domains: F = diag(1.02, 0.97, 1.05) without moving them.
     for (auto& F : s.pts.F) F = Vec3(1.02, 0.97, 1.05).asDiagonal();
     const mpm::MaterialExtent e = mpm::material_extent(s.pts);
-    // Extent along d: 0.5 + 2 * 0.25 * F_dd.
-    EXPECT_NEAR(e.hi[1] - e.lo[1], 0.5 + 0.5 * 0.97, 1e-15);
-    const double A = mpm::apply_traction(s.g, kind, {1, +1, 1e5, Vec3(0, 0, 2e3)}, e, s.f);
-    EXPECT_NEAR(A, (0.5 + 0.5 * 1.05) * (0.5 + 0.5 * 1.02), 1e-15);
+    EXPECT_NEAR(e.hi[1] - e.lo[1], 0.5 + 0.5 * 0.97, 1e-15);  // 0.5 + 2 * 0.25 * F_yy
+    const double A = mpm::apply_traction(s.g, kind, {1, +1, 1e5, Vec3(0, 0, 2e3)}, s.pts, facets, s.f);
+    // Deformed area of the y face: J / F_yy * A0 = F_xx F_zz (Nanson), exact to round-off.
+    EXPECT_NEAR(A, 1.02 * 1.05, 1e-14);
     Vec3 sum = Vec3::Zero();
     for (auto i : s.f.active) sum += s.f.force[i];
     // Pressure on the upper y face pushes -y; the shear traction adds +z; exact to round-off.
     EXPECT_LT((sum - A * Vec3(0, -1e5, 2e3)).norm(), 1e-10 * 1e5) << mpm::to_string(kind);
   }
+}
+
+TEST(Boundary, PressureOnARotatedFaceStaysNormalToIt) {
+  CellSetup s = single_cell(mpm::ShapeKind::linear, 1);
+  const std::vector<std::int64_t> facets = mpm::face_points(s.pts, 0, -1);
+  const double c = std::cos(0.2), sn = std::sin(0.2);
+  for (auto& F : s.pts.F) F << c, -sn, 0, sn, c, 0, 0, 0, 1;
+  const double A = mpm::apply_traction(s.g, mpm::ShapeKind::linear, {0, -1, 1e5, Vec3::Zero()},
+                                       s.pts, facets, s.f);
+  Vec3 sum = Vec3::Zero();
+  for (auto i : s.f.active) sum += s.f.force[i];
+  EXPECT_NEAR(A, 1.0, 1e-14);
+  // Rotated outward normal R (-e_x); the pressure pushes along R e_x.
+  EXPECT_LT((sum - 1e5 * Vec3(c, sn, 0)).norm(), 1e-9);
 }
 
 TEST(Boundary, ExtentFollowsRotation) {
