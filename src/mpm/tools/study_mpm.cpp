@@ -75,9 +75,13 @@ void triaxial() {
       mpm::TriaxialConfig tc;
       tc.shape = s;
       tc.offsets = pat.offsets;
-      const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
-      std::printf("%-9s %-28s %12.3e %12.3e %12.3e %12.4f\n", mpm::to_string(s).data(), pat.name,
-                  r.lateral_error, r.lateral_error_end, r.axial_error, r.axial_strain);
+      try {
+        const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
+        std::printf("%-9s %-28s %12.3e %12.3e %12.3e %12.4f\n", mpm::to_string(s).data(), pat.name,
+                    r.lateral_error, r.lateral_error_end, r.axial_error, r.axial_strain);
+      } catch (const std::exception& e) {
+        std::printf("%-9s %-28s run stopped: %s\n", mpm::to_string(s).data(), pat.name, e.what());
+      }
       std::fflush(stdout);
     }
   }
