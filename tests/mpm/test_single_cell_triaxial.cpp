@@ -28,9 +28,11 @@ TEST(SingleCellTriaxial, LinearPaperSetupHoldsConfinementAndElasticAxialStress) 
 
 // The integration-weight error the paper blames: shifting the 8 points by 0.05 h in x (still
 // inside the cell) with linear shape functions loses lateral stress control by far more than
-// 1 % (measured > 100 %); B-splines keep it within ~4 % (study_mpm triaxial prints the table).
+// 1 % (measured 270 %); B-splines keep it within 5 % (study_mpm triaxial prints the table).
+// CFL 0.2: B-splines on the padded cell have light ghost nodes and are unstable at 0.5.
 TEST(SingleCellTriaxial, DisplacedPointsLoseLateralControlWithLinearShapes) {
   mpm::TriaxialConfig tc;
+  tc.cfl = 0.2;
   tc.offsets.assign(8, common::Vec3(0.05, 0, 0));
   const mpm::TriaxialResult lin = mpm::run_single_cell_triaxial(tc);
   tc.shape = mpm::ShapeKind::bspline2;
