@@ -1,0 +1,86 @@
+// Farm checkpoints: ONE parallel HDF5 file written collectively by all ranks (chunked + shuffle +
+// deflate), atomic (name.tmp, fsync, rename), with a format version and a 64-bit checksum per
+// dataset. Layout and rules: docs/farm.md, "Checkpoints".
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/state_store.hpp"
+
+namespace farm {
+
+inline constexpr std::int64_t kCheckpointVersion = 1;
+inline constexpr const char* kCheckpointFormat = "mpmxdem-farm-checkpoint";
+
+/// Everything a checkpoint holds besides the field data (read whole by every rank).
+struct CheckpointInfo {
+  std::string path;
+  std::int64_t version = 0;
+  std::int64_t step = 0;          ///< MPM steps done
+  double time = 0.0;              ///< MPM time [s]
+  std::int64_t nranks = 0;        ///< ranks that wrote it
+  std::vector<std::int64_t> ids;  ///< RVE ids, ascending
+  std::vector<int> partition;     ///< owner rank of every RVE when written
+  std::vector<double> cost;       ///< measured cost of every RVE [s of wall time, or estimate]
+  std::string job_text;           ///< the job file the run was started with
+  std::vector<std::string> rve_fields;  ///< field names of the RVE state
+  std::vector<std::string> mpm_fields;  ///< field names of the MPM state
+};
+
+/// What the collective writer needs. Vectors indexed by RVE index (ids ascending) are identical
+/// on every rank; `local` holds the states of this rank's RVEs (indices ascending).
+struct CheckpointData {
+  std::int64_t step = 0;
+  double time = 0.0;
+  std::string job_text;
+  std::vector<std::int64_t> ids;
+  std::vector<int> owner;
+  std::vector<double> cost;
+  std::vector<std::int64_t> local_indices;     ///< ascending
+  std::vector<common::StateStore> local_states;  ///< one per local index
+  const common::StateStore* mpm = nullptr;     ///< rank 0 only (null elsewhere)
+};
+
+/// Collective: writes `final_path` atomically (final_path + ".tmp", fsync, rename, fsync of the
+/// directory). When `abort_mid_write` (fault injection), the job calls MPI_Abort after the MPM
+/// datasets and before the RVE fields: the .tmp stays behind, the previous checkpoint is untouched.
+void write_checkpoint(MPI_Comm comm, const std::string& final_path, const CheckpointData& data,
+                      bool abort_mid_write);
+
+/// Serial (any rank, any number of ranks): opens, checks the format, the version and the presence
+/// of every dataset, verifies the checksums of the small datasets and reads them.
+/// Throws common::InputError naming the file and the dataset or attribute at fault.
+[[nodiscard]] CheckpointInfo read_checkpoint_info(const std::string& path);
+
+/// Serial: reads (and verifies the checksums of) the MPM fields.
+[[nodiscard]] common::StateStore read_checkpoint_mpm(const std::string& path);
+
+/// Collective: every rank reads the states of its RVEs (indices into info.ids, ascending; each
+/// RVE read by exactly one rank); the checksums of every RVE dataset are verified across ranks.
+/// An error on any rank is thrown on every rank (same type and message).
+[[nodiscard]] std::vector<common::StateStore> read_checkpoint_rves(
+    MPI_Comm comm, const CheckpointInfo& info, const std::vector<std::int64_t>& local_indices);
+
+/// Serial: reads everything and verifies every checksum (for `mpmxdem inspect`).
+/// Throws common::InputError on the first problem.
+void verify_checkpoint(const std::string& path);
+
+/// Human-readable summary: format, version, step, time, RVE count, ranks that wrote it and how
+/// many RVEs each held, the field lists and the job text's first line.
+[[nodiscard]] std::string describe(const CheckpointInfo& info);
+
+/// Position-keyed 64-bit checksum of n 8-byte words starting at global word index `first`:
+/// sum_i splitmix64(word_i ^ splitmix64(first + i)) mod 2^64. Additive, so ranks holding
+/// disjoint pieces of a dataset combine their partial sums with MPI_SUM.
+[[nodiscard]] std::uint64_t hash_words(const void* data, std::size_t n, std::uint64_t first);
+
+/// Checkpoint files `checkpoint_<step>.h5` in `dir`, oldest first.
+[[nodiscard]] std::vector<std::string> list_checkpoints(const std::string& dir);
+/// `dir`/checkpoint_<step, 10 digits>.h5
+[[nodiscard]] std::string checkpoint_path(const std::string& dir, std::int64_t step);
+
+}  // namespace farm

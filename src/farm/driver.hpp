@@ -1,0 +1,92 @@
+// The coupled MPM x DEM run: what `mpmxdem run job.toml` and `--restart` call. Rank 0 runs the MPM
+// solver and hosts RVEs; other ranks serve the RVE farm. Entry API (small on purpose):
+// CoupledConfig, run_coupled, restart_coupled, inspect_checkpoint. See docs/farm.md.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "farm/checkpoint.hpp"
+#include "farm/micro_model.hpp"
+#include "farm/rve_farm.hpp"
+#include "mpm/boundary.hpp"
+#include "mpm/material_points.hpp"
+#include "mpm/solver.hpp"
+
+namespace farm {
+
+struct OutputOptions {
+  std::string dir;              ///< output directory (exists, checked by the caller)
+  std::int64_t every = 1;       ///< results.h5 row every N MPM steps (>= 1); step 0 and the last always
+  int axial_axis = 2;           ///< axis of eps_ax in means.csv (0..2)
+  double log_every_s = 10.0;    ///< progress line on rank 0 at most this often [s of wall]
+};
+
+struct CheckpointOptions {
+  std::int64_t every_steps = 0;  ///< checkpoint every K MPM steps (0: off)
+  double every_wall_s = 0.0;     ///< and/or every T seconds of wall time (0: off)
+  int keep = 2;                  ///< newest checkpoints kept in the output dir (>= 1)
+  bool at_end = true;            ///< write one after the last step
+  /// Fault injection (tests): the n-th checkpoint write of this run aborts the job mid-write
+  /// (MPI_Abort) leaving name.tmp behind. 0: off. The environment variable
+  /// MPMXDEM_FARM_FAULT=abort_checkpoint:<n> sets it too.
+  std::int64_t fault_abort_at = 0;
+};
+
+struct BalanceOptions {
+  bool enabled = true;
+  double threshold = 1.05;        ///< rebalance when max/mean rank busy time exceeds this [-]
+  std::int64_t check_every = 20;  ///< MPM steps between checks (>= 1)
+};
+
+/// Everything a coupled run needs, plain values (the app maps the job file onto it). Every rank
+/// builds the same config; only rank 0 uses solver/points/constraints/tractions.
+struct CoupledConfig {
+  mpm::SolverConfig solver;
+  mpm::MaterialPoints points;  ///< every point has material 0 and its own RVE (RVE id = point id)
+  std::vector<mpm::VelocityConstraint> constraints;
+  std::vector<mpm::TractionLoad> tractions;
+  double end_time = 0.0;        ///< stop when the MPM time reaches this [s] (> 0)
+  std::int64_t max_steps = 0;   ///< and/or after this many MPM steps in total (> 0)
+  MicroKind micro;              ///< creates / restores the RVEs (ElasticMicro::kind, DemMicro::kind)
+  std::string job_text;         ///< the job file, stored in checkpoints
+  OutputOptions output;
+  CheckpointOptions checkpoint;
+  BalanceOptions balance;
+  FarmOptions farm;
+  /// Throws common::InputError naming the field, value and rule.
+  void validate() const;
+};
+
+/// What a run did (complete on rank 0; steps/time on every rank).
+struct RunSummary {
+  std::int64_t steps = 0;         ///< MPM steps done in total (restart included)
+  double time = 0.0;              ///< MPM time reached [s]
+  double wall_s = 0.0;            ///< wall time of the stepping loop [s]
+  std::vector<std::string> checkpoints;  ///< written by this run, oldest first
+  FarmTimes times;                ///< farm timing (rank 0)
+  std::int64_t migrations = 0;    ///< repartitions that moved RVEs (start-up one included)
+  std::int64_t rves_moved = 0;
+};
+
+/// Collective over `comm`: a fresh coupled run. Errors: common::InputError (config, exit 2),
+/// common::NumericalError (an RVE or the MPM failed: RVE id, step, cause; exit 3), thrown on
+/// EVERY rank with the same message (rank 0 should print it; the others stay quiet).
+RunSummary run_coupled(const CoupledConfig& config, MPI_Comm comm);
+
+/// Collective: continues the run saved in `checkpoint_path` on any number of ranks, bit for bit.
+/// The config gives everything that is not state (grid, loads, end, outputs, micro kind); the
+/// RVEs, points, step and time come from the checkpoint. results.h5 in config.output.dir, if
+/// present, is cut back to the checkpoint's step first. A damaged or incompatible checkpoint
+/// throws common::InputError naming the file and the dataset, on every rank.
+RunSummary restart_coupled(const CoupledConfig& config, const std::string& checkpoint_path,
+                           MPI_Comm comm);
+
+/// Serial: reads a checkpoint's description; with `verify`, checks every dataset's checksum.
+/// Throws common::InputError on a damaged or incompatible file. Print with describe(info).
+CheckpointInfo inspect_checkpoint(const std::string& path, bool verify = true);
+
+}  // namespace farm

@@ -1,0 +1,55 @@
+// farm::MicroModel: one RVE behind the macro-micro contract of the preCICE micro-manager
+// (solve(macro_data, dt), get_state(), set_state()): step under the macro velocity gradient,
+// report the Cauchy stress, save/restore as named fields (checkpoints and migration alike).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include "common/state_io.hpp"
+#include "common/types.hpp"
+
+namespace farm {
+
+/// What one micro step did. Soil-mechanics quantities are compression positive.
+struct MicroReport {
+  double p = 0.0;              ///< mean pressure -tr(sigma)/3 [Pa]
+  double q = 0.0;              ///< deviatoric stress sqrt(3/2 s:s) [Pa]
+  double void_ratio = 0.0;     ///< e [-]
+  double z = 0.0;              ///< coordination number 2 Nc / N [-] (0 for continuum models)
+  std::int64_t dem_steps = 0;  ///< DEM steps (or sub-steps) done [-]
+  double t_p = 0.0;            ///< quasi-static time of the step, eq. (11) [s]
+  std::uint32_t guards = 0;    ///< guard bits (dem::RveGuard for DemMicro) [-]
+  double wall_s = 0.0;         ///< wall-clock seconds of the step [s] (timing only, never state)
+};
+
+/// One RVE. Implementations are deterministic: the same calls on the same state give the same
+/// bits on any rank and thread.
+class MicroModel {
+ public:
+  virtual ~MicroModel() = default;
+  /// Advance by dt under the macro velocity gradient L (v = L x, spin included).
+  /// @param L [1/s] @param dt MPM step [s], > 0
+  /// @post stress() is the new Cauchy stress. Throws common::NumericalError on a failure
+  /// (non-finite stress, guard exhausted); the farm adds the RVE id and the step.
+  virtual MicroReport step(const common::Mat3& L, double dt) = 0;
+  /// Cauchy stress, TENSION POSITIVE (the seam convention of mpm::MaterialModel) [Pa].
+  [[nodiscard]] virtual common::Mat3 stress() const = 0;
+  /// Whole state as named fields; the loader of the same kind rebuilds an equal model.
+  virtual void save(common::StateWriter& writer) const = 0;
+  /// Cost estimate before any timing exists (particle count for DEM) [arbitrary units, > 0].
+  [[nodiscard]] virtual double cost_estimate() const = 0;
+  /// Largest elastic wave speed of the RVE's continuum response (CFL bound) [m/s].
+  [[nodiscard]] virtual double wave_speed() const = 0;
+};
+
+/// How the farm creates and restores micro models; every rank holds an identical copy.
+struct MicroKind {
+  /// Creates the RVE of material point `id` (called only on the rank that owns it).
+  std::function<std::unique_ptr<MicroModel>(std::int64_t id)> create;
+  /// Rebuilds an RVE from what MicroModel::save wrote (restart, migration).
+  std::function<std::unique_ptr<MicroModel>(const common::StateReader& reader)> load;
+};
+
+}  // namespace farm

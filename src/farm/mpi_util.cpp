@@ -1,0 +1,114 @@
+// MPI helpers of the farm (see header).
+#include "farm/mpi_util.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <exception>
+#include <thread>
+
+#include "common/errors.hpp"
+
+namespace farm {
+
+void wait_for(MPI_Request& request, WaitMode mode) {
+  if (mode == WaitMode::spin) {
+    MPI_Wait(&request, MPI_STATUS_IGNORE);
+    return;
+  }
+  int done = 0;
+  // A few immediate polls first (a fast partner answers in microseconds), then sleep with an
+  // exponential back-off so a waiting rank leaves its core to the DEM of another rank.
+  for (int k = 0; k < 20 && done == 0; ++k) MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  auto pause = std::chrono::microseconds(20);
+  while (done == 0) {
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(1000));
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  }
+}
+
+void throw_kind(ErrorKind kind, const std::string& message) {
+  switch (kind) {
+    case ErrorKind::input:
+      throw common::InputError(message);
+    case ErrorKind::numerical:
+      throw common::NumericalError(message);
+    default:
+      throw common::InternalError(message);
+  }
+}
+
+ErrorKind current_error_kind() {
+  try {
+    throw;
+  } catch (const common::InputError&) {
+    return ErrorKind::input;
+  } catch (const common::NumericalError&) {
+    return ErrorKind::numerical;
+  } catch (...) {
+    return ErrorKind::internal;
+  }
+}
+
+void agree_on_errors(MPI_Comm comm, ErrorKind kind, const std::string& message) {
+  int rank = 0;
+  int size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int mine = kind == ErrorKind::none ? size : rank;
+  int first = size;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size) return;
+  std::string msg = message;
+  auto k = static_cast<std::int32_t>(kind);
+  MPI_Bcast(&k, 1, MPI_INT32_T, first, comm);
+  bcast_string(comm, msg, first);
+  throw_kind(static_cast<ErrorKind>(k), msg);
+}
+
+void bcast_string(MPI_Comm comm, std::string& s, int root) {
+  auto n = static_cast<std::int64_t>(s.size());
+  MPI_Bcast(&n, 1, MPI_INT64_T, root, comm);
+  s.resize(static_cast<std::size_t>(n));
+  if (n > 0) MPI_Bcast(s.data(), to_count(s.size()), MPI_CHAR, root, comm);
+}
+
+std::vector<std::string> allgather_strings(MPI_Comm comm, const std::vector<std::string>& mine) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::string packed;
+  for (const std::string& s : mine) {
+    packed += s;
+    packed.push_back('\0');
+  }
+  const int n = to_count(packed.size());
+  std::vector<int> counts(static_cast<std::size_t>(size));
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  std::vector<int> displs(static_cast<std::size_t>(size), 0);
+  std::int64_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    displs[r] = to_count(static_cast<std::size_t>(total));
+    total += counts[r];
+  }
+  std::string all(static_cast<std::size_t>(total), '\0');
+  MPI_Allgatherv(packed.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR,
+                 comm);
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (all[i] == '\0') {
+      out.emplace_back(all.substr(start, i - start));
+      start = i + 1;
+    }
+  }
+  return out;
+}
+
+int to_count(std::size_t n) {
+  MPMXDEM_CHECK(n <= static_cast<std::size_t>(INT_MAX),
+                "MPI message of " + std::to_string(n) + " elements exceeds INT_MAX");
+  return static_cast<int>(n);
+}
+
+}  // namespace farm

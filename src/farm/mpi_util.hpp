@@ -1,0 +1,45 @@
+// Small MPI helpers of the farm: waiting on a request without stealing a core, collective error
+// agreement (one rank's failure becomes the same exception on every rank), string broadcast.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace farm {
+
+/// How a rank waits for a non-blocking collective.
+enum class WaitMode {
+  spin,   ///< MPI_Wait: Open MPI busy-polls (a core at 100 %)
+  sleep,  ///< MPI_Test, then nanosleep with a back-off from 20 us to 1 ms (frees the core)
+};
+
+/// Completes `request` according to `mode`.
+void wait_for(MPI_Request& request, WaitMode mode);
+
+/// Error kinds that travel between ranks (exit codes differ in the app).
+enum class ErrorKind : std::int32_t { none = 0, input = 1, numerical = 2, internal = 3 };
+
+/// Throws the exception type of `kind` (common::InputError, NumericalError, InternalError) with
+/// `message`. @pre kind != none
+[[noreturn]] void throw_kind(ErrorKind kind, const std::string& message);
+
+/// Classifies the exception being handled (call inside a catch block).
+ErrorKind current_error_kind();
+
+/// Collective: if any rank passes a non-none kind, every rank throws the error of the lowest
+/// such rank (same type, same message). Otherwise returns.
+void agree_on_errors(MPI_Comm comm, ErrorKind kind, const std::string& message);
+
+/// Broadcast a string from `root`.
+void bcast_string(MPI_Comm comm, std::string& s, int root = 0);
+
+/// Every rank's strings, concatenated in rank order.
+std::vector<std::string> allgather_strings(MPI_Comm comm, const std::vector<std::string>& mine);
+
+/// MPI int count from a size, with a check against overflow.
+int to_count(std::size_t n);
+
+}  // namespace farm

@@ -1,0 +1,47 @@
+// Partition of the RVEs over ranks: METIS k-way on the graph of RVEs (vertex weight = cost, an
+// edge between two RVEs whose material points share a grid cell), plus simple reference splits.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/types.hpp"
+#include "mpm/grid.hpp"
+
+namespace farm {
+
+/// CSR adjacency over RVEs 0..n-1 (METIS layout, symmetric, no self loops, sorted rows).
+struct RveGraph {
+  std::vector<std::int64_t> xadj;    ///< n + 1 row offsets
+  std::vector<std::int64_t> adjncy;  ///< neighbours
+  [[nodiscard]] std::size_t size() const { return xadj.empty() ? 0 : xadj.size() - 1; }
+};
+
+/// RVE k sits at x[k]; RVEs whose points lie in the same grid cell are neighbours.
+[[nodiscard]] RveGraph cell_graph(const mpm::Grid& grid, const std::vector<common::Vec3>& x);
+
+/// Owner rank of every RVE, in [0, nparts). METIS_PartGraphKway with METIS_OPTION_SEED = seed
+/// (deterministic for the same input); nparts == 1 is handled here (METIS crashes on it), and
+/// nparts >= n puts one RVE per part. Costs are scaled to 32-bit integer weights >= 1.
+/// METIS's answer is then refined for balance (refine_balance).
+/// @pre cost.size() == graph.size(), every cost finite and >= 0, nparts >= 1
+[[nodiscard]] std::vector<int> partition_metis(const RveGraph& graph,
+                                               const std::vector<double>& cost, int nparts,
+                                               int seed = 1);
+/// Greedy balance refinement after METIS (whose k-way balance slips with few heavy vertices):
+/// moves RVEs from the heaviest part to the lightest while that lowers their maximum. Only
+/// balance counts here (RVEs exchange nothing with each other; the cut is a secondary goal).
+void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, int nparts);
+/// RVE k on rank k % nparts.
+[[nodiscard]] std::vector<int> partition_round_robin(std::size_t n, int nparts);
+/// Contiguous blocks of nearly equal counts (the start-up split before costs are known).
+[[nodiscard]] std::vector<int> partition_blocks(std::size_t n, int nparts);
+
+/// Sum of costs per part.
+[[nodiscard]] std::vector<double> part_loads(const std::vector<int>& owner,
+                                             const std::vector<double>& cost, int nparts);
+/// Load-balance efficiency mean/max of part loads, in (0, 1]; 1 when all loads are zero.
+[[nodiscard]] double balance_efficiency(const std::vector<int>& owner,
+                                        const std::vector<double>& cost, int nparts);
+
+}  // namespace farm

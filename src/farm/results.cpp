@@ -1,0 +1,329 @@
+// results.h5 / points.xmf / means.csv writer (see header and docs/farm.md, "Outputs").
+#include "farm/results.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/errors.hpp"
+
+namespace farm {
+
+namespace {
+
+using h5::check;
+using h5::Handle;
+
+struct SeriesSpec {
+  const char* name;
+  bool integer;
+  int per_item;    ///< values per RVE or point (0: scalar per row)
+  char over;       ///< 'r' RVEs, 'p' points, '-' none
+};
+
+constexpr SeriesSpec kSeries[] = {
+    {"time", false, 0, '-'},          {"step", true, 0, '-'},
+    {"rve/stress", false, 9, 'r'},    {"rve/p", false, 1, 'r'},
+    {"rve/q", false, 1, 'r'},         {"rve/void_ratio", false, 1, 'r'},
+    {"rve/z", false, 1, 'r'},         {"rve/t_p", false, 1, 'r'},
+    {"rve/dem_steps", true, 1, 'r'},  {"rve/guards", true, 1, 'r'},
+    {"points/x", false, 3, 'p'},      {"points/stress", false, 9, 'p'},
+    {"points/p", false, 1, 'p'},      {"points/q", false, 1, 'p'},
+    {"points/void_ratio", false, 1, 'p'}, {"points/z", false, 1, 'p'},
+    {"means/eps_ax", false, 0, '-'},  {"means/eps_v", false, 0, '-'},
+    {"means/p", false, 0, '-'},       {"means/q", false, 0, '-'},
+};
+
+std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts) {
+  std::vector<hsize_t> d;
+  if (s.over == 'r') d.push_back(n_rve);
+  if (s.over == 'p') d.push_back(n_pts);
+  if (s.per_item > 1) d.push_back(static_cast<hsize_t>(s.per_item));
+  return d;
+}
+
+void write_static(hid_t file, const char* name, const std::vector<std::int64_t>& v) {
+  Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  const hsize_t dims[1] = {v.size()};
+  Handle space(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
+  Handle d(check(H5Dcreate2(file, name, H5T_NATIVE_INT64, space.get(), lcpl.get(), H5P_DEFAULT,
+                            H5P_DEFAULT),
+                 std::string("create ") + name),
+           H5Dclose);
+  if (!v.empty()) {
+    check(H5Dwrite(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+          std::string("write ") + name);
+  }
+}
+
+template <class T>
+std::vector<T> read_rows(hid_t file, const std::string& name, hsize_t rows) {
+  std::vector<T> v(rows);
+  if (rows == 0) return v;
+  Handle d(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  Handle fs(H5Dget_space(d.get()), H5Sclose);
+  const hsize_t start[1] = {0};
+  const hsize_t count[1] = {rows};
+  H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+  Handle ms(H5Screate_simple(1, count, nullptr), H5Sclose);
+  check(H5Dread(d.get(), h5::native_type<T>(), ms.get(), fs.get(), H5P_DEFAULT, v.data()), "read " + name);
+  return v;
+}
+
+void write_text_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out) throw common::InputError("output " + tmp + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace
+
+struct ResultsWriter::Series {
+  Handle dset;
+  std::vector<hsize_t> row;
+};
+
+SampleMeans sample_means(const mpm::MaterialPoints& points, const std::vector<MicroReport>& reports,
+                         int axial_axis) {
+  SampleMeans m;
+  double faa = 0.0;
+  double v = 0.0;
+  double v0 = 0.0;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    faa += points.F[p](axial_axis, axial_axis);
+    v += points.volume[p];
+    v0 += points.volume0[p];
+  }
+  if (points.size() > 0) {
+    m.eps_ax = 1.0 - faa / static_cast<double>(points.size());
+    m.eps_v = v0 > 0.0 ? 1.0 - v / v0 : 0.0;
+  }
+  for (const MicroReport& r : reports) {
+    m.p += r.p;
+    m.q += r.q;
+  }
+  if (!reports.empty()) {
+    m.p /= static_cast<double>(reports.size());
+    m.q /= static_cast<double>(reports.size());
+  }
+  return m;
+}
+
+ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int64_t>& rve_ids,
+                             const mpm::MaterialPoints& points, std::int64_t restart_step)
+    : dir_(dir), rve_ids_(rve_ids), point_ids_(points.id) {
+  h5::silence_errors();
+  for (std::int64_t id : point_ids_) {
+    const auto it = std::lower_bound(rve_ids_.begin(), rve_ids_.end(), id);
+    MPMXDEM_CHECK(it != rve_ids_.end() && *it == id, "every point has an RVE");
+    rve_of_point_.push_back(static_cast<std::size_t>(it - rve_ids_.begin()));
+  }
+  const std::string path = (std::filesystem::path(dir) / "results.h5").string();
+  const std::size_t n = rve_ids_.size();
+  const std::size_t m = point_ids_.size();
+  if (restart_step >= 0 && std::filesystem::exists(path)) {
+    file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+    if (!file_.valid()) throw common::InputError("output " + path + ": cannot reopen as HDF5");
+    Handle sd(H5Dopen2(file_.get(), "/step", H5P_DEFAULT), H5Dclose);
+    if (!sd.valid()) throw common::InputError("output " + path + ": dataset /step is missing");
+    Handle ss(H5Dget_space(sd.get()), H5Sclose);
+    hsize_t nt[1] = {0};
+    H5Sget_simple_extent_dims(ss.get(), nt, nullptr);
+    const auto steps = read_rows<std::int64_t>(file_.get(), "/step", nt[0]);
+    hsize_t keep = 0;
+    while (keep < nt[0] && steps[keep] <= restart_step) ++keep;
+    for (const SeriesSpec& s : kSeries) {
+      auto se = std::make_unique<Series>();
+      se->row = row_dims(s, n, m);
+      se->dset = Handle(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), H5Dclose);
+      if (!se->dset.valid()) {
+        throw common::InputError("output " + path + ": dataset /" + std::string(s.name) +
+                                 " is missing (not a results file of this program)");
+      }
+      std::vector<hsize_t> dims{keep};
+      dims.insert(dims.end(), se->row.begin(), se->row.end());
+      check(H5Dset_extent(se->dset.get(), dims.data()), std::string("truncate ") + s.name);
+      series_[s.name] = std::move(se);
+    }
+    rows_ = static_cast<std::int64_t>(keep);
+    steps_.assign(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(keep));
+    times_ = read_rows<double>(file_.get(), "/time", keep);
+    return;
+  }
+  file_ = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!file_.valid()) throw common::InputError("output " + path + ": cannot create");
+  write_static(file_.get(), "/rve/id", rve_ids_);
+  write_static(file_.get(), "/points/id", point_ids_);
+  for (const SeriesSpec& s : kSeries) {
+    auto se = std::make_unique<Series>();
+    se->row = row_dims(s, n, m);
+    std::vector<hsize_t> dims{0};
+    std::vector<hsize_t> maxd{H5S_UNLIMITED};
+    std::vector<hsize_t> chunk{std::max<hsize_t>(1, s.over == '-' ? 256 : 1)};
+    for (hsize_t r : se->row) {
+      dims.push_back(r);
+      maxd.push_back(r);
+      chunk.push_back(std::max<hsize_t>(1, r));
+    }
+    Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxd.data()),
+                       "H5Screate_simple"),
+                 H5Sclose);
+    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+    check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk");
+    Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
+    H5Pset_create_intermediate_group(lcpl.get(), 1);
+    se->dset = Handle(check(H5Dcreate2(file_.get(), s.name,
+                                       s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
+                                       space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
+                            std::string("create ") + s.name),
+                      H5Dclose);
+    series_[s.name] = std::move(se);
+  }
+}
+
+ResultsWriter::~ResultsWriter() = default;
+
+void ResultsWriter::write_row(const std::string& name, hid_t type, const void* data) {
+  Series& s = *series_.at(name);
+  std::vector<hsize_t> dims{static_cast<hsize_t>(rows_ + 1)};
+  dims.insert(dims.end(), s.row.begin(), s.row.end());
+  check(H5Dset_extent(s.dset.get(), dims.data()), "extend " + name);
+  Handle fs(H5Dget_space(s.dset.get()), H5Sclose);
+  std::vector<hsize_t> start(dims.size(), 0);
+  start[0] = static_cast<hsize_t>(rows_);
+  std::vector<hsize_t> count = dims;
+  count[0] = 1;
+  check(H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select " + name);
+  Handle ms(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
+  check(H5Dwrite(s.dset.get(), type, ms.get(), fs.get(), H5P_DEFAULT, data), "write " + name);
+}
+
+void ResultsWriter::append(std::int64_t step, double time, const std::vector<common::Mat3>& rve_stress,
+                           const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
+                           const SampleMeans& means) {
+  MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
+  const std::size_t n = rve_ids_.size();
+  const std::size_t m = point_ids_.size();
+  auto mat9 = [](const common::Mat3& a, double* out) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) out[3 * i + j] = a(i, j);
+    }
+  };
+  write_row("time", H5T_NATIVE_DOUBLE, &time);
+  write_row("step", H5T_NATIVE_INT64, &step);
+  std::vector<double> buf(9 * std::max(n, m));
+  for (std::size_t k = 0; k < n; ++k) mat9(rve_stress[k], buf.data() + 9 * k);
+  write_row("rve/stress", H5T_NATIVE_DOUBLE, buf.data());
+  auto rve_scalar = [&](const char* name, auto get) {
+    std::vector<double> v(n);
+    for (std::size_t k = 0; k < n; ++k) v[k] = get(reports[k]);
+    write_row(name, H5T_NATIVE_DOUBLE, v.data());
+    std::vector<double> w(m);
+    for (std::size_t p = 0; p < m; ++p) w[p] = v[rve_of_point_[p]];
+    write_row(std::string("points/") + (name + 4), H5T_NATIVE_DOUBLE, w.data());
+  };
+  rve_scalar("rve/p", [](const MicroReport& r) { return r.p; });
+  rve_scalar("rve/q", [](const MicroReport& r) { return r.q; });
+  rve_scalar("rve/void_ratio", [](const MicroReport& r) { return r.void_ratio; });
+  rve_scalar("rve/z", [](const MicroReport& r) { return r.z; });
+  std::vector<double> tp(n);
+  std::vector<std::int64_t> ds(n);
+  std::vector<std::int64_t> gd(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    tp[k] = reports[k].t_p;
+    ds[k] = reports[k].dem_steps;
+    gd[k] = reports[k].guards;
+  }
+  write_row("rve/t_p", H5T_NATIVE_DOUBLE, tp.data());
+  write_row("rve/dem_steps", H5T_NATIVE_INT64, ds.data());
+  write_row("rve/guards", H5T_NATIVE_INT64, gd.data());
+  std::vector<double> x(3 * m);
+  for (std::size_t p = 0; p < m; ++p) {
+    for (int a = 0; a < 3; ++a) x[3 * p + static_cast<std::size_t>(a)] = points.x[p][a];
+  }
+  write_row("points/x", H5T_NATIVE_DOUBLE, x.data());
+  for (std::size_t p = 0; p < m; ++p) mat9(points.stress[p], buf.data() + 9 * p);
+  write_row("points/stress", H5T_NATIVE_DOUBLE, buf.data());
+  write_row("means/eps_ax", H5T_NATIVE_DOUBLE, &means.eps_ax);
+  write_row("means/eps_v", H5T_NATIVE_DOUBLE, &means.eps_v);
+  write_row("means/p", H5T_NATIVE_DOUBLE, &means.p);
+  write_row("means/q", H5T_NATIVE_DOUBLE, &means.q);
+  ++rows_;
+  steps_.push_back(step);
+  times_.push_back(time);
+}
+
+void ResultsWriter::flush() {
+  H5Fflush(file_.get(), H5F_SCOPE_LOCAL);
+  write_xdmf();
+  write_csv();
+}
+
+void ResultsWriter::write_xdmf() const {
+  const std::size_t m = point_ids_.size();
+  const std::int64_t nt = rows_;
+  std::ostringstream os;
+  os.precision(17);
+  auto slab = [&](std::int64_t t, const char* ds, int per) {
+    std::ostringstream s;
+    const std::string dims = per > 1 ? std::to_string(m) + " " + std::to_string(per) : std::to_string(m);
+    const int rank = per > 1 ? 3 : 2;
+    s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims << "\" Type=\"HyperSlab\">"
+      << "<DataItem Dimensions=\"3 " << rank << "\" Format=\"XML\">";
+    if (per > 1) {
+      s << t << " 0 0 1 1 1 1 " << m << " " << per;
+    } else {
+      s << t << " 0 1 1 1 " << m;
+    }
+    s << "</DataItem><DataItem Dimensions=\"" << nt << " " << dims
+      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">results.h5:/" << ds
+      << "</DataItem></DataItem>";
+    return s.str();
+  };
+  os << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+     << "<Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::int64_t t = 0; t < nt; ++t) {
+    os << "<Grid Name=\"step_" << steps_[static_cast<std::size_t>(t)] << "\" GridType=\"Uniform\">\n"
+       << "<Time Value=\"" << times_[static_cast<std::size_t>(t)] << "\"/>\n"
+       << "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << m << "\"/>\n"
+       << "<Geometry GeometryType=\"XYZ\">" << slab(t, "points/x", 3) << "</Geometry>\n"
+       << "<Attribute Name=\"stress\" AttributeType=\"Tensor\" Center=\"Node\">"
+       << slab(t, "points/stress", 9) << "</Attribute>\n";
+    for (const char* a : {"p", "q", "void_ratio", "z"}) {
+      os << "<Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Node\">"
+         << slab(t, (std::string("points/") + a).c_str(), 1) << "</Attribute>\n";
+    }
+    os << "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\""
+       << m << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">results.h5:/points/id</DataItem></Attribute>\n"
+       << "</Grid>\n";
+  }
+  os << "</Grid>\n</Domain>\n</Xdmf>\n";
+  write_text_atomic((std::filesystem::path(dir_) / "points.xmf").string(), os.str());
+}
+
+void ResultsWriter::write_csv() const {
+  const auto nt = static_cast<hsize_t>(rows_);
+  const auto ea = read_rows<double>(file_.get(), "/means/eps_ax", nt);
+  const auto ev = read_rows<double>(file_.get(), "/means/eps_v", nt);
+  const auto p = read_rows<double>(file_.get(), "/means/p", nt);
+  const auto q = read_rows<double>(file_.get(), "/means/q", nt);
+  std::ostringstream os;
+  os.precision(17);
+  os << "# sample means over RVEs / points, compression positive; eps_ax = 1 - mean F_aa, "
+        "eps_v = 1 - sum V / sum V0\n"
+     << "step,time_s,eps_ax,eps_v,p_mean_Pa,q_mean_Pa\n";
+  for (hsize_t t = 0; t < nt; ++t) {
+    os << steps_[t] << "," << times_[t] << "," << ea[t] << "," << ev[t] << "," << p[t] << "," << q[t]
+       << "\n";
+  }
+  write_text_atomic((std::filesystem::path(dir_) / "means.csv").string(), os.str());
+}
+
+}  // namespace farm

@@ -1,0 +1,65 @@
+// Run outputs of the coupled driver (rank 0 only): results.h5 (extendible time series of every RVE
+// and material point), points.xmf (XDMF index for ParaView) and means.csv (sample means).
+// Layout: docs/farm.md, "Outputs".
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "farm/h5_util.hpp"
+#include "farm/micro_model.hpp"
+#include "mpm/material_points.hpp"
+
+namespace farm {
+
+/// Sample means of one output row. Compression positive.
+struct SampleMeans {
+  double eps_ax = 0.0;  ///< 1 - mean_p F_aa (a = axial axis) [-]
+  double eps_v = 0.0;   ///< 1 - sum V_p / sum V0_p [-]
+  double p = 0.0;       ///< mean over RVEs of p [Pa]
+  double q = 0.0;       ///< mean over RVEs of q [Pa]
+};
+
+[[nodiscard]] SampleMeans sample_means(const mpm::MaterialPoints& points,
+                                       const std::vector<MicroReport>& reports, int axial_axis);
+
+class ResultsWriter {
+ public:
+  /// Creates `dir`/results.h5, or, when restart_step >= 0 and the file exists, reopens it and
+  /// drops the rows after restart_step (so a restarted run's file equals the uninterrupted one).
+  /// rve_ids: ascending; the points' ids and order must stay those of `points`.
+  ResultsWriter(const std::string& dir, const std::vector<std::int64_t>& rve_ids,
+                const mpm::MaterialPoints& points, std::int64_t restart_step);
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// One output row. rve_stress/reports by RVE index (ascending ids).
+  void append(std::int64_t step, double time, const std::vector<common::Mat3>& rve_stress,
+              const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
+              const SampleMeans& means);
+  /// Flushes results.h5 and rewrites points.xmf and means.csv (atomic rename each).
+  void flush();
+  [[nodiscard]] std::int64_t rows() const { return rows_; }
+
+ private:
+  struct Series;
+  void write_row(const std::string& name, hid_t type, const void* data);
+  void write_xdmf() const;
+  void write_csv() const;
+
+  std::string dir_;
+  std::vector<std::int64_t> rve_ids_;
+  std::vector<std::int64_t> point_ids_;
+  std::vector<std::size_t> rve_of_point_;  ///< RVE index of every point slot
+  h5::Handle file_;
+  std::map<std::string, std::unique_ptr<Series>> series_;
+  std::int64_t rows_ = 0;
+  std::vector<std::int64_t> steps_;
+  std::vector<double> times_;
+};
+
+}  // namespace farm
