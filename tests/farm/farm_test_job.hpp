@@ -115,3 +115,52 @@ inline std::string compare_results(const std::string& a, const std::string& b) {
 }
 
 }  // namespace farm::testing
+
+// ---- small DEM RVEs (needs dem::Rve) ----
+#include "dem/loading.hpp"
+#include "farm/dem_micro.hpp"
+
+namespace farm::testing {
+
+inline dem::Material dem_material() {
+  dem::Material m;  // the dem tests' reference set (README section 7 placeholders)
+  m.density = 2650.0;
+  m.young = 3e8;
+  m.ks_over_kn = 0.5;
+  m.friction_deg = 30.0;
+  m.alpha_r = 2.0;
+  m.eta_r = 0.3;
+  m.alpha_t = 0.0;
+  m.eta_t = -1.0;
+  return m;
+}
+
+/// A small periodic packing compacted to 100 kPa (deterministic for n and seed).
+inline dem::Packing small_packing(std::int64_t n, std::uint64_t seed) {
+  dem::Psd psd;
+  psd.diameter = {1.5e-4, 3e-4};
+  psd.passing = {0.0, 1.0};
+  const dem::Packing cloud = dem::make_cloud(psd, n, 0.3, seed);
+  dem::Simulation sim = dem::make_simulation(cloud, dem_material(), dem::Numerics{});
+  dem::Preparation prep;
+  prep.target.pressure = 1e5;
+  prep.target.stress_tol = 0.02;
+  prep.target.unbalanced_tol = 0.05;
+  dem::prepare(sim, prep);
+  dem::Packing pk;
+  pk.cell.h = sim.cell().h;
+  pk.x = sim.spheres().x;
+  pk.r = sim.spheres().r;
+  return pk;
+}
+
+/// DemMicro RVEs of 40 or 70 spheres (even / odd ids), prepared once per process.
+inline MicroKind small_dem_kind() {
+  static const dem::Packing a = small_packing(40, 11);
+  static const dem::Packing b = small_packing(70, 12);
+  DemMicroParams p;
+  p.rve.material = dem_material();
+  return DemMicro::kind(p, [](std::int64_t id) { return id % 2 == 0 ? a : b; });
+}
+
+}  // namespace farm::testing
