@@ -13,7 +13,7 @@ namespace farm {
 /// How a rank waits for a non-blocking collective.
 enum class WaitMode {
   spin,   ///< MPI_Wait: Open MPI busy-polls (a core at 100 %)
-  sleep,  ///< MPI_Test, then nanosleep with a back-off from 20 us to 1 ms (frees the core)
+  sleep,  ///< MPI_Test, then sleeps with a back-off from 10 us to 100 us (frees the core)
 };
 
 /// Completes `request` according to `mode`.

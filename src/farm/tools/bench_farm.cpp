@@ -1,1 +1,249 @@
-int main() { return 0; }
+// bench_farm: figures of the RVE farm (a program, never a test). Run under mpiexec, e.g.
+//   mpiexec -n 2 --bind-to none bench_farm overhead [--wait spin|sleep] [--steps 10]
+//   mpiexec -n 2 --bind-to none bench_farm balance  [--rves 32] [--steps 20]
+//   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
+// Options: --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
+// --omp-over-rves 0|1, --wait spin|sleep. Figures and commands: docs/farm.md, "Benchmarks".
+#include <mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "common/state_store.hpp"
+#include "dem/packing_io.hpp"
+#include "farm/dem_micro.hpp"
+#include "farm/driver.hpp"
+#include "farm/elastic_micro.hpp"
+#include "farm/partition.hpp"
+#include "farm/rve_farm.hpp"
+#include "mpm/material_points.hpp"
+
+namespace {
+
+using common::Mat3;
+using common::Vec3;
+
+struct Args {
+  std::string mode = "overhead";
+  std::map<std::string, std::string> opt;
+  std::string get(const std::string& k, const std::string& def) const {
+    auto it = opt.find(k);
+    return it == opt.end() ? def : it->second;
+  }
+};
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+int rank_of(MPI_Comm c) {
+  int r = 0;
+  MPI_Comm_rank(c, &r);
+  return r;
+}
+int size_of(MPI_Comm c) {
+  int s = 1;
+  MPI_Comm_size(c, &s);
+  return s;
+}
+
+dem::Material dem_material() {
+  dem::Material m;  // the dem tests' reference set
+  m.density = 2650.0;
+  m.young = 3e8;
+  m.ks_over_kn = 0.5;
+  m.friction_deg = 30.0;
+  m.alpha_r = 2.0;
+  m.eta_r = 0.3;
+  m.alpha_t = 0.0;
+  m.eta_t = -1.0;
+  return m;
+}
+
+farm::MicroKind dem_kind(const std::string& packing_file) {
+  const dem::Packing pk = dem::read_packing(packing_file);
+  farm::DemMicroParams p;
+  p.rve.material = dem_material();
+  return farm::DemMicro::kind(p, [pk](std::int64_t) { return pk; });
+}
+
+farm::FarmOptions farm_options(const Args& a) {
+  farm::FarmOptions o;
+  o.wait = a.get("wait", "sleep") == "spin" ? farm::WaitMode::spin : farm::WaitMode::sleep;
+  o.omp_over_rves = a.get("omp-over-rves", "1") == "1";
+  return o;
+}
+
+// The paper's single-cell triaxial (8 points, 1 m cell, 100 kPa, platen at eq. 13 speed).
+farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::MicroKind kind) {
+  farm::CoupledConfig c;
+  c.solver.grid = {Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
+  c.solver.damping = 0.2;
+  c.solver.cfl = 0.5;
+  const double rho = 1600.0;
+  const double p = 100e3;
+  mpm::fill_box(c.points, c.solver.grid, Vec3::Zero(), Vec3::Ones(), 2, rho, 0);
+  for (auto& s : c.points.stress) s = -p * Mat3::Identity();
+  const double v_top = -2.5e-4 * std::sqrt(p / rho);
+  c.constraints.push_back({Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
+  c.constraints.push_back({Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
+  for (int axis : {0, 1}) {
+    for (int side : {-1, 1}) c.tractions.push_back({axis, side, p, Vec3::Zero()});
+  }
+  c.max_steps = steps;
+  c.micro = std::move(kind);
+  c.job_text = "# bench_farm\n";
+  c.output.dir = dir;
+  c.output.log_every_s = 1e9;
+  c.checkpoint.at_end = false;
+  std::filesystem::create_directories(dir);
+  return c;
+}
+
+void overhead(const Args& a, MPI_Comm comm) {
+  const std::int64_t steps = std::stoll(a.get("steps", "10"));
+  farm::CoupledConfig c = triaxial("/tmp/bench_farm_overhead", steps, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)));
+  c.farm = farm_options(a);
+  const double t0 = now();
+  const farm::RunSummary s = farm::run_coupled(c, comm);
+  const double total = now() - t0;
+  if (rank_of(comm) == 0) {
+    const farm::FarmTimes& t = s.times;
+    std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, wait %s, omp over RVEs %s\n",
+                size_of(comm), static_cast<long long>(s.steps), a.get("wait", "sleep").c_str(),
+                a.get("omp-over-rves", "1").c_str());
+    std::printf("  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
+                s.wall_s, s.wall_s / static_cast<double>(steps), total);
+    std::printf("  critical RVE busy (max rank) %10.4f s\n", t.critical_busy);
+    std::printf("  mean RVE busy per rank       %10.4f s  -> balance mean/max %.3f\n", t.mean_busy,
+                t.mean_busy / t.critical_busy);
+    std::printf("  farm exchange + wait         %10.6f s  (update_stress wall - critical busy)\n",
+                t.step_wall - t.critical_busy);
+    std::printf("  MPM + outputs                %10.6f s  (loop wall - update_stress wall)\n",
+                s.wall_s - t.step_wall);
+    std::printf("  => communication + MPM + outputs = %.3f %% of the step time\n",
+                100.0 * (s.wall_s - t.critical_busy) / s.wall_s);
+  }
+}
+
+void balance(const Args& a, MPI_Comm comm) {
+  const int n = std::stoi(a.get("rves", "32"));
+  const int steps = std::stoi(a.get("steps", "20"));
+  const int size = size_of(comm);
+  // Mixed RVE sizes: cost classes 1, 2, 5, 10 (x base) in a scrambled order.
+  const std::int64_t base = std::stoll(a.get("substeps", "20000"));
+  farm::ElasticMicroParams p;
+  p.young = 50e6;
+  p.poisson = 0.25;
+  p.density = 1600.0;
+  farm::MicroKind kind;
+  kind.create = [p, base](std::int64_t id) {
+    static const int cls[] = {1, 10, 2, 5, 1, 2, 10, 1, 5, 2, 1, 5};
+    farm::ElasticMicroParams q = p;
+    q.substeps = base * cls[id % 12];
+    return std::make_unique<farm::ElasticMicro>(id, q);
+  };
+  kind.load = [](const common::StateReader& r) { return farm::ElasticMicro::load(r); };
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  std::vector<Vec3> x(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    ids[static_cast<std::size_t>(k)] = k;
+    x[static_cast<std::size_t>(k)] = Vec3((k % 4 + 0.5) / 4.0, ((k / 4) % 4 + 0.5) / 4.0, 0.5);
+  }
+  const mpm::Grid grid{Vec3::Zero(), Vec3(0.5, 0.5, 1.0), common::Vec3i(2, 2, 1)};
+  farm::RveFarm f(comm, kind, ids, x, grid, farm_options(a));
+  if (f.rank() != 0) {
+    f.serve();
+    return;
+  }
+  std::vector<Mat3> L(static_cast<std::size_t>(n), Mat3::Zero());
+  for (auto& l : L) l(2, 2) = -1e-2;
+  std::vector<Mat3> s(static_cast<std::size_t>(n));
+  auto measure = [&](const char* name) {
+    const farm::FarmTimes t0 = f.times();
+    for (int k = 0; k < steps; ++k) f.update_stress(ids, L, 1e-3, s);
+    const farm::FarmTimes t1 = f.times();
+    const double crit = t1.critical_busy - t0.critical_busy;
+    const double mean = t1.mean_busy - t0.mean_busy;
+    std::printf("  %-12s mean/max busy = %.4f   (critical %.4f s, mean %.4f s, update_stress wall %.4f s)\n",
+                name, mean / crit, crit, mean, t1.step_wall - t0.step_wall);
+  };
+  std::printf("balance: ranks %d, %d ElasticMicro RVEs of cost classes 1/2/5/10 x %lld substeps, %d steps each\n",
+              size, n, static_cast<long long>(base), steps);
+  f.migrate_to(farm::partition_round_robin(static_cast<std::size_t>(n), size));
+  measure("round-robin");
+  const std::vector<double> cost = f.cost();  // measured wall seconds per RVE
+  f.migrate_to(farm::partition_metis(farm::cell_graph(grid, x), cost, size));
+  measure("METIS");
+  f.stop();
+}
+
+void checkpoint(const Args& a, MPI_Comm comm) {
+  const int n = std::stoi(a.get("rves", "8"));
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  std::vector<Vec3> x(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    ids[static_cast<std::size_t>(k)] = k;
+    x[static_cast<std::size_t>(k)] = Vec3(0.5, 0.5, 0.5);
+  }
+  const mpm::Grid grid{Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
+  farm::RveFarm f(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid, farm_options(a));
+  if (f.rank() != 0) {
+    f.serve();
+    return;
+  }
+  std::vector<Mat3> L(static_cast<std::size_t>(n), Mat3::Zero());
+  for (auto& l : L) l(2, 2) = -0.01;
+  std::vector<Mat3> s(static_cast<std::size_t>(n));
+  f.update_stress(ids, L, 1e-3, s);  // contacts with history
+  common::StateStore mpm;
+  mpm.write("solver/step", std::vector<std::int64_t>{1});
+  const std::string path = "/tmp/bench_farm_checkpoint.h5";
+  double best = 1e300;
+  for (int rep = 0; rep < 3; ++rep) {
+    const double t0 = now();
+    f.checkpoint(path, 1, 1e-3, "# bench_farm\n", mpm, false);
+    best = std::min(best, now() - t0);
+  }
+  const auto bytes = static_cast<double>(std::filesystem::file_size(path));
+  std::printf("checkpoint: ranks %d, %d DEM RVEs (%s)\n", f.size(), n, a.get("packing", MPMXDEM_DEFAULT_PACKING).c_str());
+  std::printf("  write (best of 3, incl. fsync + rename) %.4f s = %.5f s per RVE\n", best, best / n);
+  std::printf("  file size %.3f MB = %.1f kB per RVE (chunked, shuffle + deflate 4)\n", bytes / 1e6,
+              bytes / 1e3 / n);
+  f.stop();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  Args a;
+  if (argc > 1) a.mode = argv[1];
+  for (int i = 2; i + 1 < argc; i += 2) {
+    std::string k = argv[i];
+    if (k.rfind("--", 0) == 0) k = k.substr(2);
+    a.opt[k] = argv[i + 1];
+  }
+  int rc = 0;
+  try {
+    if (a.mode == "overhead") {
+      overhead(a, MPI_COMM_WORLD);
+    } else if (a.mode == "balance") {
+      balance(a, MPI_COMM_WORLD);
+    } else if (a.mode == "checkpoint") {
+      checkpoint(a, MPI_COMM_WORLD);
+    } else {
+      std::fprintf(stderr, "usage: bench_farm overhead|balance|checkpoint [--option value ...]\n");
+      rc = 2;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_farm: %s\n", e.what());
+    rc = 1;
+  }
+  MPI_Finalize();
+  return rc;
+}
