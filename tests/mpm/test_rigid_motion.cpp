@@ -87,6 +87,6 @@ TEST_P(RigidMotion, RotationKeepsPrestressObjective) {
 INSTANTIATE_TEST_SUITE_P(AllKinds, RigidMotion,
                          ::testing::Values(mpm::ShapeKind::linear, mpm::ShapeKind::ugimp,
                                            mpm::ShapeKind::bspline2),
-                         [](const auto& info) { return std::string(mpm::to_string(info.param)); });
+                         [](const auto& param_info) { return std::string(mpm::to_string(param_info.param)); });
 
 }  // namespace

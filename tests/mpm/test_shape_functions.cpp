@@ -68,9 +68,9 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, ShapeFunctions,
                          ::testing::Values(Case{ShapeKind::linear, 0.0}, Case{ShapeKind::ugimp, 0.25},
                                            Case{ShapeKind::ugimp, 0.5}, Case{ShapeKind::ugimp, 0.1},
                                            Case{ShapeKind::bspline2, 0.0}),
-                         [](const auto& info) {
-                           return std::string(mpm::to_string(info.param.kind)) + "_" +
-                                  std::to_string(info.index);
+                         [](const auto& param_info) {
+                           return std::string(mpm::to_string(param_info.param.kind)) + "_" +
+                                  std::to_string(param_info.index);
                          });
 
 TEST(ShapeFunctionNames, RoundTripAndRejectUnknown) {
