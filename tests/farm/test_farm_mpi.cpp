@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -31,9 +33,29 @@ int world_size() {
   return s;
 }
 
+/// Scratch root of this launch: rank 0's pid makes concurrent launches (np2, np3, smoke) safe.
+const std::string& scratch_root() {
+  static const std::string root = [] {
+    long pid = world_rank() == 0 ? static_cast<long>(::getpid()) : 0;
+    MPI_Bcast(&pid, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+    return (fs::temp_directory_path() / ("mpmxdem_farm_test_" + std::to_string(pid))).string();
+  }();
+  return root;
+}
+
+/// Removes the scratch root after the last test.
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (world_rank() == 0 && !::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(scratch_root());
+  }
+};
+[[maybe_unused]] const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
 /// A fresh directory shared by all ranks (created by rank 0).
 std::string scratch(const std::string& name) {
-  std::string dir = (fs::temp_directory_path() / ("mpmxdem_farm_np" + std::to_string(world_size()) + "_" + name)).string();
+  const std::string dir = scratch_root() + "/" + name;
   if (world_rank() == 0) {
     fs::remove_all(dir);
     fs::create_directories(dir);
