@@ -212,11 +212,17 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
     const auto p = static_cast<std::size_t>(q);
     common::Vec3 a_p = common::Vec3::Zero();
     common::Vec3 v_pic = common::Vec3::Zero();
-    for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
-      const auto i = static_cast<std::size_t>(node_i);
-      a_p += S * fields.acceleration[i];
-      v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
-    });
+    if (pic_fraction == 0.0) {
+      for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+        a_p += S * fields.acceleration[static_cast<std::size_t>(node_i)];
+      });
+    } else {
+      for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+        const auto i = static_cast<std::size_t>(node_i);
+        a_p += S * fields.acceleration[i];
+        v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+      });
+    }
     const common::Vec3 v_flip = points.v[p] + dt * a_p;
     points.v[p] = pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
     points.x[p] += dt * points.v[p];
