@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
+#include "mpm/benchmark.hpp"
 #include "mpm/linear_elastic.hpp"
 #include "mpm/solver.hpp"
 
@@ -151,6 +152,21 @@ TEST(Solver, TwoMaterialsEachSeeTheirPoints) {
     const auto& m = s.points().material[p] == 0 ? soft : stiff;
     EXPECT_EQ(s.points().stress[p], m.stress(s.points().id[p]));
   }
+}
+
+}  // namespace
+
+namespace {
+
+// benchmark.hpp: the library entry point of `mpmxdem bench mpm` runs and reports a rate
+// (no timing is asserted: tests never assert on wall time).
+TEST(Benchmark, RunsAndReportsARate) {
+  const mpm::BenchmarkResult r = mpm::run_benchmark(1000, 1, 1, "ugimp");
+  EXPECT_GE(r.points, 1000);
+  EXPECT_EQ(r.steps, 1);
+  EXPECT_GT(r.updates_per_second, 0.0);
+  EXPECT_NE(mpm::to_string(r).find("shape=ugimp"), std::string::npos);
+  EXPECT_THROW((void)mpm::run_benchmark(1000, 1, 1, "cubic"), common::InputError);
 }
 
 }  // namespace
