@@ -29,12 +29,37 @@ VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::ar
 }
 
 ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c) {
-  ResolvedConstraint r{c, {}};
+  ResolvedConstraint r{c, {}, {}};
   const common::Vec3 tol = 1e-9 * grid.spacing;
+  const int m = c.mirror_axis;
+  if (m > 2) throw common::InputError("mpm constraint: mirror_axis = " + std::to_string(m) + ": must be -1 or 0..2");
+  double plane_index = 0.0;
+  if (m >= 0) {
+    plane_index = (c.mirror_plane - grid.origin[m]) / grid.spacing[m];
+    if (std::abs(plane_index - std::round(plane_index)) > 1e-9) {
+      throw common::InputError("mpm constraint: mirror_plane = " + std::to_string(c.mirror_plane) +
+                               ": must be a node plane of the grid along axis " + std::to_string(m));
+    }
+    plane_index = std::round(plane_index);
+  }
   for (std::int64_t i = 0; i < grid.num_nodes(); ++i) {
     const common::Vec3 x = grid.node_position(i);
     if (((x - c.lo + tol).array() >= 0.0).all() && ((c.hi + tol - x).array() >= 0.0).all()) {
-      r.nodes.push_back(i);
+      if (m < 0) {
+        r.nodes.push_back(i);
+        continue;
+      }
+      common::Vec3i ijk = grid.node_ijk(i);
+      const int k = static_cast<int>(plane_index);
+      const int mirrored = 2 * k - ijk[m];
+      if (ijk[m] == k) {
+        r.nodes.push_back(i);
+        r.mirror.push_back(-1);
+      } else if (mirrored >= 0 && mirrored <= grid.cells[m]) {
+        ijk[m] = mirrored;
+        r.nodes.push_back(i);
+        r.mirror.push_back(grid.node_index(ijk[0], ijk[1], ijk[2]));
+      }
     }
   }
   return r;
@@ -49,10 +74,15 @@ common::Vec3 prescribed(const Grid& grid, const VelocityConstraint& c, std::int6
 void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
                                 double t, GridFields& fields) {
   for (const ResolvedConstraint& c : cs) {
-    for (const std::int64_t i : c.nodes) {
+    for (std::size_t k = 0; k < c.nodes.size(); ++k) {
+      const std::int64_t i = c.nodes[k];
       const auto u = static_cast<std::size_t>(i);
       if (!fields.is_active[u]) continue;
-      const common::Vec3 v = prescribed(grid, c.spec, i, t);
+      common::Vec3 v = prescribed(grid, c.spec, i, t);
+      if (!c.mirror.empty() && c.mirror[k] >= 0) {
+        const auto mi = static_cast<std::size_t>(c.mirror[k]);
+        v = 2.0 * v - (fields.is_active[mi] ? fields.velocity[mi] : v);
+      }
       for (int d = 0; d < 3; ++d) {
         if (c.spec.fixed[static_cast<std::size_t>(d)]) {
           fields.velocity[u][d] = v[d];
@@ -66,11 +96,16 @@ void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedCons
 void apply_acceleration_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
                                     double t, double dt, GridFields& fields) {
   for (const ResolvedConstraint& c : cs) {
-    for (const std::int64_t i : c.nodes) {
+    for (std::size_t k = 0; k < c.nodes.size(); ++k) {
+      const std::int64_t i = c.nodes[k];
       const auto u = static_cast<std::size_t>(i);
       if (!fields.is_active[u]) continue;
       common::Vec3 a = common::Vec3::Zero();
       if (c.spec.field) a = (c.spec.field(grid.node_position(i), t + dt) - c.spec.field(grid.node_position(i), t)) / dt;
+      if (!c.mirror.empty() && c.mirror[k] >= 0) {
+        const auto mi = static_cast<std::size_t>(c.mirror[k]);
+        a = 2.0 * a - (fields.is_active[mi] ? fields.acceleration[mi] : a);
+      }
       for (int d = 0; d < 3; ++d) {
         if (c.spec.fixed[static_cast<std::size_t>(d)]) fields.acceleration[u][d] = a[d];
       }

@@ -26,6 +26,13 @@ struct VelocityConstraint {
   /// Optional: velocity as a function of the node position [m] and time [s]; replaces
   /// `velocity` when set (e.g. a rigid rotation field for verification).
   std::function<common::Vec3(const common::Vec3&, double)> field;
+  /// Optional antisymmetric (mirror) condition for non-interpolating shapes (B-splines): when
+  /// mirror_axis is 0..2, a selected node at distance d beyond the plane x[mirror_axis] =
+  /// mirror_plane [m] (which must be a node plane) gets 2 V - V(mirror node), the node on the
+  /// plane gets V, for the prescribed components (same for accelerations). The interpolated
+  /// velocity on the plane is then exactly V.
+  int mirror_axis = -1;
+  double mirror_plane = 0.0;  ///< [m]
 };
 
 /// The grid's boundary node plane on one side: a box selecting those nodes.
@@ -37,6 +44,7 @@ VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::ar
 struct ResolvedConstraint {
   VelocityConstraint spec;
   std::vector<std::int64_t> nodes;
+  std::vector<std::int64_t> mirror;  ///< mirror node per node (-1: on the plane); mirror only
 };
 ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c);
 

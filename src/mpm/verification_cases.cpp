@@ -33,6 +33,7 @@ BarResult run_elastic_bar(ShapeKind shape, int cells, double periods, double cfl
   for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = Vec3(v0 * std::sin(beta * pts.x[p][0]), 0, 0);
   Solver solver(cfg, pts, {&material});
   solver.add_constraint({Vec3::Constant(-10), Vec3::Constant(100), {false, true, true}, Vec3::Zero(), {}});
+  // Fixed end: every node at x <= 0 (plain node fixing; see docs/mpm.md on B-splines).
   solver.add_constraint({Vec3::Constant(-10), Vec3(0, 100, 100), {true, false, false}, Vec3::Zero(), {}});
 
   BarResult r;

@@ -89,6 +89,37 @@ TEST(Boundary, PressureOnARotatedFaceStaysNormalToIt) {
   EXPECT_LT((sum - 1e5 * Vec3(c, sn, 0)).norm(), 1e-9);
 }
 
+TEST(Boundary, MirrorConstraintMakesGhostNodesAntisymmetric) {
+  mpm::Grid g{Vec3(-1, -1, -1), Vec3::Ones(), common::Vec3i(4, 2, 2)};
+  mpm::VelocityConstraint c{Vec3::Constant(-10), Vec3(0, 10, 10), {true, false, false}, Vec3::Zero(), {}, 0, 0.0};
+  const mpm::ResolvedConstraint r = mpm::resolve(g, c);
+  mpm::GridFields f;
+  f.resize(g);
+  for (std::int64_t i = 0; i < g.num_nodes(); ++i) {
+    f.active.push_back(i);
+    f.is_active[i] = 1;
+    f.velocity[i] = Vec3(g.node_position(i)[0] + 5.0, 1, 2);
+    f.acceleration[i] = Vec3(3.0, 0, 0);
+  }
+  mpm::apply_velocity_constraints(g, {r}, 0.0, f);
+  mpm::apply_acceleration_constraints(g, {r}, 0.0, 0.1, f);
+  for (std::int64_t i = 0; i < g.num_nodes(); ++i) {
+    const common::Vec3i ijk = g.node_ijk(i);
+    if (ijk[0] == 0) {  // x = -1: minus its mirror at x = +1 (velocity 6, acceleration 3)
+      EXPECT_EQ(f.velocity[i][0], -6.0);
+      EXPECT_EQ(f.acceleration[i][0], -3.0);
+    } else if (ijk[0] == 1) {  // on the plane
+      EXPECT_EQ(f.velocity[i][0], 0.0);
+      EXPECT_EQ(f.acceleration[i][0], 0.0);
+    } else {
+      EXPECT_EQ(f.velocity[i][0], g.node_position(i)[0] + 5.0);
+    }
+    EXPECT_EQ(f.velocity[i][1], 1.0);
+  }
+  c.mirror_plane = 0.5;  // not a node plane
+  EXPECT_THROW(mpm::resolve(g, c), common::InputError);
+}
+
 TEST(Boundary, ExtentFollowsRotation) {
   mpm::MaterialPoints pts;
   pts.add(0, Vec3::Zero(), 1, 1, Vec3(0.5, 0.1, 0.1), 0);
