@@ -114,7 +114,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
     Vec3i k;
   };
   std::vector<std::vector<Cand>> per_sphere(n);
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) if (n > 512)
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     auto& out = per_sphere[i];
@@ -210,7 +210,7 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
   const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
   double amax2 = 0.0;
   const auto n = static_cast<std::int64_t>(s.size());
-#pragma omp parallel for reduction(max : amax2) schedule(static)
+#pragma omp parallel for reduction(max : amax2) schedule(static) if (n > 512)
   for (std::int64_t i = 0; i < n; ++i) {
     const double a2 = (s.x[i] - f * vs.x_ref[i]).squaredNorm();
     amax2 = std::max(amax2, a2);

@@ -63,7 +63,7 @@ void Simulation::compute_forces() {
   const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
   std::vector<Mat3> block_stress(static_cast<std::size_t>(nblocks), Mat3::Zero());
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nblocks > 1)
   for (std::int64_t b = 0; b < nblocks; ++b) {
     Mat3 sum = Mat3::Zero();
     const std::int64_t end = std::min(np, (b + 1) * kStressBlock);
@@ -107,7 +107,7 @@ void Simulation::compute_forces() {
 
   // Per-sphere sums in the fixed pair order of the CSR lists.
   const auto ns = static_cast<std::int64_t>(s.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ns > 512)
   for (std::int64_t q = 0; q < ns; ++q) {
     Vec3 f = Vec3::Zero();
     Vec3 t = Vec3::Zero();
@@ -135,7 +135,7 @@ void Simulation::integrate() {
   const double lambda = num_.damping;
   const Mat3 l = cell_.l;
   const auto ns = static_cast<std::int64_t>(s.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ns > 512)
   for (std::int64_t q = 0; q < ns; ++q) {
     if (!s.fixed[q]) {
       Vec3 a = s.force[q] / s.m[q];
@@ -165,7 +165,7 @@ double Simulation::critical_dt() const {
   const auto ns = static_cast<std::int64_t>(s.size());
   double best = std::numeric_limits<double>::infinity();
   if (!c.sphere_offset.empty()) {
-#pragma omp parallel for reduction(min : best) schedule(static)
+#pragma omp parallel for reduction(min : best) schedule(static) if (ns > 512)
     for (std::int64_t q = 0; q < ns; ++q) {
       Vec3 kt = Vec3::Zero();
       Vec3 kr = Vec3::Zero();

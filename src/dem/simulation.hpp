@@ -57,6 +57,11 @@ class Simulation {
   void set_counters(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
   /// Force a neighbour rebuild at the next compute_forces().
   void invalidate_neighbors() { force_rebuild_ = true; }
+  /// Whether a rebuild is pending (state restore needs it).
+  [[nodiscard]] bool neighbors_pending() const { return force_rebuild_; }
+  void set_neighbors_pending(bool pending) { force_rebuild_ = pending; }
+  /// Restore the stress of the last force computation (state restore) [Pa].
+  void set_stress(const common::Mat3& s) { stress_ = s; }
 
  private:
   void update_neighbors();
