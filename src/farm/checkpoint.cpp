@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -177,7 +176,8 @@ std::vector<std::string> split_lines(const std::string& s) {
 /// "f:name" or "i:name" for every field of a store.
 std::vector<std::string> typed_names(const common::StateStore& s) {
   std::vector<std::string> out;
-  for (const auto& [name, field] : s.fields()) out.push_back((field.index() == 0 ? "f:" : "i:") + name);
+  for (const auto& [name, field] : s.fields())
+    out.push_back((field.index() == 0 ? "f:" : "i:") + name);
   return out;
 }
 
@@ -259,9 +259,7 @@ class Reader {
     return !partial.empty();
   }
 
-  [[nodiscard]] bool has_attr(const char* name) const {
-    return H5Aexists(file_.get(), name) > 0;
-  }
+  [[nodiscard]] bool has_attr(const char* name) const { return H5Aexists(file_.get(), name) > 0; }
 
   template <class T>
   T attr(const char* name, hid_t type) const {
@@ -282,7 +280,8 @@ class Reader {
       fail("attribute /" + std::string(name) + " is not a string");
     }
     std::string s(H5Tget_size(t.get()), '\0');
-    if (H5Aread(a.get(), t.get(), s.data()) < 0) fail("attribute /" + std::string(name) + " unreadable");
+    if (H5Aread(a.get(), t.get(), s.data()) < 0)
+      fail("attribute /" + std::string(name) + " unreadable");
     s.erase(std::find(s.begin(), s.end(), '\0'), s.end());
     return s;
   }
@@ -298,10 +297,13 @@ class Reader {
     const H5T_class_t want = std::is_floating_point_v<T> ? H5T_FLOAT : H5T_INTEGER;
     if (cls != want || H5Tget_size(t.get()) != sizeof(T)) {
       fail("dataset " + name + " has the wrong element type (expected " +
-           (std::is_floating_point_v<T> ? std::string("64-bit float") : std::to_string(8 * sizeof(T)) + "-bit integer") + ")");
+           (std::is_floating_point_v<T> ? std::string("64-bit float")
+                                        : std::to_string(8 * sizeof(T)) + "-bit integer") +
+           ")");
     }
     Handle s(H5Dget_space(d.get()), H5Sclose);
-    if (H5Sget_simple_extent_ndims(s.get()) != 1) fail("dataset " + name + " is not one-dimensional");
+    if (H5Sget_simple_extent_ndims(s.get()) != 1)
+      fail("dataset " + name + " is not one-dimensional");
     hsize_t dims[1] = {0};
     H5Sget_simple_extent_dims(s.get(), dims, nullptr);
     n = dims[0];
@@ -324,7 +326,8 @@ class Reader {
     std::uint64_t n = 0;
     Handle d = open<T>(name, n);
     std::vector<T> v(n);
-    if (n > 0 && H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0) {
+    if (n > 0 &&
+        H5Dread(d.get(), h5::native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0) {
       fail("dataset " + name + " cannot be read (damaged data)");
     }
     const std::uint64_t stored = stored_hash(d.get(), name);
@@ -362,7 +365,8 @@ class Reader {
     }
     const hsize_t mdims[1] = {local_n};
     Handle mspace(H5Screate_simple(1, mdims, nullptr), H5Sclose);
-    if (H5Dread(d.get(), h5::native_type<T>(), mspace.get(), fspace.get(), H5P_DEFAULT, v.data()) < 0) {
+    if (H5Dread(d.get(), h5::native_type<T>(), mspace.get(), fspace.get(), H5P_DEFAULT, v.data()) <
+        0) {
       fail("dataset " + name + " cannot be read (damaged data)");
     }
     partial += hash_blocks(blocks, v.data());
@@ -391,13 +395,23 @@ std::string checkpoint_path(const std::string& dir, std::int64_t step) {
 }
 
 std::vector<std::string> list_checkpoints(const std::string& dir) {
+  // Names checkpoint_<digits>.h5 (no std::regex: its libstdc++ headers warn under sanitizers).
+  const std::string head = "checkpoint_";
+  const std::string tail = ".h5";
   std::vector<std::pair<std::int64_t, std::string>> found;
-  static const std::regex re(R"(checkpoint_(\d+)\.h5)");
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
-    std::smatch m;
     const std::string name = e.path().filename().string();
-    if (std::regex_match(name, m, re)) found.emplace_back(std::stoll(m[1].str()), e.path().string());
+    if (name.size() <= head.size() + tail.size() || name.rfind(head, 0) != 0 ||
+        name.compare(name.size() - tail.size(), tail.size(), tail) != 0) {
+      continue;
+    }
+    const std::string digits = name.substr(head.size(), name.size() - head.size() - tail.size());
+    if (digits.size() > 18 ||
+        !std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
+      continue;
+    }
+    found.emplace_back(std::stoll(digits), e.path().string());
   }
   std::sort(found.begin(), found.end());
   std::vector<std::string> out;
@@ -436,9 +450,9 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
   try {
     Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
     check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio");
-    Handle file(check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
-                      "create " + tmp),
-                H5Fclose);
+    Handle file(
+        check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "create " + tmp),
+        H5Fclose);
     const hid_t f = file.get();
     attr_string(f, "format", kCheckpointFormat);
     const std::int64_t version = kCheckpointVersion;
@@ -468,7 +482,8 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
         if (root && n > 0) b.push_back({0, n});
         w.write("/mpm/" + name, n, b, v.data());
       } else {
-        const auto v = root ? field_values<std::int64_t>(*d.mpm, name) : std::vector<std::int64_t>();
+        const auto v =
+            root ? field_values<std::int64_t>(*d.mpm, name) : std::vector<std::int64_t>();
         std::uint64_t n = v.size();
         MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm);
         std::vector<Block> b;
@@ -480,7 +495,8 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
       // Fault injection: die in the middle of the write, as a node failure would.
       H5Fflush(f, H5F_SCOPE_GLOBAL);
       MPI_Barrier(comm);
-      if (root) std::cerr << "farm: fault injection: aborting in the middle of writing " << tmp << "\n";
+      if (root)
+        std::cerr << "farm: fault injection: aborting in the middle of writing " << tmp << "\n";
       MPI_Abort(comm, 86);
     }
     for (const std::string& typed : rve_fields) {
@@ -506,7 +522,8 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
       fsync_path(tmp, false);
       std::error_code ec;
       std::filesystem::rename(tmp, final_path, ec);
-      if (ec) throw common::InputError("checkpoint " + final_path + ": rename failed: " + ec.message());
+      if (ec)
+        throw common::InputError("checkpoint " + final_path + ": rename failed: " + ec.message());
       const std::filesystem::path dir = std::filesystem::path(final_path).parent_path();
       fsync_path(dir.empty() ? std::string(".") : dir.string(), true);
     } catch (...) {
@@ -543,8 +560,8 @@ CheckpointInfo read_checkpoint_info(const std::string& path) {
   info.job_text.assign(job.begin(), job.end());
   info.ids = r.read<std::int64_t>("/rve/ids");
   if (static_cast<std::int64_t>(info.ids.size()) != n_rve) {
-    r.fail("dataset /rve/ids has " + std::to_string(info.ids.size()) + " entries, attribute /n_rve says " +
-           std::to_string(n_rve));
+    r.fail("dataset /rve/ids has " + std::to_string(info.ids.size()) +
+           " entries, attribute /n_rve says " + std::to_string(n_rve));
   }
   const auto part = r.read<std::int64_t>("/rve/partition");
   info.cost = r.read<double>("/rve/cost");
@@ -560,12 +577,16 @@ CheckpointInfo read_checkpoint_info(const std::string& path) {
   info.rve_fields = split_lines(std::string(rf.begin(), rf.end()));
   info.mpm_fields = split_lines(std::string(mf.begin(), mf.end()));
   for (const std::string& t : info.rve_fields) {
-    if (t.size() < 3 || (t[0] != 'f' && t[0] != 'i') || t[1] != ':') r.fail("dataset /rve/field_names is malformed");
-    if (!r.exists("/rve/fields/" + strip_type(t))) r.fail("dataset /rve/fields/" + strip_type(t) + " is missing");
-    if (!r.exists("/rve/counts/" + strip_type(t))) r.fail("dataset /rve/counts/" + strip_type(t) + " is missing");
+    if (t.size() < 3 || (t[0] != 'f' && t[0] != 'i') || t[1] != ':')
+      r.fail("dataset /rve/field_names is malformed");
+    if (!r.exists("/rve/fields/" + strip_type(t)))
+      r.fail("dataset /rve/fields/" + strip_type(t) + " is missing");
+    if (!r.exists("/rve/counts/" + strip_type(t)))
+      r.fail("dataset /rve/counts/" + strip_type(t) + " is missing");
   }
   for (const std::string& t : info.mpm_fields) {
-    if (t.size() < 3 || (t[0] != 'f' && t[0] != 'i') || t[1] != ':') r.fail("dataset /mpm/field_names is malformed");
+    if (t.size() < 3 || (t[0] != 'f' && t[0] != 'i') || t[1] != ':')
+      r.fail("dataset /mpm/field_names is malformed");
     if (!r.exists("/mpm/" + strip_type(t))) r.fail("dataset /mpm/" + strip_type(t) + " is missing");
   }
   return info;
@@ -604,7 +625,8 @@ void read_rve_field(const Reader& r, const std::string& name,
       r.fail("dataset /rve/counts/" + name + " has fewer entries than there are RVEs");
     }
     const auto c = counts[static_cast<std::size_t>(k)];
-    if (c > 0) blocks.push_back({offset[static_cast<std::size_t>(k)], static_cast<std::uint64_t>(c)});
+    if (c > 0)
+      blocks.push_back({offset[static_cast<std::size_t>(k)], static_cast<std::uint64_t>(c)});
   }
   const std::vector<T> v = r.read_blocks<T>("/rve/fields/" + name, blocks, partial, stored);
   std::size_t pos = 0;

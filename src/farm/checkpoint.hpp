@@ -40,9 +40,9 @@ struct CheckpointData {
   std::vector<std::int64_t> ids;
   std::vector<int> owner;
   std::vector<double> cost;
-  std::vector<std::int64_t> local_indices;     ///< ascending
+  std::vector<std::int64_t> local_indices;       ///< ascending
   std::vector<common::StateStore> local_states;  ///< one per local index
-  const common::StateStore* mpm = nullptr;     ///< rank 0 only (null elsewhere)
+  const common::StateStore* mpm = nullptr;       ///< rank 0 only (null elsewhere)
 };
 
 /// Collective: writes `final_path` atomically (final_path + ".tmp", fsync, rename, fsync of the

@@ -15,13 +15,13 @@ DemMicro::DemMicro(dem::Rve rve, std::uint32_t fail_guards)
 MicroReport DemMicro::step(const common::Mat3& L, double dt) {
   const dem::StepReport s = rve_.step(L, dt);
   if ((s.guards & fail_guards_) != 0U) {
-    throw common::NumericalError(
-        "DEM RVE guard exhausted (guards = " + std::to_string(s.guards) +
-        ", failing set = " + std::to_string(fail_guards_) + "): " +
-        ((s.guards & dem::kGuardStepCap) != 0U
-             ? "T_p needed more than max_steps_per_call = " +
-                   std::to_string(rve_.params().max_steps_per_call) + " DEM steps"
-             : std::string("see dem::RveGuard")));
+    throw common::NumericalError("DEM RVE guard exhausted (guards = " + std::to_string(s.guards) +
+                                 ", failing set = " + std::to_string(fail_guards_) + "): " +
+                                 ((s.guards & dem::kGuardStepCap) != 0U
+                                      ? "T_p needed more than max_steps_per_call = " +
+                                            std::to_string(rve_.params().max_steps_per_call) +
+                                            " DEM steps"
+                                      : std::string("see dem::RveGuard")));
   }
   MicroReport r;
   r.p = s.p;
@@ -37,7 +37,8 @@ MicroReport DemMicro::step(const common::Mat3& L, double dt) {
 
 void DemMicro::save(common::StateWriter& w) const {
   rve_.save(w);
-  w.write("farm/dem_fail_guards", std::vector<std::int64_t>{static_cast<std::int64_t>(fail_guards_)});
+  w.write("farm/dem_fail_guards",
+          std::vector<std::int64_t>{static_cast<std::int64_t>(fail_guards_)});
 }
 
 double DemMicro::wave_speed() const {
@@ -48,7 +49,8 @@ double DemMicro::wave_speed() const {
 std::unique_ptr<MicroModel> DemMicro::load(const common::StateReader& r) {
   const auto g = r.read_i64("farm/dem_fail_guards");
   if (g.size() != 1 || g[0] < 0) {
-    throw common::InputError("DEM micro state: field 'farm/dem_fail_guards' must hold one value >= 0");
+    throw common::InputError(
+        "DEM micro state: field 'farm/dem_fail_guards' must hold one value >= 0");
   }
   return std::make_unique<DemMicro>(dem::Rve::load(r), static_cast<std::uint32_t>(g[0]));
 }

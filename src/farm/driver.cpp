@@ -85,7 +85,8 @@ auto collective(MPI_Comm comm, F&& f) {
 std::string fmt_duration(double s) {
   if (!std::isfinite(s) || s < 0) return "?";
   const auto t = static_cast<long long>(s);
-  return std::to_string(t / 3600) + "h" + std::to_string((t / 60) % 60) + "m" + std::to_string(t % 60) + "s";
+  return std::to_string(t / 3600) + "h" + std::to_string((t / 60) % 60) + "m" +
+         std::to_string(t % 60) + "s";
 }
 
 RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* restart) {
@@ -97,7 +98,8 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
     cfg.validate();
     return 0;
   });
-  const std::int64_t fault_at = collective(comm, [&] { return fault_from_env(cfg.checkpoint.fault_abort_at); });
+  const std::int64_t fault_at =
+      collective(comm, [&] { return fault_from_env(cfg.checkpoint.fault_abort_at); });
 
   // State to start from: the config, or a checkpoint (read and verified on every rank / rank 0).
   std::optional<CheckpointInfo> info;
@@ -118,7 +120,8 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
       const auto pid = mpm_state.read_i64("points/id");
       const auto px = mpm_state.read_f64("points/x");
       pts.id = pid;
-      for (std::size_t p = 0; p < pid.size(); ++p) pts.x.emplace_back(px[3 * p], px[3 * p + 1], px[3 * p + 2]);
+      for (std::size_t p = 0; p < pid.size(); ++p)
+        pts.x.emplace_back(px[3 * p], px[3 * p + 1], px[3 * p + 2]);
       x = positions_by_index(ids, pts);
     }
   } else {
@@ -144,7 +147,8 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
       ResultsWriter results(cfg.output.dir, ids, solver.points(), info ? info->step : -1);
       auto output = [&] {
         results.append(solver.step_count(), solver.time(), farm->stresses(), farm->reports(),
-                       solver.points(), sample_means(solver.points(), farm->reports(), cfg.output.axial_axis));
+                       solver.points(),
+                       sample_means(solver.points(), farm->reports(), cfg.output.axial_axis));
       };
       if (results.rows() == 0) output();
       std::int64_t n_ckpt = 0;
@@ -155,11 +159,13 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
         solver.save(st);
         ++n_ckpt;
         const std::string path = checkpoint_path(cfg.output.dir, solver.step_count());
-        farm->checkpoint(path, solver.step_count(), solver.time(), cfg.job_text, st, n_ckpt == fault_at);
+        farm->checkpoint(path, solver.step_count(), solver.time(), cfg.job_text, st,
+                         n_ckpt == fault_at);
         sum.checkpoints.push_back(path);
         last_ckpt_step = solver.step_count();
         const std::vector<std::string> all = list_checkpoints(cfg.output.dir);
-        for (std::size_t i = 0; i + static_cast<std::size_t>(cfg.checkpoint.keep) < all.size(); ++i) {
+        for (std::size_t i = 0; i + static_cast<std::size_t>(cfg.checkpoint.keep) < all.size();
+             ++i) {
           std::filesystem::remove(all[i]);
         }
       };
@@ -176,13 +182,16 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
         const std::int64_t s = solver.step_count();
         if (s % cfg.output.every == 0) output();
         if (cfg.balance.enabled && size > 1 && s % cfg.balance.check_every == 0) {
-          if (farm->rebalance_if_needed(cfg.balance.threshold, positions_by_index(ids, solver.points()))) {
-            spdlog::info("farm: step {}: rebalanced with METIS ({} RVEs moved in total)", s, farm->rves_moved());
+          if (farm->rebalance_if_needed(cfg.balance.threshold,
+                                        positions_by_index(ids, solver.points()))) {
+            spdlog::info("farm: step {}: rebalanced with METIS ({} RVEs moved in total)", s,
+                         farm->rves_moved());
           }
         }
         const double now = wall_now();
         const bool due = (cfg.checkpoint.every_steps > 0 && s % cfg.checkpoint.every_steps == 0) ||
-                         (cfg.checkpoint.every_wall_s > 0.0 && now - last_ckpt_wall >= cfg.checkpoint.every_wall_s);
+                         (cfg.checkpoint.every_wall_s > 0.0 &&
+                          now - last_ckpt_wall >= cfg.checkpoint.every_wall_s);
         if (due) {
           write_ckpt();
           last_ckpt_wall = wall_now();
@@ -193,11 +202,14 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
           const double per_step = (now - t0) / static_cast<double>(s - start_step);
           double left = cfg.max_steps > 0 ? static_cast<double>(cfg.max_steps - s) : 1e300;
           if (cfg.end_time > 0.0 && solver.time() > 0.0) {
-            left = std::min(left, (cfg.end_time - solver.time()) / (solver.time() / static_cast<double>(s)));
+            left = std::min(
+                left, (cfg.end_time - solver.time()) / (solver.time() / static_cast<double>(s)));
           }
-          const SampleMeans m = sample_means(solver.points(), farm->reports(), cfg.output.axial_axis);
-          spdlog::info("step {} t = {:.6g} s eps_ax = {:.4g} q = {:.4g} Pa ETA {} imbalance {:.3f}", s,
-                       solver.time(), m.eps_ax, m.q, fmt_duration(left * per_step), farm->imbalance());
+          const SampleMeans m =
+              sample_means(solver.points(), farm->reports(), cfg.output.axial_axis);
+          spdlog::info("step {} t = {:.6g} s eps_ax = {:.4g} q = {:.4g} Pa ETA {} imbalance {:.3f}",
+                       s, solver.time(), m.eps_ax, m.q, fmt_duration(left * per_step),
+                       farm->imbalance());
         }
       }
       sum.wall_s = wall_now() - t0;
@@ -237,17 +249,22 @@ void CoupledConfig::validate() const {
     bad("end_time / max_steps", std::to_string(end_time) + " / " + std::to_string(max_steps),
         "at least one must be > 0 (when to stop)");
   }
-  if (!micro.create || !micro.load) bad("micro", "(empty)", "a MicroKind with create and load is required");
+  if (!micro.create || !micro.load)
+    bad("micro", "(empty)", "a MicroKind with create and load is required");
   if (output.dir.empty()) bad("output.dir", "\"\"", "an output directory is required");
   if (output.every < 1) bad("output.every", std::to_string(output.every), "must be >= 1 step");
   if (output.axial_axis < 0 || output.axial_axis > 2) {
     bad("output.axial_axis", std::to_string(output.axial_axis), "must be 0, 1 or 2");
   }
-  if (checkpoint.every_steps < 0) bad("checkpoint.every_steps", std::to_string(checkpoint.every_steps), "must be >= 0");
-  if (!(checkpoint.every_wall_s >= 0.0)) bad("checkpoint.every_wall_s", std::to_string(checkpoint.every_wall_s), "must be >= 0 s");
+  if (checkpoint.every_steps < 0)
+    bad("checkpoint.every_steps", std::to_string(checkpoint.every_steps), "must be >= 0");
+  if (!(checkpoint.every_wall_s >= 0.0))
+    bad("checkpoint.every_wall_s", std::to_string(checkpoint.every_wall_s), "must be >= 0 s");
   if (checkpoint.keep < 1) bad("checkpoint.keep", std::to_string(checkpoint.keep), "must be >= 1");
-  if (!(balance.threshold >= 1.0)) bad("balance.threshold", std::to_string(balance.threshold), "must be >= 1 (max/mean)");
-  if (balance.check_every < 1) bad("balance.check_every", std::to_string(balance.check_every), "must be >= 1");
+  if (!(balance.threshold >= 1.0))
+    bad("balance.threshold", std::to_string(balance.threshold), "must be >= 1 (max/mean)");
+  if (balance.check_every < 1)
+    bad("balance.check_every", std::to_string(balance.check_every), "must be >= 1");
 }
 
 RunSummary run_coupled(const CoupledConfig& config, MPI_Comm comm) {

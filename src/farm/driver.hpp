@@ -19,10 +19,10 @@
 namespace farm {
 
 struct OutputOptions {
-  std::string dir;              ///< output directory (exists, checked by the caller)
-  std::int64_t every = 1;       ///< results.h5 row every N MPM steps (>= 1); step 0 and the last always
-  int axial_axis = 2;           ///< axis of eps_ax in means.csv (0..2)
-  double log_every_s = 10.0;    ///< progress line on rank 0 at most this often [s of wall]
+  std::string dir;         ///< output directory (exists, checked by the caller)
+  std::int64_t every = 1;  ///< results.h5 row every N MPM steps (>= 1); step 0 and the last always
+  int axial_axis = 2;      ///< axis of eps_ax in means.csv (0..2)
+  double log_every_s = 10.0;  ///< progress line on rank 0 at most this often [s of wall]
 };
 
 struct CheckpointOptions {
@@ -49,10 +49,10 @@ struct CoupledConfig {
   mpm::MaterialPoints points;  ///< every point has material 0 and its own RVE (RVE id = point id)
   std::vector<mpm::VelocityConstraint> constraints;
   std::vector<mpm::TractionLoad> tractions;
-  double end_time = 0.0;        ///< stop when the MPM time reaches this [s] (> 0)
-  std::int64_t max_steps = 0;   ///< and/or after this many MPM steps in total (> 0)
-  MicroKind micro;              ///< creates / restores the RVEs (ElasticMicro::kind, DemMicro::kind)
-  std::string job_text;         ///< the job file, stored in checkpoints
+  double end_time = 0.0;       ///< stop when the MPM time reaches this [s] (> 0)
+  std::int64_t max_steps = 0;  ///< and/or after this many MPM steps in total (> 0)
+  MicroKind micro;             ///< creates / restores the RVEs (ElasticMicro::kind, DemMicro::kind)
+  std::string job_text;        ///< the job file, stored in checkpoints
   OutputOptions output;
   CheckpointOptions checkpoint;
   BalanceOptions balance;
@@ -63,12 +63,12 @@ struct CoupledConfig {
 
 /// What a run did (complete on rank 0; steps/time on every rank).
 struct RunSummary {
-  std::int64_t steps = 0;         ///< MPM steps done in total (restart included)
-  double time = 0.0;              ///< MPM time reached [s]
-  double wall_s = 0.0;            ///< wall time of the stepping loop [s]
+  std::int64_t steps = 0;                ///< MPM steps done in total (restart included)
+  double time = 0.0;                     ///< MPM time reached [s]
+  double wall_s = 0.0;                   ///< wall time of the stepping loop [s]
   std::vector<std::string> checkpoints;  ///< written by this run, oldest first
-  FarmTimes times;                ///< farm timing (rank 0)
-  std::int64_t migrations = 0;    ///< repartitions that moved RVEs (start-up one included)
+  FarmTimes times;                       ///< farm timing (rank 0)
+  std::int64_t migrations = 0;           ///< repartitions that moved RVEs (start-up one included)
   std::int64_t rves_moved = 0;
 };
 

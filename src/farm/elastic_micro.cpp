@@ -45,9 +45,9 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   ++steps_;
   if (id_ == params_.fail_id && steps_ == params_.fail_step) {
-    throw common::NumericalError("elastic micro model: injected failure (fail_id = " +
-                                 std::to_string(params_.fail_id) + ", fail_step = " +
-                                 std::to_string(params_.fail_step) + ")");
+    throw common::NumericalError(
+        "elastic micro model: injected failure (fail_id = " + std::to_string(params_.fail_id) +
+        ", fail_step = " + std::to_string(params_.fail_step) + ")");
   }
   const double nu = params_.poisson;
   const double lambda = params_.young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
@@ -125,7 +125,8 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   params.density = p[2];
   params.void_ratio0 = p[3];
   for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) params.initial_stress(a, b) = p[static_cast<std::size_t>(4 + 3 * a + b)];
+    for (int b = 0; b < 3; ++b)
+      params.initial_stress(a, b) = p[static_cast<std::size_t>(4 + 3 * a + b)];
   }
   params.substeps = ip[0];
   params.fail_id = ip[1];

@@ -8,9 +8,9 @@
 namespace farm {
 
 struct ElasticMicroParams {
-  double young = 0.0;      ///< E [Pa], > 0
-  double poisson = 0.0;    ///< nu [-], in (-1, 0.5)
-  double density = 0.0;    ///< rho [kg/m^3], > 0 (wave speed only)
+  double young = 0.0;        ///< E [Pa], > 0
+  double poisson = 0.0;      ///< nu [-], in (-1, 0.5)
+  double density = 0.0;      ///< rho [kg/m^3], > 0 (wave speed only)
   double void_ratio0 = 0.6;  ///< initial void ratio, carried by the volume change [-]
   common::Mat3 initial_stress = common::Mat3::Zero();  ///< tension positive [Pa]
   /// Cost knob: every step is split into this many equal sub-increments (>= 1). Gives RVEs of
@@ -31,7 +31,9 @@ class ElasticMicro final : public MicroModel {
   [[nodiscard]] common::Mat3 stress() const override { return stress_; }
   /// Fields: elastic/id, elastic/params, elastic/stress, elastic/j, elastic/steps.
   void save(common::StateWriter& writer) const override;
-  [[nodiscard]] double cost_estimate() const override { return static_cast<double>(params_.substeps); }
+  [[nodiscard]] double cost_estimate() const override {
+    return static_cast<double>(params_.substeps);
+  }
   /// P-wave speed sqrt((lambda + 2 mu) / rho) [m/s].
   [[nodiscard]] double wave_speed() const override;
 
@@ -44,7 +46,7 @@ class ElasticMicro final : public MicroModel {
   std::int64_t id_;
   ElasticMicroParams params_;
   common::Mat3 stress_;
-  double j_ = 1.0;            ///< volume ratio V / V0 [-]
+  double j_ = 1.0;  ///< volume ratio V / V0 [-]
   std::int64_t steps_ = 0;
 };
 

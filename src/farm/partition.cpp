@@ -49,8 +49,8 @@ RveGraph cell_graph(const mpm::Grid& grid, const std::vector<common::Vec3>& x) {
   return g;
 }
 
-std::vector<int> partition_metis(const RveGraph& graph, const std::vector<double>& cost,
-                                 int nparts, int seed) {
+std::vector<int> partition_metis(const RveGraph& graph, const std::vector<double>& cost, int nparts,
+                                 int seed) {
   const std::size_t n = graph.size();
   MPMXDEM_CHECK(cost.size() == n, "one cost per RVE");
   MPMXDEM_CHECK(nparts >= 1, "nparts >= 1");
@@ -67,8 +67,7 @@ std::vector<int> partition_metis(const RveGraph& graph, const std::vector<double
     cmax = std::max(cmax, c);
   }
   // Integer weights: the total must fit idx_t (32-bit); 1e6 resolution per RVE at most.
-  const double scale =
-      cmax > 0.0 ? std::min(1e6, 1e9 / static_cast<double>(n)) / cmax : 0.0;
+  const double scale = cmax > 0.0 ? std::min(1e6, 1e9 / static_cast<double>(n)) / cmax : 0.0;
   std::vector<idx_t> vwgt(n);
   for (std::size_t k = 0; k < n; ++k) {
     vwgt[k] = std::max<idx_t>(1, static_cast<idx_t>(std::llround(cost[k] * scale)));
@@ -102,21 +101,24 @@ std::vector<int> partition_metis(const RveGraph& graph, const std::vector<double
 
 std::vector<int> partition_round_robin(std::size_t n, int nparts) {
   std::vector<int> owner(n);
-  for (std::size_t k = 0; k < n; ++k) owner[k] = static_cast<int>(k % static_cast<std::size_t>(nparts));
+  for (std::size_t k = 0; k < n; ++k)
+    owner[k] = static_cast<int>(k % static_cast<std::size_t>(nparts));
   return owner;
 }
 
 std::vector<int> partition_blocks(std::size_t n, int nparts) {
   std::vector<int> owner(n);
   const auto np = static_cast<std::size_t>(nparts);
-  for (std::size_t k = 0; k < n; ++k) owner[k] = static_cast<int>(k * np / std::max<std::size_t>(n, 1));
+  for (std::size_t k = 0; k < n; ++k)
+    owner[k] = static_cast<int>(k * np / std::max<std::size_t>(n, 1));
   return owner;
 }
 
 std::vector<double> part_loads(const std::vector<int>& owner, const std::vector<double>& cost,
                                int nparts) {
   std::vector<double> load(static_cast<std::size_t>(nparts), 0.0);
-  for (std::size_t k = 0; k < owner.size(); ++k) load[static_cast<std::size_t>(owner[k])] += cost[k];
+  for (std::size_t k = 0; k < owner.size(); ++k)
+    load[static_cast<std::size_t>(owner[k])] += cost[k];
   return load;
 }
 

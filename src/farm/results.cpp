@@ -18,21 +18,31 @@ using h5::Handle;
 struct SeriesSpec {
   const char* name;
   bool integer;
-  int per_item;    ///< values per RVE or point (0: scalar per row)
-  char over;       ///< 'r' RVEs, 'p' points, '-' none
+  int per_item;  ///< values per RVE or point (0: scalar per row)
+  char over;     ///< 'r' RVEs, 'p' points, '-' none
 };
 
 constexpr SeriesSpec kSeries[] = {
-    {"time", false, 0, '-'},          {"step", true, 0, '-'},
-    {"rve/stress", false, 9, 'r'},    {"rve/p", false, 1, 'r'},
-    {"rve/q", false, 1, 'r'},         {"rve/void_ratio", false, 1, 'r'},
-    {"rve/z", false, 1, 'r'},         {"rve/t_p", false, 1, 'r'},
-    {"rve/dem_steps", true, 1, 'r'},  {"rve/guards", true, 1, 'r'},
-    {"points/x", false, 3, 'p'},      {"points/stress", false, 9, 'p'},
-    {"points/p", false, 1, 'p'},      {"points/q", false, 1, 'p'},
-    {"points/void_ratio", false, 1, 'p'}, {"points/z", false, 1, 'p'},
-    {"means/eps_ax", false, 0, '-'},  {"means/eps_v", false, 0, '-'},
-    {"means/p", false, 0, '-'},       {"means/q", false, 0, '-'},
+    {"time", false, 0, '-'},
+    {"step", true, 0, '-'},
+    {"rve/stress", false, 9, 'r'},
+    {"rve/p", false, 1, 'r'},
+    {"rve/q", false, 1, 'r'},
+    {"rve/void_ratio", false, 1, 'r'},
+    {"rve/z", false, 1, 'r'},
+    {"rve/t_p", false, 1, 'r'},
+    {"rve/dem_steps", true, 1, 'r'},
+    {"rve/guards", true, 1, 'r'},
+    {"points/x", false, 3, 'p'},
+    {"points/stress", false, 9, 'p'},
+    {"points/p", false, 1, 'p'},
+    {"points/q", false, 1, 'p'},
+    {"points/void_ratio", false, 1, 'p'},
+    {"points/z", false, 1, 'p'},
+    {"means/eps_ax", false, 0, '-'},
+    {"means/eps_v", false, 0, '-'},
+    {"means/p", false, 0, '-'},
+    {"means/q", false, 0, '-'},
 };
 
 std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts) {
@@ -68,7 +78,8 @@ std::vector<T> read_rows(hid_t file, const std::string& name, hsize_t rows) {
   const hsize_t count[1] = {rows};
   H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
   Handle ms(H5Screate_simple(1, count, nullptr), H5Sclose);
-  check(H5Dread(d.get(), h5::native_type<T>(), ms.get(), fs.get(), H5P_DEFAULT, v.data()), "read " + name);
+  check(H5Dread(d.get(), h5::native_type<T>(), ms.get(), fs.get(), H5P_DEFAULT, v.data()),
+        "read " + name);
   return v;
 }
 
@@ -178,11 +189,11 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk");
     Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
     H5Pset_create_intermediate_group(lcpl.get(), 1);
-    se->dset = Handle(check(H5Dcreate2(file_.get(), s.name,
-                                       s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
-                                       space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
-                            std::string("create ") + s.name),
-                      H5Dclose);
+    se->dset = Handle(
+        check(H5Dcreate2(file_.get(), s.name, s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
+                         space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
+              std::string("create ") + s.name),
+        H5Dclose);
     series_[s.name] = std::move(se);
   }
 }
@@ -205,9 +216,10 @@ void ResultsWriter::write_row(const std::string& name, hid_t type, const void* d
   check(H5Dwrite(s.dset.get(), type, ms.get(), fs.get(), H5P_DEFAULT, data), "write " + name);
 }
 
-void ResultsWriter::append(std::int64_t step, double time, const std::vector<common::Mat3>& rve_stress,
-                           const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
-                           const SampleMeans& means) {
+void ResultsWriter::append(std::int64_t step, double time,
+                           const std::vector<common::Mat3>& rve_stress,
+                           const std::vector<MicroReport>& reports,
+                           const mpm::MaterialPoints& points, const SampleMeans& means) {
   MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
@@ -273,7 +285,8 @@ void ResultsWriter::write_xdmf() const {
   os.precision(17);
   auto slab = [&](std::int64_t t, const char* ds, int per) {
     std::ostringstream s;
-    const std::string dims = per > 1 ? std::to_string(m) + " " + std::to_string(per) : std::to_string(m);
+    const std::string dims =
+        per > 1 ? std::to_string(m) + " " + std::to_string(per) : std::to_string(m);
     const int rank = per > 1 ? 3 : 2;
     s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims << "\" Type=\"HyperSlab\">"
       << "<DataItem Dimensions=\"3 " << rank << "\" Format=\"XML\">";
@@ -290,7 +303,8 @@ void ResultsWriter::write_xdmf() const {
   os << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
      << "<Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (std::int64_t t = 0; t < nt; ++t) {
-    os << "<Grid Name=\"step_" << steps_[static_cast<std::size_t>(t)] << "\" GridType=\"Uniform\">\n"
+    os << "<Grid Name=\"step_" << steps_[static_cast<std::size_t>(t)]
+       << "\" GridType=\"Uniform\">\n"
        << "<Time Value=\"" << times_[static_cast<std::size_t>(t)] << "\"/>\n"
        << "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << m << "\"/>\n"
        << "<Geometry GeometryType=\"XYZ\">" << slab(t, "points/x", 3) << "</Geometry>\n"
@@ -301,7 +315,9 @@ void ResultsWriter::write_xdmf() const {
          << slab(t, (std::string("points/") + a).c_str(), 1) << "</Attribute>\n";
     }
     os << "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\""
-       << m << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">results.h5:/points/id</DataItem></Attribute>\n"
+       << m
+       << "\" NumberType=\"Int\" Precision=\"8\" "
+          "Format=\"HDF\">results.h5:/points/id</DataItem></Attribute>\n"
        << "</Grid>\n";
   }
   os << "</Grid>\n</Domain>\n</Xdmf>\n";
@@ -320,8 +336,8 @@ void ResultsWriter::write_csv() const {
         "eps_v = 1 - sum V / sum V0\n"
      << "step,time_s,eps_ax,eps_v,p_mean_Pa,q_mean_Pa\n";
   for (hsize_t t = 0; t < nt; ++t) {
-    os << steps_[t] << "," << times_[t] << "," << ea[t] << "," << ev[t] << "," << p[t] << "," << q[t]
-       << "\n";
+    os << steps_[t] << "," << times_[t] << "," << ea[t] << "," << ev[t] << "," << p[t] << ","
+       << q[t] << "\n";
   }
   write_text_atomic((std::filesystem::path(dir_) / "means.csv").string(), os.str());
 }

@@ -53,9 +53,9 @@ void allgather_owned(MPI_Comm comm, std::vector<double>& v) {
 
 struct RveFarm::Header {
   std::int32_t cmd = 0;
-  std::int32_t flag = 0;   ///< checkpoint: abort mid-write; stop_error: ErrorKind
-  std::int64_t step = 0;   ///< MPM step number being computed (step), or done (checkpoint)
-  double value = 0.0;      ///< step: dt [s]; checkpoint: time [s]
+  std::int32_t flag = 0;  ///< checkpoint: abort mid-write; stop_error: ErrorKind
+  std::int64_t step = 0;  ///< MPM step number being computed (step), or done (checkpoint)
+  double value = 0.0;     ///< step: dt [s]; checkpoint: time [s]
   std::int64_t aux = 0;
 };
 
@@ -77,8 +77,8 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
       models_[static_cast<std::size_t>(k)] = kind_.create(ids_[static_cast<std::size_t>(k)]);
     } catch (const std::exception& e) {
       kind_err = current_error_kind();
-      msg = "farm: creating the RVE of point id " + std::to_string(ids_[static_cast<std::size_t>(k)]) +
-            " failed: " + e.what();
+      msg = "farm: creating the RVE of point id " +
+            std::to_string(ids_[static_cast<std::size_t>(k)]) + " failed: " + e.what();
       break;
     }
   }
@@ -129,8 +129,7 @@ void RveFarm::rebuild_local() {
   }
 }
 
-void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
-                                          const mpm::Grid& grid,
+void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x, const mpm::Grid& grid,
                                           const std::vector<double>* costs) {
   const std::size_t n = ids_.size();
   std::vector<double> est(n, 0.0);
@@ -157,13 +156,15 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
   for (std::int64_t k : local_) {
     const common::Mat3 m = models_[static_cast<std::size_t>(k)]->stress();
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) s[9 * static_cast<std::size_t>(k) + static_cast<std::size_t>(3 * a + b)] = m(a, b);
+      for (int b = 0; b < 3; ++b)
+        s[9 * static_cast<std::size_t>(k) + static_cast<std::size_t>(3 * a + b)] = m(a, b);
     }
   }
   allgather_owned(comm_, s);
   for (std::size_t k = 0; k < n; ++k) {
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) stresses_[k](a, b) = s[9 * k + static_cast<std::size_t>(3 * a + b)];
+      for (int b = 0; b < 3; ++b)
+        stresses_[k](a, b) = s[9 * k + static_cast<std::size_t>(3 * a + b)];
     }
     // Reports before the first step: the invariants of the initial stress.
     const common::Mat3& m = stresses_[k];
@@ -174,7 +175,8 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
   std::vector<int> part(n, 0);
   if (rank_ == 0) {
     MPMXDEM_CHECK(x.size() == n, "one position per RVE on rank 0");
-    part = partition_metis(cell_graph(grid, x), measured ? *costs : est, size_, options_.metis_seed);
+    part =
+        partition_metis(cell_graph(grid, x), measured ? *costs : est, size_, options_.metis_seed);
   }
   if (n > 0) MPI_Bcast(part.data(), to_count(n), MPI_INT, 0, comm_);
   exec_migrate(std::move(part));
@@ -214,7 +216,8 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
   std::vector<std::int64_t> slot_of;  // rank 0: index -> position in ids/L/stress
   if (rank_ == 0) {
     MPMXDEM_CHECK(ids.size() == n, "update_stress needs every RVE id once (got " +
-                                       std::to_string(ids.size()) + " of " + std::to_string(n) + ")");
+                                       std::to_string(ids.size()) + " of " + std::to_string(n) +
+                                       ")");
     slot_of.assign(n, -1);
     for (std::size_t p = 0; p < ids.size(); ++p) {
       const auto it = std::lower_bound(ids_.begin(), ids_.end(), ids[p]);
@@ -235,7 +238,8 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
           for (int b = 0; b < 3; ++b) sendbuf.push_back(m(a, b));
         }
       }
-      counts[static_cast<std::size_t>(r)] = to_count(sendbuf.size()) - displs[static_cast<std::size_t>(r)];
+      counts[static_cast<std::size_t>(r)] =
+          to_count(sendbuf.size()) - displs[static_cast<std::size_t>(r)];
     }
   }
   const std::size_t nloc = local_.size();
@@ -262,7 +266,9 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
     try {
       const MicroReport rep = m.step(Lj, dt);
       const common::Mat3 s = m.stress();
-      if (!s.allFinite()) throw common::NumericalError("non-finite stress (trace = " + std::to_string(s.trace()) + " Pa)");
+      if (!s.allFinite())
+        throw common::NumericalError("non-finite stress (trace = " + std::to_string(s.trace()) +
+                                     " Pa)");
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b) r[3 * a + b] = s(a, b);
       }
@@ -379,9 +385,11 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
     std::sort(failures.begin(), failures.end(),
               [](const Failure& a, const Failure& b) { return a.id < b.id; });
     const Failure& f = failures.front();
-    std::string msg = "farm: MPM step " + std::to_string(step_) + ": RVE id " + std::to_string(f.id) +
-                      " (rank " + std::to_string(f.rank) + ") failed: " + f.text;
-    if (failures.size() > 1) msg += " (" + std::to_string(failures.size() - 1) + " more RVE(s) failed)";
+    std::string msg = "farm: MPM step " + std::to_string(step_) + ": RVE id " +
+                      std::to_string(f.id) + " (rank " + std::to_string(f.rank) +
+                      ") failed: " + f.text;
+    if (failures.size() > 1)
+      msg += " (" + std::to_string(failures.size() - 1) + " more RVE(s) failed)";
     throw_kind(f.kind, msg);
   }
   wave_speed_ = *std::max_element(wave_.begin(), wave_.end());
@@ -473,7 +481,8 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
     models_[static_cast<std::size_t>(k)]->save(s);
     const std::vector<char> bytes = s.serialize();
     append(to[static_cast<std::size_t>(dest)], static_cast<std::uint64_t>(bytes.size()));
-    to[static_cast<std::size_t>(dest)].insert(to[static_cast<std::size_t>(dest)].end(), bytes.begin(), bytes.end());
+    to[static_cast<std::size_t>(dest)].insert(to[static_cast<std::size_t>(dest)].end(),
+                                              bytes.begin(), bytes.end());
     models_[static_cast<std::size_t>(k)].reset();
   }
   std::vector<int> scount(static_cast<std::size_t>(size_));
@@ -482,7 +491,8 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
   for (int r = 0; r < size_; ++r) {
     sdispl[static_cast<std::size_t>(r)] = to_count(sbuf.size());
     scount[static_cast<std::size_t>(r)] = to_count(to[static_cast<std::size_t>(r)].size());
-    sbuf.insert(sbuf.end(), to[static_cast<std::size_t>(r)].begin(), to[static_cast<std::size_t>(r)].end());
+    sbuf.insert(sbuf.end(), to[static_cast<std::size_t>(r)].begin(),
+                to[static_cast<std::size_t>(r)].end());
   }
   std::vector<int> rcount(static_cast<std::size_t>(size_));
   MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm_);
@@ -498,7 +508,9 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
   ErrorKind kind_err = ErrorKind::none;
   std::string msg;
   std::vector<std::size_t> pos(static_cast<std::size_t>(size_));
-  for (int r = 0; r < size_; ++r) pos[static_cast<std::size_t>(r)] = static_cast<std::size_t>(rdispl[static_cast<std::size_t>(r)]);
+  for (int r = 0; r < size_; ++r)
+    pos[static_cast<std::size_t>(r)] =
+        static_cast<std::size_t>(rdispl[static_cast<std::size_t>(r)]);
   for (std::size_t k = 0; k < n; ++k) {
     if (new_owner[k] != rank_ || owner_[k] == rank_) continue;
     auto& p = pos[static_cast<std::size_t>(owner_[k])];

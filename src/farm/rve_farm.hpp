@@ -30,9 +30,9 @@ struct FarmOptions {
 
 /// Per-step timing figures seen by rank 0 (cumulative since construction) [s].
 struct FarmTimes {
-  double step_wall = 0.0;       ///< wall time inside update_stress on rank 0
-  double critical_busy = 0.0;   ///< sum over steps of the largest rank's RVE loop time
-  double mean_busy = 0.0;       ///< sum over steps of the mean rank RVE loop time
+  double step_wall = 0.0;      ///< wall time inside update_stress on rank 0
+  double critical_busy = 0.0;  ///< sum over steps of the largest rank's RVE loop time
+  double mean_busy = 0.0;      ///< sum over steps of the mean rank RVE loop time
   std::int64_t steps = 0;
 };
 
@@ -120,13 +120,13 @@ class RveFarm final : public mpm::MaterialModel {
   mpm::Grid grid_;
   std::vector<std::int64_t> ids_;
   std::vector<int> owner_;
-  std::vector<std::int64_t> local_;                    ///< my RVE indices, ascending
-  std::vector<std::unique_ptr<MicroModel>> models_;    ///< by index; null if not mine
-  std::vector<MicroReport> reports_;                   ///< rank 0, by index
-  std::vector<common::Mat3> stresses_;                 ///< rank 0, by index
-  std::vector<double> cost_total_;                     ///< rank 0, by index
-  std::vector<double> cost_window_;                    ///< rank 0, since last rebalance
-  std::vector<double> wave_;                           ///< rank 0, by index
+  std::vector<std::int64_t> local_;                  ///< my RVE indices, ascending
+  std::vector<std::unique_ptr<MicroModel>> models_;  ///< by index; null if not mine
+  std::vector<MicroReport> reports_;                 ///< rank 0, by index
+  std::vector<common::Mat3> stresses_;               ///< rank 0, by index
+  std::vector<double> cost_total_;                   ///< rank 0, by index
+  std::vector<double> cost_window_;                  ///< rank 0, since last rebalance
+  std::vector<double> wave_;                         ///< rank 0, by index
   double wave_speed_ = 0.0;
   std::int64_t step_ = 0;
   std::int64_t migrations_ = 0;

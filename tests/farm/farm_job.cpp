@@ -28,14 +28,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (cmd != "run" || argc < 5) {
-    std::cerr << "usage: farm_job run <dir> <steps> <checkpoint_every> [<restart>] | inspect <file> | compare <a> <b>\n";
+    std::cerr << "usage: farm_job run <dir> <steps> <checkpoint_every> [<restart>] | inspect "
+                 "<file> | compare <a> <b>\n";
     return 2;
   }
   MPI_Init(&argc, &argv);
   int rc = 0;
   try {
-    farm::CoupledConfig cfg =
-        farm::testing::triaxial_job(argv[2], std::stoll(argv[3]), farm::testing::mixed_elastic_kind());
+    farm::CoupledConfig cfg = farm::testing::triaxial_job(argv[2], std::stoll(argv[3]),
+                                                          farm::testing::mixed_elastic_kind());
     cfg.checkpoint.every_steps = std::stoll(argv[4]);
     const farm::RunSummary s = argc > 5 ? farm::restart_coupled(cfg, argv[5], MPI_COMM_WORLD)
                                         : farm::run_coupled(cfg, MPI_COMM_WORLD);

@@ -55,8 +55,10 @@ inline CoupledConfig triaxial_job(const std::string& dir, std::int64_t max_steps
   for (auto& s : c.points.stress) s = -p * common::Mat3::Identity();
   // A faster platen than eq. (13) so that a few steps deform visibly.
   const double v_top = -1e-2 * std::sqrt(p / rho);
-  c.constraints.push_back({Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
-  c.constraints.push_back({Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
+  c.constraints.push_back(
+      {Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
+  c.constraints.push_back(
+      {Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
   for (int axis : {0, 1}) {
     for (int side : {-1, 1}) c.tractions.push_back({axis, side, p, Vec3::Zero()});
   }
@@ -96,10 +98,10 @@ inline std::vector<std::uint64_t> read_words(const std::string& file, const std:
 /// Every time series of results.h5; compared bit for bit by the tests.
 inline const std::vector<std::string>& result_series() {
   static const std::vector<std::string> names{
-      "/time",          "/step",          "/rve/id",         "/rve/stress",   "/rve/p",
-      "/rve/q",         "/rve/void_ratio", "/rve/z",         "/rve/t_p",      "/rve/dem_steps",
-      "/rve/guards",    "/points/id",     "/points/x",       "/points/stress", "/points/p",
-      "/points/q",      "/means/eps_ax",  "/means/eps_v",    "/means/p",      "/means/q"};
+      "/time",       "/step",           "/rve/id",      "/rve/stress",    "/rve/p",
+      "/rve/q",      "/rve/void_ratio", "/rve/z",       "/rve/t_p",       "/rve/dem_steps",
+      "/rve/guards", "/points/id",      "/points/x",    "/points/stress", "/points/p",
+      "/points/q",   "/means/eps_ax",   "/means/eps_v", "/means/p",       "/means/q"};
   return names;
 }
 
@@ -109,7 +111,9 @@ inline std::string compare_results(const std::string& a, const std::string& b) {
     const auto x = read_words(a, name);
     const auto y = read_words(b, name);
     if (x.empty() && y.empty()) return name + " missing in both";
-    if (x != y) return name + " differs (" + std::to_string(x.size()) + " vs " + std::to_string(y.size()) + " values)";
+    if (x != y)
+      return name + " differs (" + std::to_string(x.size()) + " vs " + std::to_string(y.size()) +
+             " values)";
   }
   return {};
 }

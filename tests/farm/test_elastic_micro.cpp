@@ -1,12 +1,11 @@
 // Unit tests of the ElasticMicro verification model (farm/elastic_micro.hpp).
-#include "farm/elastic_micro.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
+#include "farm/elastic_micro.hpp"
 
 namespace {
 

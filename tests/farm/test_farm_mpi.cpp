@@ -2,7 +2,6 @@
 // Every rank runs every test. Sub-communicators give runs on 1, 2, ... ranks inside one launch.
 #include <gtest/gtest.h>
 #include <mpi.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -48,10 +47,12 @@ class ScratchCleanup : public ::testing::Environment {
  public:
   void TearDown() override {
     MPI_Barrier(MPI_COMM_WORLD);
-    if (world_rank() == 0 && !::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(scratch_root());
+    if (world_rank() == 0 && !::testing::UnitTest::GetInstance()->Failed())
+      fs::remove_all(scratch_root());
   }
 };
-[[maybe_unused]] const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+[[maybe_unused]] const auto* const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
 
 /// A fresh directory shared by all ranks (created by rank 0).
 std::string scratch(const std::string& name) {
@@ -76,10 +77,12 @@ void free_comm(MPI_Comm& c) {
 }
 
 /// Runs on the first n ranks; returns the summary there.
-farm::RunSummary run_on(int n, const farm::CoupledConfig& cfg, const std::string* restart = nullptr) {
+farm::RunSummary run_on(int n, const farm::CoupledConfig& cfg,
+                        const std::string* restart = nullptr) {
   MPI_Comm c = first_ranks(n);
   farm::RunSummary s;
-  if (c != MPI_COMM_NULL) s = restart ? farm::restart_coupled(cfg, *restart, c) : farm::run_coupled(cfg, c);
+  if (c != MPI_COMM_NULL)
+    s = restart ? farm::restart_coupled(cfg, *restart, c) : farm::run_coupled(cfg, c);
   free_comm(c);
   MPI_Barrier(MPI_COMM_WORLD);
   return s;
@@ -118,12 +121,15 @@ TEST(Farm, SmokeTinyCoupledJob) {
 TEST(Farm, ResultsIdenticalOnAnyRankCount) {
   const std::string base = scratch("ranks");
   for (int n = 1; n <= world_size(); ++n) {
-    farm::CoupledConfig cfg = triaxial_job(base + "/n" + std::to_string(n), 12, mixed_elastic_kind());
+    farm::CoupledConfig cfg =
+        triaxial_job(base + "/n" + std::to_string(n), 12, mixed_elastic_kind());
     run_on(n, cfg);
   }
   if (world_rank() == 0) {
     for (int n = 2; n <= world_size(); ++n) {
-      EXPECT_EQ(compare_results(base + "/n1/results.h5", base + "/n" + std::to_string(n) + "/results.h5"), "")
+      EXPECT_EQ(
+          compare_results(base + "/n1/results.h5", base + "/n" + std::to_string(n) + "/results.h5"),
+          "")
           << "1 rank vs " << n << " ranks";
     }
   }
@@ -145,7 +151,8 @@ TEST(Farm, RestartContinuesBitForBit) {
     EXPECT_EQ(info.nranks, n_write);
     EXPECT_EQ(info.step, 6);
   }
-  const farm::RunSummary s = run_on(n_read, triaxial_job(base + "/split", 12, mixed_elastic_kind()), &ckpt);
+  const farm::RunSummary s =
+      run_on(n_read, triaxial_job(base + "/split", 12, mixed_elastic_kind()), &ckpt);
   if (world_rank() == 0) {
     EXPECT_EQ(s.steps, 12);
     EXPECT_EQ(compare_results(base + "/straight/results.h5", base + "/split/results.h5"), "")
@@ -182,7 +189,8 @@ TEST(Farm, MigrationKeepsResults) {
       for (std::size_t p = 0; p < order.size(); ++p) L[p] = L_of(order[p], step);
       f.update_stress(order, L, 1e-3, stress);
       for (std::size_t p = 0; p < order.size(); ++p) {
-        const auto r = static_cast<std::size_t>(std::find(ids.begin(), ids.end(), order[p]) - ids.begin());
+        const auto r =
+            static_cast<std::size_t>(std::find(ids.begin(), ids.end(), order[p]) - ids.begin());
         ref[r]->step(L_of(order[p], step), 1e-3);
         ASSERT_EQ(std::memcmp(stress[p].data(), ref[r]->stress().data(), sizeof(double) * 9), 0)
             << "RVE id " << order[p] << " step " << step;
@@ -300,20 +308,26 @@ TEST(Farm, DemResultsIdenticalOnAnyRankCountAndRestart) {
   const std::string base = scratch("dem");
   const std::int64_t steps = 4;
   for (int n = 1; n <= world_size(); ++n) {
-    run_on(n, triaxial_job(base + "/n" + std::to_string(n), steps, farm::testing::small_dem_kind()));
+    run_on(n,
+           triaxial_job(base + "/n" + std::to_string(n), steps, farm::testing::small_dem_kind()));
   }
-  farm::CoupledConfig half = triaxial_job(base + "/split", steps / 2, farm::testing::small_dem_kind());
+  farm::CoupledConfig half =
+      triaxial_job(base + "/split", steps / 2, farm::testing::small_dem_kind());
   half.checkpoint.at_end = true;
   run_on(world_size(), half);
   const std::string ckpt = farm::checkpoint_path(base + "/split", steps / 2);
-  run_on(std::min(world_size(), 2), triaxial_job(base + "/split", steps, farm::testing::small_dem_kind()), &ckpt);
+  run_on(std::min(world_size(), 2),
+         triaxial_job(base + "/split", steps, farm::testing::small_dem_kind()), &ckpt);
   if (world_rank() == 0) {
     for (int n = 2; n <= world_size(); ++n) {
-      EXPECT_EQ(compare_results(base + "/n1/results.h5", base + "/n" + std::to_string(n) + "/results.h5"), "")
+      EXPECT_EQ(
+          compare_results(base + "/n1/results.h5", base + "/n" + std::to_string(n) + "/results.h5"),
+          "")
           << "DEM: 1 rank vs " << n << " ranks";
     }
     EXPECT_EQ(compare_results(base + "/n1/results.h5", base + "/split/results.h5"), "")
-        << "DEM restart: written by " << world_size() << " ranks, restarted on " << std::min(world_size(), 2);
+        << "DEM restart: written by " << world_size() << " ranks, restarted on "
+        << std::min(world_size(), 2);
     // The DEM did something: non-zero DEM steps and coordination.
     const auto z = farm::testing::read_words(base + "/n1/results.h5", "/rve/dem_steps");
     ASSERT_FALSE(z.empty());

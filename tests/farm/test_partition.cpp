@@ -1,13 +1,15 @@
 // Unit tests of the METIS partition (farm/partition.hpp).
-#include "farm/partition.hpp"
-
 #include <gtest/gtest.h>
 
 #include <numeric>
 
+#include "farm/partition.hpp"
+
 namespace {
 
-mpm::Grid grid4() { return {common::Vec3::Zero(), common::Vec3(0.25, 0.25, 1.0), common::Vec3i(4, 4, 1)}; }
+mpm::Grid grid4() {
+  return {common::Vec3::Zero(), common::Vec3(0.25, 0.25, 1.0), common::Vec3i(4, 4, 1)};
+}
 
 /// n points spread over the cells of grid4 (several per cell).
 std::vector<common::Vec3> points(int n) {
@@ -22,7 +24,8 @@ std::vector<common::Vec3> points(int n) {
 
 TEST(Partition, CellGraphLinksPointsSharingACell) {
   const mpm::Grid g{common::Vec3::Zero(), common::Vec3(0.5, 1.0, 1.0), common::Vec3i(2, 1, 1)};
-  const std::vector<common::Vec3> x{{0.1, 0.5, 0.5}, {0.9, 0.5, 0.5}, {0.2, 0.5, 0.5}, {0.6, 0.5, 0.5}};
+  const std::vector<common::Vec3> x{
+      {0.1, 0.5, 0.5}, {0.9, 0.5, 0.5}, {0.2, 0.5, 0.5}, {0.6, 0.5, 0.5}};
   const farm::RveGraph gr = farm::cell_graph(g, x);
   ASSERT_EQ(gr.size(), 4u);
   EXPECT_EQ(gr.xadj, (std::vector<std::int64_t>{0, 1, 2, 3, 4}));

@@ -89,8 +89,10 @@ farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::M
   mpm::fill_box(c.points, c.solver.grid, Vec3::Zero(), Vec3::Ones(), 2, rho, 0);
   for (auto& s : c.points.stress) s = -p * Mat3::Identity();
   const double v_top = -2.5e-4 * std::sqrt(p / rho);
-  c.constraints.push_back({Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
-  c.constraints.push_back({Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
+  c.constraints.push_back(
+      {Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
+  c.constraints.push_back(
+      {Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
   for (int axis : {0, 1}) {
     for (int side : {-1, 1}) c.tractions.push_back({axis, side, p, Vec3::Zero()});
   }
@@ -106,7 +108,8 @@ farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::M
 
 void overhead(const Args& a, MPI_Comm comm) {
   const std::int64_t steps = std::stoll(a.get("steps", "10"));
-  farm::CoupledConfig c = triaxial("/tmp/bench_farm_overhead", steps, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)));
+  farm::CoupledConfig c = triaxial("/tmp/bench_farm_overhead", steps,
+                                   dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)));
   c.farm = farm_options(a);
   const double t0 = now();
   const farm::RunSummary s = farm::run_coupled(c, comm);
@@ -116,8 +119,9 @@ void overhead(const Args& a, MPI_Comm comm) {
     std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, wait %s, omp over RVEs %s\n",
                 size_of(comm), static_cast<long long>(s.steps), a.get("wait", "sleep").c_str(),
                 a.get("omp-over-rves", "1").c_str());
-    std::printf("  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
-                s.wall_s, s.wall_s / static_cast<double>(steps), total);
+    std::printf(
+        "  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
+        s.wall_s, s.wall_s / static_cast<double>(steps), total);
     std::printf("  critical RVE busy (max rank) %10.4f s\n", t.critical_busy);
     std::printf("  mean RVE busy per rank       %10.4f s  -> balance mean/max %.3f\n", t.mean_busy,
                 t.mean_busy / t.critical_busy);
@@ -169,11 +173,15 @@ void balance(const Args& a, MPI_Comm comm) {
     const farm::FarmTimes t1 = f.times();
     const double crit = t1.critical_busy - t0.critical_busy;
     const double mean = t1.mean_busy - t0.mean_busy;
-    std::printf("  %-12s mean/max busy = %.4f   (critical %.4f s, mean %.4f s, update_stress wall %.4f s)\n",
-                name, mean / crit, crit, mean, t1.step_wall - t0.step_wall);
+    std::printf(
+        "  %-12s mean/max busy = %.4f   (critical %.4f s, mean %.4f s, update_stress wall %.4f "
+        "s)\n",
+        name, mean / crit, crit, mean, t1.step_wall - t0.step_wall);
   };
-  std::printf("balance: ranks %d, %d ElasticMicro RVEs of cost classes 1/2/5/10 x %lld substeps, %d steps each\n",
-              size, n, static_cast<long long>(base), steps);
+  std::printf(
+      "balance: ranks %d, %d ElasticMicro RVEs of cost classes 1/2/5/10 x %lld substeps, %d steps "
+      "each\n",
+      size, n, static_cast<long long>(base), steps);
   f.migrate_to(farm::partition_round_robin(static_cast<std::size_t>(n), size));
   measure("round-robin");
   const std::vector<double> cost = f.cost();  // measured wall seconds per RVE
@@ -191,7 +199,8 @@ void checkpoint(const Args& a, MPI_Comm comm) {
     x[static_cast<std::size_t>(k)] = Vec3(0.5, 0.5, 0.5);
   }
   const mpm::Grid grid{Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
-  farm::RveFarm f(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid, farm_options(a));
+  farm::RveFarm f(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid,
+                  farm_options(a));
   if (f.rank() != 0) {
     f.serve();
     return;
@@ -210,8 +219,10 @@ void checkpoint(const Args& a, MPI_Comm comm) {
     best = std::min(best, now() - t0);
   }
   const auto bytes = static_cast<double>(std::filesystem::file_size(path));
-  std::printf("checkpoint: ranks %d, %d DEM RVEs (%s)\n", f.size(), n, a.get("packing", MPMXDEM_DEFAULT_PACKING).c_str());
-  std::printf("  write (best of 3, incl. fsync + rename) %.4f s = %.5f s per RVE\n", best, best / n);
+  std::printf("checkpoint: ranks %d, %d DEM RVEs (%s)\n", f.size(), n,
+              a.get("packing", MPMXDEM_DEFAULT_PACKING).c_str());
+  std::printf("  write (best of 3, incl. fsync + rename) %.4f s = %.5f s per RVE\n", best,
+              best / n);
   std::printf("  file size %.3f MB = %.1f kB per RVE (chunked, shuffle + deflate 4)\n", bytes / 1e6,
               bytes / 1e3 / n);
   f.stop();
