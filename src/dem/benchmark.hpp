@@ -1,0 +1,39 @@
+// DEM speed benchmark: tile a packing n x n x n and time drained triaxial shearing at
+// I = 2.5e-4 (the app wires it to `mpmxdem bench dem`; bench_dem runs it standalone).
+#pragma once
+
+#include <cstdint>
+
+#include "dem/packing_io.hpp"
+#include "dem/params.hpp"
+
+namespace dem {
+
+struct BenchmarkConfig {
+  int tiles = 1;                  ///< n of the n x n x n tiling [-]
+  int threads = 1;                ///< OpenMP threads [-]
+  std::int64_t warmup_steps = 500;  ///< untimed steps first [-]
+  std::int64_t steps = 3000;      ///< timed steps [-]
+  double inertial_number = 2.5e-4;  ///< I [-]
+  double confining = 1e5;         ///< lateral stress [Pa]
+};
+
+struct BenchmarkResult {
+  std::int64_t spheres = 0;
+  int threads = 0;
+  std::int64_t steps = 0;              ///< timed steps
+  double wall_s = 0.0;                 ///< timed wall seconds [s]
+  double ms_per_step = 0.0;            ///< [ms]
+  double us_per_particle_step = 0.0;   ///< [us]
+  double contacts_per_sphere = 0.0;    ///< active contacts / N at the end [-]
+  double pairs_per_sphere = 0.0;       ///< Verlet pairs / N at the end [-]
+  double dt = 0.0;                     ///< DEM time step [s]
+  double bytes_per_sphere = 0.0;       ///< heap bytes of spheres + pairs + Verlet state / N [B]
+  std::int64_t rebuilds = 0;           ///< neighbour rebuilds during the run
+};
+
+/// Run the benchmark. Deterministic results, wall time of course not.
+[[nodiscard]] BenchmarkResult run_benchmark(const Packing& base, const Material& mat,
+                                            const Numerics& num, const BenchmarkConfig& cfg);
+
+}  // namespace dem
