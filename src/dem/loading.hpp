@@ -50,6 +50,7 @@ void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
              const std::function<void(const Simulation&)>& observer = {});
 
 /// Build a simulation from a packing (spheres at rest); computes contacts and sets dt.
+/// Sphere ids follow a spatial order (bins in reduced coordinates), not the file order.
 [[nodiscard]] Simulation make_simulation(const Packing& pk, const Material& mat,
                                          const Numerics& num);
 
