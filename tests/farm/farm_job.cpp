@@ -1,6 +1,7 @@
 // farm_job: the farm test job as a program, for tests that need a real process death.
 //   farm_job run <dir> <steps> <checkpoint_every> [<restart checkpoint>]
 //   farm_job inspect <checkpoint>          (verifies every checksum; prints the description)
+//   farm_job packing <n> <seed> <file>        (writes a small compacted test packing)
 //   farm_job compare <results.h5> <results.h5>   (bit-for-bit; exit 1 on a difference)
 #include <mpi.h>
 
@@ -20,6 +21,14 @@ int main(int argc, char** argv) {
       std::cerr << e.what() << "\n";
       return 2;
     }
+  }
+  if (cmd == "packing" && argc == 5) {
+    // The small test packings of tests/farm/data: cloud, compaction to 100 kPa, written exactly.
+    const dem::Packing pk = farm::testing::small_packing(std::stoll(argv[2]), std::stoull(argv[3]));
+    dem::write_packing(argv[4], pk,
+                       "farm test packing: farm_job packing " + std::string(argv[2]) + " " +
+                           argv[3] + " (cloud, compaction to 100 kPa)");
+    return 0;
   }
   if (cmd == "compare" && argc == 4) {
     const std::string diff = farm::testing::compare_results(argv[2], argv[3]);

@@ -158,10 +158,12 @@ inline dem::Packing small_packing(std::int64_t n, std::uint64_t seed) {
   return pk;
 }
 
-/// DemMicro RVEs of 40 or 70 spheres (even / odd ids), prepared once per process.
+/// DemMicro RVEs of 40 or 70 spheres (even / odd ids) from tests/farm/data (made by
+/// `farm_job packing 40 11 ...` and `farm_job packing 70 12 ...`: small_packing above; stored
+/// because compaction is slow under the sanitizers).
 inline MicroKind small_dem_kind() {
-  static const dem::Packing a = small_packing(40, 11);
-  static const dem::Packing b = small_packing(70, 12);
+  static const dem::Packing a = dem::read_packing(MPMXDEM_FARM_TEST_DATA "/packing_N40_seed11.txt");
+  static const dem::Packing b = dem::read_packing(MPMXDEM_FARM_TEST_DATA "/packing_N70_seed12.txt");
   DemMicroParams p;
   p.rve.material = dem_material();
   return DemMicro::kind(p, [](std::int64_t id) { return id % 2 == 0 ? a : b; });

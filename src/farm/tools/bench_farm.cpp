@@ -2,7 +2,7 @@
 //   mpiexec -n 2 --bind-to none bench_farm overhead [--wait spin|sleep] [--steps 10]
 //   mpiexec -n 2 --bind-to none bench_farm balance  [--rves 32] [--steps 20]
 //   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
-// Options: --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
+// Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
 // --omp-over-rves 0|1, --wait spin|sleep. Figures and commands: docs/farm.md, "Benchmarks".
 #include <mpi.h>
 
@@ -79,7 +79,8 @@ farm::FarmOptions farm_options(const Args& a) {
 }
 
 // The paper's single-cell triaxial (8 points, 1 m cell, 100 kPa, platen at eq. 13 speed).
-farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::MicroKind kind) {
+farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::MicroKind kind,
+                             double speed) {
   farm::CoupledConfig c;
   c.solver.grid = {Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
   c.solver.damping = 0.2;
@@ -88,7 +89,7 @@ farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::M
   const double p = 100e3;
   mpm::fill_box(c.points, c.solver.grid, Vec3::Zero(), Vec3::Ones(), 2, rho, 0);
   for (auto& s : c.points.stress) s = -p * Mat3::Identity();
-  const double v_top = -2.5e-4 * std::sqrt(p / rho);
+  const double v_top = -speed * 2.5e-4 * std::sqrt(p / rho);
   c.constraints.push_back(
       {Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
   c.constraints.push_back(
@@ -109,15 +110,18 @@ farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::M
 void overhead(const Args& a, MPI_Comm comm) {
   const std::int64_t steps = std::stoll(a.get("steps", "10"));
   farm::CoupledConfig c = triaxial("/tmp/bench_farm_overhead", steps,
-                                   dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)));
+                                   dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)),
+                                   std::stod(a.get("speed", "1")));
   c.farm = farm_options(a);
   const double t0 = now();
   const farm::RunSummary s = farm::run_coupled(c, comm);
   const double total = now() - t0;
   if (rank_of(comm) == 0) {
     const farm::FarmTimes& t = s.times;
-    std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, wait %s, omp over RVEs %s\n",
-                size_of(comm), static_cast<long long>(s.steps), a.get("wait", "sleep").c_str(),
+    std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, platen x%s eq. 13, wait %s, "
+                "omp over RVEs %s\n",
+                size_of(comm), static_cast<long long>(s.steps), a.get("speed", "1").c_str(),
+                a.get("wait", "sleep").c_str(),
                 a.get("omp-over-rves", "1").c_str());
     std::printf(
         "  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
