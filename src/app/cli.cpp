@@ -20,16 +20,26 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   cli.require_subcommand(1);
   cli.add_flag("-v,--verbose", o.verbosity, "More log output (-v debug, -vv trace; all ranks at -vv)");
 
-  auto* run = cli.add_subcommand("run", "Run a job: validate it, then simulate, writing results into --out");
+  auto* run = cli.add_subcommand(
+      "run", "Run a coupled MPM x DEM job: validate it, then simulate, writing results.h5 (time series),\n"
+             "points.xmf (ParaView), means.csv, log.txt and checkpoint_<step>.h5 files into --out");
   run->add_option("job", o.job, "Job file (TOML)")->required();
   run->add_option("-o,--out", o.out, "Output directory (default: results/<job file name>)");
-  run->add_option("--restart", o.restart, "Continue from this checkpoint file (HDF5)");
-  run->add_option("--max-steps", o.max_steps, "Stop after this many steps (for tests and trials)")
+  run->add_option("--restart", o.restart,
+                  "Continue from this checkpoint file (HDF5), on any number of ranks, bit for bit; --out\n"
+                  "should be the run's directory (results.h5 is cut back to the checkpoint's step)");
+  run->add_option("--max-steps", o.max_steps,
+                  "Stop after this many MPM steps in total, restarts included (trials, tests); a checkpoint\n"
+                  "is written at the end")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--force", o.force, "Write into a non-empty output directory (files of the same name are replaced)");
 
   auto* check = cli.add_subcommand("check", "Validate a job file and print the resolved job (no output written)");
   check->add_option("job", o.job, "Job file (TOML)")->required();
+
+  auto* inspect = cli.add_subcommand("inspect", "Describe a checkpoint (step, time, RVEs, ranks that wrote it) "
+                                                "and verify its checksums");
+  inspect->add_option("checkpoint", o.job, "Checkpoint file (HDF5)")->required();
 
   auto* demc = cli.add_subcommand("dem", "Run a pure DEM job: prepare a sample, then the loading of [dem.loading]");
   demc->add_option("job", o.job, "Job file (TOML)")->required();

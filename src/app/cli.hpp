@@ -8,8 +8,8 @@
 namespace app {
 
 struct Options {
-  std::string command;       ///< "run", "check", "schema", "dem", "bench"
-  std::string job;           ///< job file
+  std::string command;       ///< "run", "check", "schema", "dem", "bench", "inspect"
+  std::string job;           ///< job file (inspect: the checkpoint)
   std::string out;           ///< output directory ("" = results/<job stem>)
   std::string restart;       ///< checkpoint to continue from
   std::int64_t max_steps = -1;  ///< stop after this many steps (-1: no limit)

@@ -1,4 +1,4 @@
-// check, run and schema subcommands: see commands.hpp.
+// check and schema subcommands, and what every command shares (job loading, output directory): see commands.hpp.
 #include "app/commands.hpp"
 
 #include <fmt/format.h>
@@ -24,6 +24,11 @@ void bcast_string(std::string& s, const Comm& comm) {
 }
 }  // namespace
 
+void bcast_error(std::string& error, const Comm& comm) {
+  bcast_string(error, comm);
+  if (!error.empty()) throw common::InputError(error);
+}
+
 Job load_job_collective(const std::string& path, const Comm& comm) {
   std::string text;
   std::string error;
@@ -35,8 +40,7 @@ Job load_job_collective(const std::string& path, const Comm& comm) {
       error = e.what();
     }
   }
-  bcast_string(error, comm);
-  if (!error.empty()) throw common::InputError(error);
+  bcast_error(error, comm);
   bcast_string(text, comm);
   return Job::parse(text, path);
 }
@@ -69,18 +73,6 @@ std::filesystem::path open_output(const Options& o, const Job& job, const Comm& 
                out.string());
   spdlog::info("resolved job:\n{}", job.resolved_toml());
   return out;
-}
-
-int command_run(const Options& o, const Comm& comm) {
-  const Job job = load_job_collective(o.job, comm);
-  if (!job.has_section("mpm")) {
-    throw common::InputError(fmt::format("{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)",
-                                         job.file()));
-  }
-  const std::filesystem::path out = open_output(o, job, comm);
-  spdlog::warn("the MPM x DEM solver is not part of this build yet: the job was validated and its resolved "
-               "parameters written to {}", out.string());
-  return 0;
 }
 
 }  // namespace app

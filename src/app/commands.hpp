@@ -17,6 +17,9 @@ struct Comm {
   int size = 1;
 };
 
+/// Broadcasts rank 0's error text; when it is not empty, every rank throws it as an InputError.
+void bcast_error(std::string& error, const Comm& comm);
+
 /// Rank 0 reads the job file and broadcasts its text; every rank parses and validates it, so an
 /// error is seen (and thrown) on every rank alike.
 [[nodiscard]] Job load_job_collective(const std::string& path, const Comm& comm);
@@ -30,5 +33,6 @@ int command_run(const Options& o, const Comm& comm);
 int command_schema(const Options& o, const Comm& comm);
 int command_dem(const Options& o, const Comm& comm);
 int command_bench(const Options& o, const Comm& comm);
+int command_inspect(const Options& o, const Comm& comm);
 
 }  // namespace app

@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
       code = app::command_dem(*options, comm);
     } else if (options->command == "bench") {
       code = app::command_bench(*options, comm);
+    } else if (options->command == "inspect") {
+      code = app::command_inspect(*options, comm);
     } else if (options->command == "schema") {
       code = app::command_schema(*options, comm);
     }

@@ -14,11 +14,17 @@ void add_run_sections(Schema& s) {
       .in(0, std::nullopt).or_default(std::int64_t{0});
   s.add("output.checkpoint_interval", Type::Float, "Write a checkpoint every this much wall time (\"30 min\"); 0: never.")
       .unit(Q::Time).in(0, std::nullopt).or_default(0.0);
+  s.add("output.progress_interval", Type::Float, "Progress line (step, strain, ETA) at most this often (wall time).")
+      .unit(Q::Time).in(0, std::nullopt, true).or_default(10.0);
+  s.add("output.checkpoint_keep", Type::Int, "Newest checkpoints kept in the output directory (older ones are deleted).")
+      .in(1, std::nullopt).or_default(std::int64_t{2});
 
   s.add("farm", Type::Table, "Distribution of the RVEs over MPI ranks.");
   s.add("farm.rebalance_threshold", Type::Float,
         "Repartition the RVEs when max over mean worker busy time exceeds this.")
       .in(1, std::nullopt).or_default(1.2);
+  s.add("farm.rebalance_check_every", Type::Int, "MPM steps between two checks of the load balance.")
+      .in(1, std::nullopt).or_default(std::int64_t{20});
 }
 
 }  // namespace app

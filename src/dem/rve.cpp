@@ -63,6 +63,12 @@ Rve::Rve(const Packing& pk, const RveParams& params)
       params_(params),
       d50_(params.d50 > 0.0 ? params.d50 : mass_median_diameter(pk.r)) {}
 
+Rve Rve::from_simulation(Simulation sim, const RveParams& params) {
+  params.validate();
+  const double d50 = params.d50 > 0.0 ? params.d50 : mass_median_diameter(sim.spheres().r);
+  return Rve(std::move(sim), params, d50);
+}
+
 Rve::Rve(Simulation sim, const RveParams& params, double d50)
     : sim_(std::move(sim)), params_(params), d50_(d50) {}
 

@@ -54,6 +54,9 @@ class Rve {
  public:
   /// Build from a packing (spheres at rest, contacts detected, optional equilibration).
   Rve(const Packing& packing, const RveParams& params);
+  /// Wrap an already prepared simulation (contact history kept: shear forces and moments).
+  /// `params.initial_pressure` is ignored (nothing is re-equilibrated).
+  [[nodiscard]] static Rve from_simulation(Simulation sim, const RveParams& params);
 
   /// Deform the cell by the increment L dt over T_p = max(max|L dt| / I sqrt(rho d50^2 / p),
   /// dt_DEM): the cell runs with L_DEM = L dt / T_p for n = T_p / dt_DEM whole steps.

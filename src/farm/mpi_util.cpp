@@ -1,6 +1,8 @@
 // MPI helpers of the farm (see header).
 #include "farm/mpi_util.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <climits>
@@ -104,6 +106,20 @@ std::vector<std::string> allgather_strings(MPI_Comm comm, const std::vector<std:
     }
   }
   return out;
+}
+
+int threads_per_rank(MPI_Comm comm) {
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int local = 1;
+  MPI_Comm_size(node, &local);
+  // Ranks bound to one core each see 1 proc; unbound ranks see the whole node and share it.
+  const int procs = omp_get_num_procs();
+  int max_procs = procs;
+  MPI_Allreduce(&procs, &max_procs, 1, MPI_INT, MPI_MAX, node);
+  MPI_Comm_free(&node);
+  const int share = procs >= max_procs && max_procs > 1 ? procs / local : procs;
+  return std::max(1, share);
 }
 
 int to_count(std::size_t n) {
