@@ -79,8 +79,11 @@ StepReport Rve::step(const Mat3& l, double dt) {
                                  std::to_string(dt) + " s)");
   }
   StepReport rep;
-  const Mat3 g = l * dt;  // strain increment of this MPM step (spin included)
+  const Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
+  // T_p of eq. (11) uses the STRAIN increment (symmetric part): a rigid spin of the cell is not a
+  // deformation and must not make the step longer. The strain-split guard bounds the whole G.
   const double gmax = g.cwiseAbs().maxCoeff();
+  const double emax = (0.5 * (g + g.transpose())).cwiseAbs().maxCoeff();
   double p = pressure(sim_.stress());
   if (!(p >= params_.p_floor)) {
     p = params_.p_floor;
@@ -88,7 +91,7 @@ StepReport Rve::step(const Mat3& l, double dt) {
   }
   const double dt_dem = sim_.numerics().dt_safety * sim_.critical_dt();
   const double rho = params_.material.density;
-  double t_p = std::max(gmax / params_.inertial_number * std::sqrt(rho * d50_ * d50_ / p), dt_dem);
+  double t_p = std::max(emax / params_.inertial_number * std::sqrt(rho * d50_ * d50_ / p), dt_dem);
   if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
   auto n = static_cast<std::int64_t>(std::ceil(t_p / dt_dem));
   const auto n_split = static_cast<std::int64_t>(std::ceil(gmax / params_.max_strain_per_step));

@@ -43,6 +43,28 @@ TEST(Rve, StepAppliesExactIncrementAndReturnsCompressiveStress) {
   EXPECT_LT(s(2, 2), s(0, 0));  // axial compression loads z more
 }
 
+// Eq. (11) takes the strain increment: adding a spin to the same strain leaves T_p unchanged, and a
+// pure spin costs one DEM step (a rigid rotation is not a deformation).
+TEST(Rve, SpinDoesNotLengthenTheQuasiStaticTime) {
+  const dem::Rve base(dem_test::reference_packing(), params());
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1.0;
+  Mat3 w = Mat3::Zero();
+  w(0, 1) = 3.0;
+  w(1, 0) = -3.0;
+  dem::Rve a = base;
+  dem::Rve b = base;
+  dem::Rve c = base;
+  const double dt = 1e-5;
+  const dem::StepReport ra = a.step(l, dt);
+  const dem::StepReport rb = b.step(l + w, dt);
+  EXPECT_EQ(rb.t_p, ra.t_p);
+  EXPECT_EQ(rb.dem_steps, ra.dem_steps);
+  const dem::StepReport rc = c.step(w, dt);
+  EXPECT_EQ(rc.dem_steps, 1);
+  EXPECT_EQ(rc.t_p, rc.dt_dem);
+}
+
 TEST(Rve, ZeroIncrementAndHugeIncrementAreGuarded) {
   dem::RveParams p = params();
   p.max_strain_per_step = 1e-4;

@@ -1,0 +1,118 @@
+#!/usr/bin/python3
+"""Figures of a drained triaxial test, like Duverger et al. 2022 (figs. 1 and 2).
+
+Usage (Debian's python3-matplotlib and python3-h5py; use /usr/bin/python3):
+  tools/plot_triaxial.py --out FIG_PREFIX [--run DIR[=LABEL]]... [--csv FILE[=LABEL]]...
+
+  --run DIR   an `mpmxdem run` output directory (means.csv, results.h5): sample means, and
+              per-RVE principal stresses, coordination number and axial over lateral stress
+  --csv FILE  a series with columns eps_a, eps_v, q (and p): `mpmxdem dem` (dem_series.csv),
+              triax_dem, or YADE's yade_triax_*.csv
+Writes FIG_PREFIX_q_epsv.png (fig. 1: q and eps_v against eps_ax, every source) and, for each
+--run, FIG_PREFIX_rves_<n>.png (fig. 2). Compression positive throughout.
+"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def split_label(arg):
+    path, _, label = arg.partition("=")
+    return path, label or os.path.basename(os.path.normpath(path))
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    head = rows[0]
+    data = np.array([[float(v) for v in r] for r in rows[1:] if r], dtype=float)
+    return {name: data[:, i] for i, name in enumerate(head)}
+
+
+def series_of_csv(path):
+    d = read_csv(path)
+    return d["eps_a"], d["eps_v"], d["q"]
+
+
+def series_of_run(directory):
+    d = read_csv(os.path.join(directory, "means.csv"))
+    return d["eps_ax"], d["eps_v"], d["q_mean_Pa"]
+
+
+def plot_means(sources, prefix):
+    fig, (ax_q, ax_v) = plt.subplots(2, 1, figsize=(7, 8), sharex=True)
+    for label, (eps, epsv, q) in sources:
+        ax_q.plot(100 * eps, q / 1e3, label=label)
+        ax_v.plot(100 * eps, 100 * epsv, label=label)
+    ax_q.set_ylabel("q [kPa]")
+    ax_v.set_ylabel("eps_v [%] (compression positive)")
+    ax_v.set_xlabel("axial strain eps_ax [%]")
+    for ax in (ax_q, ax_v):
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+    fig.tight_layout()
+    name = prefix + "_q_epsv.png"
+    fig.savefig(name, dpi=120)
+    print("wrote", name)
+
+
+def plot_rves(directory, label, prefix, index):
+    import h5py
+
+    with h5py.File(os.path.join(directory, "results.h5"), "r") as f:
+        eps = f["means/eps_ax"][:]
+        stress = -f["rve/stress"][:].reshape(len(eps), -1, 3, 3)  # compression positive
+        z = f["rve/z"][:]
+        ids = f["rve/id"][:]
+    principal = np.linalg.eigvalsh(0.5 * (stress + np.swapaxes(stress, -1, -2)))
+    lateral = 0.5 * (stress[:, :, 0, 0] + stress[:, :, 1, 1])
+    fig, axes = plt.subplots(3, 1, figsize=(7, 10), sharex=True)
+    for k, rve in enumerate(ids):
+        for c, style in zip(range(3), ("-", "--", ":")):
+            axes[0].plot(100 * eps, principal[:, k, c] / 1e3, style, lw=0.8, label=f"RVE {rve}" if c == 2 else None)
+        axes[1].plot(100 * eps, z[:, k], lw=0.8)
+        axes[2].plot(100 * eps, stress[:, k, 2, 2] / lateral[:, k], lw=0.8)
+    axes[0].set_ylabel("principal stresses [kPa]")
+    axes[1].set_ylabel("coordination number Z")
+    axes[2].set_ylabel("sigma_zz / mean lateral")
+    axes[2].set_xlabel("axial strain eps_ax [%]")
+    axes[0].legend(fontsize=7, ncol=4)
+    axes[0].set_title(label)
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    name = f"{prefix}_rves_{index}.png"
+    fig.savefig(name, dpi=120)
+    print("wrote", name)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", required=True, help="prefix of the PNG files")
+    ap.add_argument("--run", action="append", default=[], help="mpmxdem run output directory[=label]")
+    ap.add_argument("--csv", action="append", default=[], help="series CSV[=label]")
+    a = ap.parse_args()
+    if not a.run and not a.csv:
+        ap.error("give at least one --run or --csv")
+    sources = []
+    for arg in a.csv:
+        path, label = split_label(arg)
+        sources.append((label, series_of_csv(path)))
+    for arg in a.run:
+        path, label = split_label(arg)
+        sources.append((label, series_of_run(path)))
+    plot_means(sources, a.out)
+    for i, arg in enumerate(a.run):
+        path, label = split_label(arg)
+        plot_rves(path, label, a.out, i)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
