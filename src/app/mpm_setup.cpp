@@ -39,6 +39,7 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.dt = job.has("mpm.dt") ? job.number("mpm.dt") : 0.0;
   cfg.cfl = job.number("mpm.cfl");
   cfg.mass_threshold = job.number("mpm.mass_threshold");
+  cfg.move_points = job.flag("mpm.move_points");
   setup.end_time = job.number("mpm.end_time");
 
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {

@@ -13,6 +13,10 @@ void add_mpm_sections(Schema& s) {
       .one_of({"usf", "musl"}).or_default(std::string("usf"));
   s.add("mpm.flip", Type::Float, "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP.")
       .in(0, 1).or_default(1.0);
+  s.add("mpm.move_points", Type::Bool,
+        "false: points keep their initial positions (eq. 10 skipped): only for element tests whose cell is the "
+        "sample, e.g. the paper's single-cell triaxial (see docs/mpm.md, Fixed points).")
+      .or_default(true);
   s.add("mpm.damping", Type::Float, "Cundall damping D of the nodal accelerations (eq. 8).").in(0, 1, false, true).or_default(0.0);
   s.add("mpm.damping_mode", Type::String,
         "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")

@@ -205,7 +205,7 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
-    g2p_update(grid, cache_, fields_, config_.pic_fraction, dt, points_);
+    g2p_update(grid, cache_, fields_, config_.pic_fraction, config_.move_points, dt, points_);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
@@ -213,7 +213,7 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
-    g2p_update(grid, cache_, fields_, config_.pic_fraction, dt, points_);
+    g2p_update(grid, cache_, fields_, config_.pic_fraction, config_.move_points, dt, points_);
     p2g_momentum(grid, cache_, bins_, points_, fields_);
     compute_nodal_velocity(threshold_, fields_);
     apply_velocity_constraints(grid, constraints_, t + dt, fields_);

@@ -36,6 +36,11 @@ struct SolverConfig {
   /// Nodes with m_v < mass_threshold * (mean active nodal mass) get zero velocity and
   /// acceleration [-]; in [0, 1).
   double mass_threshold = 1e-6;
+  /// false: eq. 10 is skipped, the points keep their initial positions (their integration
+  /// weights stay those of the regular arrangement) while F, volume, stress and velocity evolve.
+  /// Only for element tests whose cell IS the sample (the paper's single-cell triaxial): the
+  /// material does not advect. docs/mpm.md, "Fixed points".
+  bool move_points = true;
   /// Throws common::InputError naming the field, its value and the rule.
   void validate() const;
 };

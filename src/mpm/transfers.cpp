@@ -205,7 +205,7 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 }
 
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
-                double pic_fraction, double dt, MaterialPoints& points) {
+                double pic_fraction, bool move_points, double dt, MaterialPoints& points) {
   const auto n = static_cast<std::int64_t>(points.size());
 #pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
   for (std::int64_t q = 0; q < n; ++q) {
@@ -225,7 +225,7 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
     }
     const common::Vec3 v_flip = points.v[p] + dt * a_p;
     points.v[p] = pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
-    points.x[p] += dt * points.v[p];
+    if (move_points) points.x[p] += dt * points.v[p];
   }
 }
 

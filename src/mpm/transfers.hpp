@@ -69,8 +69,9 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
                            double threshold, MaterialPoints& points);
 
 /// Eqs. 9-10 blended with PIC: a_p = sum_v S a_v; v_flip = v_p + dt a_p;
-/// v_pic = sum_v S (V_v + dt a_v); v_p <- (1 - pic) v_flip + pic v_pic; x_p <- x_p + dt v_p.
+/// v_pic = sum_v S (V_v + dt a_v); v_p <- (1 - pic) v_flip + pic v_pic; x_p <- x_p + dt v_p
+/// (only when `move_points`: otherwise the points keep their positions, see SolverConfig).
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
-                double pic_fraction, double dt, MaterialPoints& points);
+                double pic_fraction, bool move_points, double dt, MaterialPoints& points);
 
 }  // namespace mpm

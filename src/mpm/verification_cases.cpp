@@ -119,7 +119,8 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
   cfg.shape = tc.shape;
   cfg.damping = tc.damping;
   cfg.cfl = tc.cfl;
-  const Mat3 s0 = -tc.pressure * Mat3::Identity();
+  cfg.move_points = tc.move_points;
+  const Mat3 s0 = -tc.pressure * Mat3::Identity() + tc.initial_stress_seed;
   LinearElastic material(tc.youngs_modulus, tc.poisson_ratio, tc.density, s0);
   MaterialPoints pts;
   fill_box(pts, cfg.grid, Vec3::Zero(), Vec3::Ones(), 2, tc.density, 0);
@@ -162,6 +163,12 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
     r.mean_axial += s(2, 2) / 8.0;
   }
   r.steps = solver.step_count();
+  const MaterialPoints& end = solver.points();
+  for (std::size_t p = 0; p < end.size(); ++p) {
+    for (std::size_t q = 0; q < pts.size(); ++q) {
+      if (pts.id[q] == end.id[p]) r.max_displacement = std::max(r.max_displacement, (end.x[p] - pts.x[q]).norm());
+    }
+  }
   return r;
 }
 

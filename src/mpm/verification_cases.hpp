@@ -54,6 +54,9 @@ struct TriaxialConfig {
   /// Offsets of the 8 points from their regular positions [m] (empty: none), in fill_box order
   /// (x fastest, then y, then z).
   std::vector<common::Vec3> offsets;
+  /// Added to the initial stress -p I (e.g. a small shear, as DEM RVEs carry) [Pa].
+  common::Mat3 initial_stress_seed = common::Mat3::Zero();
+  bool move_points = true;  ///< SolverConfig::move_points
 };
 struct TriaxialResult {
   double lateral_error = 0.0;     ///< max over points and steps of |sigma_xx or yy / (-p) - 1|
@@ -63,6 +66,7 @@ struct TriaxialResult {
   double mean_lateral = 0.0;      ///< mean sigma_xx, sigma_yy at the end [Pa]
   double mean_axial = 0.0;        ///< mean sigma_zz at the end [Pa]
   std::int64_t steps = 0;
+  double max_displacement = 0.0;  ///< largest distance of a point from its start at the end [m]
 };
 TriaxialResult run_single_cell_triaxial(const TriaxialConfig& config);
 
