@@ -9,7 +9,9 @@ Usage (Debian's python3-matplotlib and python3-h5py; use /usr/bin/python3):
   --csv FILE  a series with columns eps_a, eps_v, q (and p): `mpmxdem dem` (dem_series.csv),
               triax_dem, or YADE's yade_triax_*.csv
 Writes FIG_PREFIX_q_epsv.png (fig. 1: q and eps_v against eps_ax, every source) and, for each
---run, FIG_PREFIX_rves_<n>.png (fig. 2). Compression positive throughout.
+--run, FIG_PREFIX_rves_<n>.png (fig. 2). Compression positive throughout. Strains are logarithmic, -ln(stretch), as in the DEM series;
+the MPM means (1 - F_zz, 1 - V/V0) are converted. The MPM cell is fixed, so the platen of eq. 13
+imposes L_zz = -V/h: after a time t the log strain is V t / h (195 s of the paper's job: 0.30).
 """
 import argparse
 import csv
@@ -42,8 +44,10 @@ def series_of_csv(path):
 
 
 def series_of_run(directory):
+    # means.csv holds eps_ax = 1 - F_zz and eps_v = 1 - V/V0; the DEM series (mpmxdem dem,
+    # triax_dem, YADE) hold logarithmic strains -ln(L/L0), -ln(V/V0): convert to those.
     d = read_csv(os.path.join(directory, "means.csv"))
-    return d["eps_ax"], d["eps_v"], d["q_mean_Pa"]
+    return -np.log1p(-d["eps_ax"]), -np.log1p(-d["eps_v"]), d["q_mean_Pa"]
 
 
 def plot_means(sources, prefix):
@@ -67,7 +71,7 @@ def plot_rves(directory, label, prefix, index):
     import h5py
 
     with h5py.File(os.path.join(directory, "results.h5"), "r") as f:
-        eps = f["means/eps_ax"][:]
+        eps = -np.log1p(-f["means/eps_ax"][:])  # logarithmic, as series_of_run
         stress = -f["rve/stress"][:].reshape(len(eps), -1, 3, 3)  # compression positive
         z = f["rve/z"][:]
         ids = f["rve/id"][:]
@@ -78,10 +82,12 @@ def plot_rves(directory, label, prefix, index):
         for c, style in zip(range(3), ("-", "--", ":")):
             axes[0].plot(100 * eps, principal[:, k, c] / 1e3, style, lw=0.8, label=f"RVE {rve}" if c == 2 else None)
         axes[1].plot(100 * eps, z[:, k], lw=0.8)
-        axes[2].plot(100 * eps, stress[:, k, 2, 2] / lateral[:, k], lw=0.8)
+        # An RVE that lost its contacts has no lateral stress: leave those rows out of the ratio.
+        ratio = np.where(lateral[:, k] > 1e3, stress[:, k, 2, 2] / np.maximum(lateral[:, k], 1e3), np.nan)
+        axes[2].plot(100 * eps, ratio, lw=0.8)
     axes[0].set_ylabel("principal stresses [kPa]")
     axes[1].set_ylabel("coordination number Z")
-    axes[2].set_ylabel("sigma_zz / mean lateral")
+    axes[2].set_ylabel("sigma_zz / mean lateral (lateral > 1 kPa)")
     axes[2].set_xlabel("axial strain eps_ax [%]")
     axes[0].legend(fontsize=7, ncol=4)
     axes[0].set_title(label)
