@@ -31,7 +31,7 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   run->add_option("--max-steps", o.max_steps,
                   "Stop after this many MPM steps in total, restarts included (trials, tests); a checkpoint\n"
                   "is written at the end")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::PositiveNumber);
   run->add_flag("--force", o.force, "Write into a non-empty output directory (files of the same name are replaced)");
 
   auto* check = cli.add_subcommand("check", "Validate a job file and print the resolved job (no output written)");

@@ -103,7 +103,6 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
   c.constraints = std::move(setup.constraints);
   c.tractions = std::move(setup.tractions);
   c.end_time = setup.end_time;
-  if (limits.max_steps == 0) throw common::InputError("--max-steps 0: must be >= 1 (omit it for no limit)");
   c.max_steps = std::max<std::int64_t>(limits.max_steps, 0);
   c.job_text = job.source_text();
 
@@ -116,9 +115,6 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
   c.balance.threshold = job.number("farm.rebalance_threshold");
   c.balance.check_every = job.integer("farm.rebalance_check_every");
   c.validate();
-  spdlog::info("coupled run: {} material points ({} DEM RVEs, {} elastic), end time {:.6g} s{}", c.points.size(),
-               dem_ids.size(), c.points.size() - dem_ids.size(), c.end_time,
-               c.max_steps > 0 ? fmt::format(", at most {} MPM steps in total", c.max_steps) : "");
   return c;
 }
 

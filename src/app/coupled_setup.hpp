@@ -14,7 +14,7 @@ namespace app {
 /// Run-time choices that do not come from the job file.
 struct RunLimits {
   std::string out_dir;          ///< existing output directory
-  std::int64_t max_steps = -1;  ///< --max-steps: total MPM steps (restart included); -1: none
+  std::int64_t max_steps = -1;  ///< --max-steps: total MPM steps (restart included); <= 0: none
 };
 
 /// The coupled run of `job`. DEM RVEs are built lazily, once per rank: the sample of

@@ -47,10 +47,14 @@ MpmSetup mpm_setup(const Job& job) {
     const bool is_dem = job.text(base + "material") == "dem";
     const std::int32_t material = is_dem ? kDemMaterial : kElasticMaterial;
     const std::size_t first = setup.points.size();
-    const std::size_t added = mpm::fill_box(setup.points, cfg.grid, vec3(job.numbers(base + "min")),
-                                            vec3(job.numbers(base + "max")),
-                                            static_cast<int>(job.integer(base + "points_per_cell")),
-                                            job.number(base + "density"), material);
+    std::size_t added = 0;
+    try {
+      added = mpm::fill_box(setup.points, cfg.grid, vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")),
+                            static_cast<int>(job.integer(base + "points_per_cell")), job.number(base + "density"),
+                            material);
+    } catch (const common::InputError& e) {
+      throw common::InputError(job.message(base + "max", e.what()));  // name the file, line and key
+    }
     if (added == 0) {
       throw common::InputError(job.message(base + "max", "the box holds no material point (it covers no whole cell)"));
     }
