@@ -22,9 +22,8 @@ int command_run(const Options& o, const Comm& comm) {
     throw common::InputError(fmt::format("{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)",
                                          job.file()));
   }
-  // Everything the job implies is checked before the output directory is touched (the directory
-  // is filled in once open_output has made it).
-  farm::CoupledConfig cfg = coupled_setup(job, RunLimits{"(set below)", o.max_steps});
+  // Everything the job implies is checked before the output directory is touched.
+  const farm::CoupledConfig cfg = coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps});
   if (!o.restart.empty()) {
     // A damaged checkpoint is refused before anything is written (collective: same error everywhere).
     std::string error;
@@ -50,7 +49,6 @@ int command_run(const Options& o, const Comm& comm) {
     spdlog::info("OpenMP: OMP_NUM_THREADS = {} (this node's cores per rank: {})", std::getenv("OMP_NUM_THREADS"),
                  threads);
   }
-  cfg.output.dir = out.string();
   spdlog::info("coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,
                cfg.max_steps > 0 ? fmt::format(", at most {} MPM steps in total", cfg.max_steps) : "");
   const farm::RunSummary s = o.restart.empty() ? farm::run_coupled(cfg, comm.comm)

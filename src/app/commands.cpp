@@ -59,8 +59,12 @@ int command_schema(const Options& /*o*/, const Comm& comm) {
   return 0;
 }
 
+std::filesystem::path output_path(const Options& o) {
+  return o.out.empty() ? default_output_dir(o.job) : std::filesystem::path(o.out);
+}
+
 std::filesystem::path open_output(const Options& o, const Job& job, const Comm& comm) {
-  const std::filesystem::path out = o.out.empty() ? default_output_dir(o.job) : std::filesystem::path(o.out);
+  const std::filesystem::path out = output_path(o);
   check_output_dir(out, o.force, !o.restart.empty());
   MPI_Barrier(comm.comm);  // every rank has checked before anything is written
   if (comm.rank == 0) {

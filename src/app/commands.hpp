@@ -24,6 +24,9 @@ void bcast_error(std::string& error, const Comm& comm);
 /// error is seen (and thrown) on every rank alike.
 [[nodiscard]] Job load_job_collective(const std::string& path, const Comm& comm);
 
+/// The output directory of a command: --out, or results/<job file name>.
+[[nodiscard]] std::filesystem::path output_path(const Options& o);
+
 /// Checks the output directory on every rank, then (rank 0) creates it and writes the job, the
 /// resolved job and the log file there. Returns the directory.
 std::filesystem::path open_output(const Options& o, const Job& job, const Comm& comm);

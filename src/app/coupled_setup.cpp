@@ -1,7 +1,6 @@
 // Job -> farm::CoupledConfig: see coupled_setup.hpp.
 #include "app/coupled_setup.hpp"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -11,7 +10,6 @@
 
 #include "app/dem_setup.hpp"
 #include "app/mpm_setup.hpp"
-#include "common/errors.hpp"
 #include "farm/dem_micro.hpp"
 #include "farm/elastic_micro.hpp"
 

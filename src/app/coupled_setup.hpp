@@ -13,7 +13,7 @@ namespace app {
 
 /// Run-time choices that do not come from the job file.
 struct RunLimits {
-  std::string out_dir;          ///< existing output directory
+  std::string out_dir;          ///< output directory (created by the caller before the run)
   std::int64_t max_steps = -1;  ///< --max-steps: total MPM steps (restart included); <= 0: none
 };
 
