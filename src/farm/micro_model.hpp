@@ -36,6 +36,9 @@ class MicroModel {
   virtual MicroReport step(const common::Mat3& L, double dt) = 0;
   /// Cauchy stress, TENSION POSITIVE (the seam convention of mpm::MaterialModel) [Pa].
   [[nodiscard]] virtual common::Mat3 stress() const = 0;
+  /// Measures of the current state without stepping: p, q, void_ratio, z (and guards that
+  /// describe the state); dem_steps, t_p and wall_s are zero. Outputs at step 0 use it.
+  [[nodiscard]] virtual MicroReport report() const = 0;
   /// Whole state as named fields; the loader of the same kind rebuilds an equal model.
   virtual void save(common::StateWriter& writer) const = 0;
   /// Cost estimate before any timing exists (particle count for DEM) [arbitrary units, > 0].

@@ -1,0 +1,49 @@
+// Rebalancing policy (see header).
+#include "farm/rebalance.hpp"
+
+#include <algorithm>
+
+#include "common/errors.hpp"
+
+namespace farm {
+
+void CostAverage::add_window(const std::vector<double> &window) {
+  if (windows_ == 0 || avg_.size() != window.size()) {
+    avg_ = window;
+    windows_ = 1;
+    return;
+  }
+  for (std::size_t k = 0; k < avg_.size(); ++k)
+    avg_[k] = decay_ * avg_[k] + window[k];
+  ++windows_;
+}
+
+double imbalance(const std::vector<int> &owner, const std::vector<double> &cost,
+                 int nparts) {
+  const double eff = balance_efficiency(owner, cost, nparts);
+  return eff > 0.0 ? 1.0 / eff : 1.0;
+}
+
+RebalancePlan plan_rebalance(const RveGraph &graph,
+                             const std::vector<int> &owner,
+                             const std::vector<double> &cost, int nparts,
+                             double threshold, int seed) {
+  MPMXDEM_CHECK(cost.size() == owner.size() && graph.size() == owner.size(),
+                "one cost and one owner per RVE of the graph");
+  RebalancePlan plan;
+  plan.owner = owner;
+  plan.imbalance_now = imbalance(owner, cost, nparts);
+  plan.imbalance_new = plan.imbalance_now;
+  if (nparts <= 1 || !(plan.imbalance_now > threshold))
+    return plan;
+  std::vector<int> proposal = partition_metis(graph, cost, nparts, seed);
+  plan.imbalance_new = imbalance(proposal, cost, nparts);
+  const double margin = 0.5 * std::max(threshold - 1.0, 0.01);
+  if (plan.imbalance_now - plan.imbalance_new > margin && proposal != owner) {
+    plan.migrate = true;
+    plan.owner = std::move(proposal);
+  }
+  return plan;
+}
+
+} // namespace farm
