@@ -1,5 +1,4 @@
-// Rve: the quasi-static RVE step of Duverger et al. 2022, eqs. (11)-(12), with
-// guards.
+// Rve: the quasi-static RVE step of Duverger et al. 2022, eqs. (11)-(12), with guards.
 #include "dem/rve.hpp"
 
 #include <algorithm>
@@ -20,43 +19,34 @@ using common::Mat3;
 void RveParams::validate() const {
   material.validate();
   numerics.validate();
-  auto bad = [](const char *key, double v, const char *rule) {
+  auto bad = [](const char* key, double v, const char* rule) {
     std::ostringstream os;
     os << key << " = " << v << ": " << rule;
     throw common::InputError(os.str());
   };
-  if (!(inertial_number > 0.0))
-    bad("dem.rve.inertial_number", inertial_number, "must be > 0");
-  if (!(d50 >= 0.0))
-    bad("dem.rve.d50", d50, "must be >= 0 (0: from the spheres) [m]");
-  if (!(p_floor > 0.0))
-    bad("dem.rve.p_floor", p_floor, "must be > 0 [Pa]");
-  if (!(max_strain_per_step > 0.0))
-    bad("dem.rve.max_strain_per_step", max_strain_per_step, "must be > 0");
-  if (max_steps_per_call < 1)
-    bad("dem.rve.max_steps_per_call", static_cast<double>(max_steps_per_call),
-        "must be >= 1");
-  if (!(initial_pressure >= 0.0))
-    bad("dem.rve.initial_pressure", initial_pressure, "must be >= 0 [Pa]");
+  if (!(inertial_number > 0.0)) bad("dem.rve.inertial_number", inertial_number, "must be > 0");
+  if (!(d50 >= 0.0)) bad("dem.rve.d50", d50, "must be >= 0 (0: from the spheres) [m]");
+  if (!(p_floor > 0.0)) bad("dem.rve.p_floor", p_floor, "must be > 0 [Pa]");
+  if (!(max_strain_per_step > 0.0)) bad("dem.rve.max_strain_per_step", max_strain_per_step, "must be > 0");
+  if (max_steps_per_call < 1) bad("dem.rve.max_steps_per_call", static_cast<double>(max_steps_per_call), "must be >= 1");
+  if (!(initial_pressure >= 0.0)) bad("dem.rve.initial_pressure", initial_pressure, "must be >= 0 [Pa]");
 }
 
-double mass_median_diameter(const std::vector<double> &radii) {
+double mass_median_diameter(const std::vector<double>& radii) {
   std::vector<double> r = radii;
   std::sort(r.begin(), r.end());
   double total = 0.0;
-  for (double x : r)
-    total += x * x * x;
+  for (double x : r) total += x * x * x;
   double acc = 0.0;
   for (double x : r) {
     acc += x * x * x;
-    if (acc >= 0.5 * total)
-      return 2.0 * x;
+    if (acc >= 0.5 * total) return 2.0 * x;
   }
   return r.empty() ? 0.0 : 2.0 * r.back();
 }
 
 namespace {
-Simulation build(const Packing &pk, const RveParams &params) {
+Simulation build(const Packing& pk, const RveParams& params) {
   params.validate();
   Simulation sim = make_simulation(pk, params.material, params.numerics);
   if (params.initial_pressure > 0.0) {
@@ -66,36 +56,32 @@ Simulation build(const Packing &pk, const RveParams &params) {
   }
   return sim;
 }
-} // namespace
+}  // namespace
 
-Rve::Rve(const Packing &pk, const RveParams &params)
-    : sim_(build(pk, params)), params_(params),
+Rve::Rve(const Packing& pk, const RveParams& params)
+    : sim_(build(pk, params)),
+      params_(params),
       d50_(params.d50 > 0.0 ? params.d50 : mass_median_diameter(pk.r)) {}
 
-Rve Rve::from_simulation(Simulation sim, const RveParams &params) {
+Rve Rve::from_simulation(Simulation sim, const RveParams& params) {
   params.validate();
-  const double d50 =
-      params.d50 > 0.0 ? params.d50 : mass_median_diameter(sim.spheres().r);
+  const double d50 = params.d50 > 0.0 ? params.d50 : mass_median_diameter(sim.spheres().r);
   return Rve(std::move(sim), params, d50);
 }
 
-Rve::Rve(Simulation sim, const RveParams &params, double d50)
+Rve::Rve(Simulation sim, const RveParams& params, double d50)
     : sim_(std::move(sim)), params_(params), d50_(d50) {}
 
-StepReport Rve::step(const Mat3 &l, double dt) {
+StepReport Rve::step(const Mat3& l, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!(dt >= 0.0) || !l.allFinite()) {
-    throw common::NumericalError(
-        "dem::Rve::step: non-finite L or negative dt (dt = " +
-        std::to_string(dt) + " s)");
+    throw common::NumericalError("dem::Rve::step: non-finite L or negative dt (dt = " +
+                                 std::to_string(dt) + " s)");
   }
   StepReport rep;
-  const Mat3 g =
-      l *
-      dt; // displacement-gradient increment of this MPM step (spin included)
-  // T_p of eq. (11) uses the STRAIN increment (symmetric part): a rigid spin of
-  // the cell is not a deformation and must not make the step longer. The
-  // strain-split guard bounds the whole G.
+  const Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
+  // T_p of eq. (11) uses the STRAIN increment (symmetric part): a rigid spin of the cell is not a
+  // deformation and must not make the step longer. The strain-split guard bounds the whole G.
   const double gmax = g.cwiseAbs().maxCoeff();
   const double emax = (0.5 * (g + g.transpose())).cwiseAbs().maxCoeff();
   double p = pressure(sim_.stress());
@@ -105,14 +91,10 @@ StepReport Rve::step(const Mat3 &l, double dt) {
   }
   const double dt_dem = sim_.numerics().dt_safety * sim_.critical_dt();
   const double rho = params_.material.density;
-  double t_p = std::max(emax / params_.inertial_number *
-                            std::sqrt(rho * d50_ * d50_ / p),
-                        dt_dem);
-  if (gmax == 0.0)
-    rep.guards |= kGuardZeroIncrement;
+  double t_p = std::max(emax / params_.inertial_number * std::sqrt(rho * d50_ * d50_ / p), dt_dem);
+  if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
   auto n = static_cast<std::int64_t>(std::ceil(t_p / dt_dem));
-  const auto n_split =
-      static_cast<std::int64_t>(std::ceil(gmax / params_.max_strain_per_step));
+  const auto n_split = static_cast<std::int64_t>(std::ceil(gmax / params_.max_strain_per_step));
   if (n_split > n) {
     n = n_split;
     rep.guards |= kGuardStrainSplit;
@@ -125,21 +107,18 @@ StepReport Rve::step(const Mat3 &l, double dt) {
   n = std::max<std::int64_t>(n, 1);
   sim_.set_dt(t_p / static_cast<double>(n));
   sim_.cell().l = g / t_p;
-  for (std::int64_t s = 0; s < n; ++s)
-    sim_.step();
+  for (std::int64_t s = 0; s < n; ++s) sim_.step();
   sim_.cell().l.setZero();
-  // Final stress at the deformed configuration (forces of the end state, no
-  // motion).
+  // Final stress at the deformed configuration (forces of the end state, no motion).
   const double keep = sim_.dt();
   sim_.set_dt(0.0);
   sim_.compute_forces();
   sim_.set_dt(keep);
 
-  const Mat3 &sigma = sim_.stress();
+  const Mat3& sigma = sim_.stress();
   if (!sigma.allFinite()) {
-    throw common::NumericalError(
-        "dem::Rve::step: non-finite stress after " + std::to_string(n) +
-        " DEM steps (t = " + std::to_string(sim_.time()) + " s)");
+    throw common::NumericalError("dem::Rve::step: non-finite stress after " + std::to_string(n) +
+                                 " DEM steps (t = " + std::to_string(sim_.time()) + " s)");
   }
   const StepReport m = measure();
   rep.dem_steps = n;
@@ -150,46 +129,36 @@ StepReport Rve::step(const Mat3 &l, double dt) {
   rep.void_ratio = m.void_ratio;
   rep.z = m.z;
   rep.guards |= m.guards;
-  rep.wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-          .count();
+  rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }
 
 StepReport Rve::measure() const {
   StepReport rep;
-  const Mat3 &sigma = sim_.stress();
+  const Mat3& sigma = sim_.stress();
   rep.p = pressure(sigma);
   rep.q = deviatoric(sigma);
   rep.void_ratio = void_ratio(sim_);
   std::int64_t nc = 0;
-  for (auto a : sim_.contacts().active)
-    nc += a;
-  rep.z = 2.0 * static_cast<double>(nc) /
-          static_cast<double>(std::max<std::size_t>(1, num_spheres()));
-  if (nc == 0)
-    rep.guards |= kGuardNoContacts;
+  for (auto a : sim_.contacts().active) nc += a;
+  rep.z = 2.0 * static_cast<double>(nc) / static_cast<double>(std::max<std::size_t>(1, num_spheres()));
+  if (nc == 0) rep.guards |= kGuardNoContacts;
   return rep;
 }
 
-void Rve::save(common::StateWriter &w) const {
+void Rve::save(common::StateWriter& w) const {
   save_simulation(sim_, w, "");
-  const std::vector<double> rp{params_.inertial_number,
-                               params_.d50,
-                               params_.p_floor,
+  const std::vector<double> rp{params_.inertial_number, params_.d50, params_.p_floor,
                                params_.max_strain_per_step,
                                static_cast<double>(params_.max_steps_per_call),
-                               params_.initial_pressure,
-                               d50_};
+                               params_.initial_pressure, d50_};
   w.write("rve/params", rp);
 }
 
-Rve Rve::load(const common::StateReader &r) {
+Rve Rve::load(const common::StateReader& r) {
   Simulation sim = load_simulation(r, "");
   const auto rp = r.read_f64("rve/params");
-  if (rp.size() != 7)
-    throw common::InputError(
-        "dem state: field 'rve/params' must have 7 values");
+  if (rp.size() != 7) throw common::InputError("dem state: field 'rve/params' must have 7 values");
   RveParams params;
   params.material = sim.law().material();
   params.numerics = sim.numerics();
@@ -203,4 +172,4 @@ Rve Rve::load(const common::StateReader &r) {
   return Rve(std::move(sim), params, rp[6]);
 }
 
-} // namespace dem
+}  // namespace dem

@@ -1,7 +1,6 @@
-// dem::Rve: the façade the MPM farm drives. One step = the continuum velocity
-// gradient L over the MPM step dt, applied to the periodic cell over the
-// quasi-static time T_p of Duverger et al. 2022 (eqs. 11-12); returns the
-// Love-Weber Cauchy stress, TENSION POSITIVE (the seam convention).
+// dem::Rve: the façade the MPM farm drives. One step = the continuum velocity gradient L over the
+// MPM step dt, applied to the periodic cell over the quasi-static time T_p of Duverger et al.
+// 2022 (eqs. 11-12); returns the Love-Weber Cauchy stress, TENSION POSITIVE (the seam convention).
 #pragma once
 
 #include <cstdint>
@@ -19,92 +18,78 @@ namespace dem {
 struct RveParams {
   Material material;
   Numerics numerics;
-  double inertial_number = 2.5e-4; ///< I of eq. (11) [-], > 0
-  double d50 = 0.0;     ///< d50 of eq. (11) [m]; 0: mass median of the spheres
-  double p_floor = 1e3; ///< floor on p in eq. (11) [Pa], > 0
-  double max_strain_per_step =
-      1e-4; ///< bound on max|L dt_DEM| per DEM step [-]
-  std::int64_t max_steps_per_call =
-      2'000'000; ///< cap on DEM steps per step() [-]
-  double initial_pressure =
-      0.0; ///< > 0: equilibrate isotropically at construction [Pa]
+  double inertial_number = 2.5e-4;      ///< I of eq. (11) [-], > 0
+  double d50 = 0.0;                     ///< d50 of eq. (11) [m]; 0: mass median of the spheres
+  double p_floor = 1e3;                 ///< floor on p in eq. (11) [Pa], > 0
+  double max_strain_per_step = 1e-4;    ///< bound on max|L dt_DEM| per DEM step [-]
+  std::int64_t max_steps_per_call = 2'000'000;  ///< cap on DEM steps per step() [-]
+  double initial_pressure = 0.0;        ///< > 0: equilibrate isotropically at construction [Pa]
 
   void validate() const;
 };
 
 /// Bits of StepReport::guards.
 enum RveGuard : std::uint32_t {
-  kGuardPressureFloor = 1u << 0, ///< p < p_floor: T_p computed with p_floor
-  kGuardStrainSplit =
-      1u << 1, ///< more steps than T_p / dt_DEM to bound the strain per step
-  kGuardStepCap = 1u << 2, ///< T_p shortened to max_steps_per_call DEM steps
-  kGuardNoContacts =
-      1u << 3, ///< no contact at the end of the step (stress is zero)
-  kGuardZeroIncrement = 1u << 4, ///< L dt == 0: one relaxation step of dt_DEM
+  kGuardPressureFloor = 1u << 0,  ///< p < p_floor: T_p computed with p_floor
+  kGuardStrainSplit = 1u << 1,    ///< more steps than T_p / dt_DEM to bound the strain per step
+  kGuardStepCap = 1u << 2,        ///< T_p shortened to max_steps_per_call DEM steps
+  kGuardNoContacts = 1u << 3,     ///< no contact at the end of the step (stress is zero)
+  kGuardZeroIncrement = 1u << 4,  ///< L dt == 0: one relaxation step of dt_DEM
 };
 
 /// What one RVE step did.
 struct StepReport {
-  std::int64_t dem_steps = 0; ///< DEM steps done [-]
-  double t_p = 0.0;           ///< quasi-static time T_p [s]
-  double dt_dem = 0.0;        ///< DEM time step used [s]
-  std::uint32_t guards = 0;   ///< RveGuard bits
-  double p = 0.0;             ///< mean pressure, compression positive [Pa]
-  double q = 0.0;             ///< deviatoric stress sqrt(3/2 s:s) [Pa]
-  double void_ratio = 0.0;    ///< [-]
-  double z = 0.0;             ///< coordination number 2 Nc / N [-]
-  double wall_s = 0.0;        ///< wall-clock seconds of the step [s]
+  std::int64_t dem_steps = 0;  ///< DEM steps done [-]
+  double t_p = 0.0;            ///< quasi-static time T_p [s]
+  double dt_dem = 0.0;         ///< DEM time step used [s]
+  std::uint32_t guards = 0;    ///< RveGuard bits
+  double p = 0.0;              ///< mean pressure, compression positive [Pa]
+  double q = 0.0;              ///< deviatoric stress sqrt(3/2 s:s) [Pa]
+  double void_ratio = 0.0;     ///< [-]
+  double z = 0.0;              ///< coordination number 2 Nc / N [-]
+  double wall_s = 0.0;         ///< wall-clock seconds of the step [s]
 };
 
 class Rve {
-public:
-  /// Build from a packing (spheres at rest, contacts detected, optional
-  /// equilibration).
-  Rve(const Packing &packing, const RveParams &params);
-  /// Wrap an already prepared simulation (contact history kept: shear forces
-  /// and moments). `params.initial_pressure` is ignored (nothing is
-  /// re-equilibrated).
-  [[nodiscard]] static Rve from_simulation(Simulation sim,
-                                           const RveParams &params);
+ public:
+  /// Build from a packing (spheres at rest, contacts detected, optional equilibration).
+  Rve(const Packing& packing, const RveParams& params);
+  /// Wrap an already prepared simulation (contact history kept: shear forces and moments).
+  /// `params.initial_pressure` is ignored (nothing is re-equilibrated).
+  [[nodiscard]] static Rve from_simulation(Simulation sim, const RveParams& params);
 
-  /// Deform the cell by the increment L dt over T_p = max(max|L dt| / I
-  /// sqrt(rho d50^2 / p), dt_DEM): the cell runs with L_DEM = L dt / T_p for n
-  /// = T_p / dt_DEM whole steps.
-  /// @param l  velocity gradient (v = L x, spin included) [1/s]  @param dt MPM
-  /// step [s], >= 0
+  /// Deform the cell by the increment L dt over T_p = max(max|L dt| / I sqrt(rho d50^2 / p),
+  /// dt_DEM): the cell runs with L_DEM = L dt / T_p for n = T_p / dt_DEM whole steps.
+  /// @param l  velocity gradient (v = L x, spin included) [1/s]  @param dt MPM step [s], >= 0
   /// @post stress() is the Love-Weber stress at the end, tension positive [Pa]
-  StepReport step(const common::Mat3 &l, double dt);
+  StepReport step(const common::Mat3& l, double dt);
 
   /// Love-Weber Cauchy stress, tension positive [Pa].
   [[nodiscard]] common::Mat3 stress() const { return sim_.stress(); }
-  /// The measures of the current state (p, q, void ratio, Z, kGuardNoContacts);
-  /// the step fields (dem_steps, t_p, dt_dem, wall_s) stay zero. step() reports
-  /// the same at its end.
+  /// The measures of the current state (p, q, void ratio, Z, kGuardNoContacts); the step fields
+  /// (dem_steps, t_p, dt_dem, wall_s) stay zero. step() reports the same at its end.
   [[nodiscard]] StepReport measure() const;
   /// Cost proxy: number of spheres.
-  [[nodiscard]] std::size_t num_spheres() const {
-    return sim_.spheres().size();
-  }
-  [[nodiscard]] const RveParams &params() const { return params_; }
-  [[nodiscard]] double d50() const { return d50_; } ///< [m]
+  [[nodiscard]] std::size_t num_spheres() const { return sim_.spheres().size(); }
+  [[nodiscard]] const RveParams& params() const { return params_; }
+  [[nodiscard]] double d50() const { return d50_; }  ///< [m]
 
-  /// Full state as named fields ("spheres/x", "contacts/shear_force", ...;
-  /// docs/dem.md).
-  void save(common::StateWriter &w) const;
+  /// Full state as named fields ("spheres/x", "contacts/shear_force", ...; docs/dem.md).
+  void save(common::StateWriter& w) const;
   /// Restore a saved RVE; it continues bit for bit.
-  [[nodiscard]] static Rve load(const common::StateReader &r);
+  [[nodiscard]] static Rve load(const common::StateReader& r);
 
-  [[nodiscard]] const Simulation &simulation() const { return sim_; }
-  Simulation &simulation() { return sim_; }
+  [[nodiscard]] const Simulation& simulation() const { return sim_; }
+  Simulation& simulation() { return sim_; }
 
-private:
-  Rve(Simulation sim, const RveParams &params, double d50);
+ private:
+  Rve(Simulation sim, const RveParams& params, double d50);
   Simulation sim_;
   RveParams params_;
   double d50_ = 0.0;
 };
 
 /// Mass-median diameter of a set of radii [m].
-[[nodiscard]] double mass_median_diameter(const std::vector<double> &radii);
+[[nodiscard]] double mass_median_diameter(const std::vector<double>& radii);
 
-} // namespace dem
+}  // namespace dem

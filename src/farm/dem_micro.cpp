@@ -11,7 +11,7 @@ namespace farm {
 
 namespace {
 
-MicroReport to_micro(const dem::StepReport &s) {
+MicroReport to_micro(const dem::StepReport& s) {
   MicroReport r;
   r.p = s.p;
   r.q = s.q;
@@ -24,60 +24,56 @@ MicroReport to_micro(const dem::StepReport &s) {
   return r;
 }
 
-} // namespace
+}  // namespace
 
 DemMicro::DemMicro(dem::Rve rve, std::uint32_t fail_guards)
     : rve_(std::move(rve)), fail_guards_(fail_guards) {}
 
-MicroReport DemMicro::step(const common::Mat3 &L, double dt) {
+MicroReport DemMicro::step(const common::Mat3& L, double dt) {
   const dem::StepReport s = rve_.step(L, dt);
   if ((s.guards & fail_guards_) != 0U) {
-    throw common::NumericalError(
-        "DEM RVE guard exhausted (guards = " + std::to_string(s.guards) +
-        ", failing set = " + std::to_string(fail_guards_) + "): " +
-        ((s.guards & dem::kGuardStepCap) != 0U
-             ? "T_p needed more than max_steps_per_call = " +
-                   std::to_string(rve_.params().max_steps_per_call) +
-                   " DEM steps"
-             : std::string("see dem::RveGuard")));
+    throw common::NumericalError("DEM RVE guard exhausted (guards = " + std::to_string(s.guards) +
+                                 ", failing set = " + std::to_string(fail_guards_) + "): " +
+                                 ((s.guards & dem::kGuardStepCap) != 0U
+                                      ? "T_p needed more than max_steps_per_call = " +
+                                            std::to_string(rve_.params().max_steps_per_call) +
+                                            " DEM steps"
+                                      : std::string("see dem::RveGuard")));
   }
   return to_micro(s);
 }
 
 MicroReport DemMicro::report() const { return to_micro(rve_.measure()); }
 
-void DemMicro::save(common::StateWriter &w) const {
+void DemMicro::save(common::StateWriter& w) const {
   rve_.save(w);
   w.write("farm/dem_fail_guards",
           std::vector<std::int64_t>{static_cast<std::int64_t>(fail_guards_)});
 }
 
 double DemMicro::wave_speed() const {
-  const dem::Material &m = rve_.params().material;
+  const dem::Material& m = rve_.params().material;
   return std::sqrt(m.young / m.density);
 }
 
-std::unique_ptr<MicroModel> DemMicro::load(const common::StateReader &r) {
+std::unique_ptr<MicroModel> DemMicro::load(const common::StateReader& r) {
   const auto g = r.read_i64("farm/dem_fail_guards");
   if (g.size() != 1 || g[0] < 0) {
-    throw common::InputError("DEM micro state: field 'farm/dem_fail_guards' "
-                             "must hold one value >= 0");
+    throw common::InputError(
+        "DEM micro state: field 'farm/dem_fail_guards' must hold one value >= 0");
   }
-  return std::make_unique<DemMicro>(dem::Rve::load(r),
-                                    static_cast<std::uint32_t>(g[0]));
+  return std::make_unique<DemMicro>(dem::Rve::load(r), static_cast<std::uint32_t>(g[0]));
 }
 
-MicroKind
-DemMicro::kind(const DemMicroParams &params,
-               std::function<dem::Packing(std::int64_t id)> packing_of) {
+MicroKind DemMicro::kind(const DemMicroParams& params,
+                         std::function<dem::Packing(std::int64_t id)> packing_of) {
   params.rve.validate();
   MicroKind k;
   k.create = [params, packing_of = std::move(packing_of)](std::int64_t id) {
-    return std::make_unique<DemMicro>(dem::Rve(packing_of(id), params.rve),
-                                      params.fail_guards);
+    return std::make_unique<DemMicro>(dem::Rve(packing_of(id), params.rve), params.fail_guards);
   };
-  k.load = [](const common::StateReader &r) { return DemMicro::load(r); };
+  k.load = [](const common::StateReader& r) { return DemMicro::load(r); };
   return k;
 }
 
-} // namespace farm
+}  // namespace farm

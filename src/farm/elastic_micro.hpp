@@ -1,7 +1,6 @@
-// farm::ElasticMicro: a cheap deterministic VERIFICATION micro model
-// (hypoelastic, Jaumann rate, Hughes-Winget objective update) that exercises
-// the farm's plumbing without DEM. Not a physics model of sand: use it for
-// protocol, determinism, restart and balancing tests and benchmarks.
+// farm::ElasticMicro: a cheap deterministic VERIFICATION micro model (hypoelastic, Jaumann rate,
+// Hughes-Winget objective update) that exercises the farm's plumbing without DEM. Not a physics
+// model of sand: use it for protocol, determinism, restart and balancing tests and benchmarks.
 #pragma once
 
 #include "farm/micro_model.hpp"
@@ -9,18 +8,16 @@
 namespace farm {
 
 struct ElasticMicroParams {
-  double young = 0.0;   ///< E [Pa], > 0
-  double poisson = 0.0; ///< nu [-], in (-1, 0.5)
-  double density = 0.0; ///< rho [kg/m^3], > 0 (wave speed only)
-  double void_ratio0 =
-      0.6; ///< initial void ratio, carried by the volume change [-]
-  common::Mat3 initial_stress = common::Mat3::Zero(); ///< tension positive [Pa]
-  /// Cost knob: every step is split into this many equal sub-increments (>= 1).
-  /// Gives RVEs of different cost for balancing tests; the stress depends on it
-  /// (it is part of the model).
+  double young = 0.0;        ///< E [Pa], > 0
+  double poisson = 0.0;      ///< nu [-], in (-1, 0.5)
+  double density = 0.0;      ///< rho [kg/m^3], > 0 (wave speed only)
+  double void_ratio0 = 0.6;  ///< initial void ratio, carried by the volume change [-]
+  common::Mat3 initial_stress = common::Mat3::Zero();  ///< tension positive [Pa]
+  /// Cost knob: every step is split into this many equal sub-increments (>= 1). Gives RVEs of
+  /// different cost for balancing tests; the stress depends on it (it is part of the model).
   std::int64_t substeps = 1;
-  /// Fault injection for failure tests: the RVE with this id throws
-  /// common::NumericalError at its step number fail_step (1-based). -1: never.
+  /// Fault injection for failure tests: the RVE with this id throws common::NumericalError at
+  /// its step number fail_step (1-based). -1: never.
   std::int64_t fail_id = -1;
   std::int64_t fail_step = -1;
   /// Throws common::InputError naming the first invalid entry.
@@ -28,33 +25,31 @@ struct ElasticMicroParams {
 };
 
 class ElasticMicro final : public MicroModel {
-public:
-  ElasticMicro(std::int64_t id, const ElasticMicroParams &params);
-  MicroReport step(const common::Mat3 &L, double dt) override;
+ public:
+  ElasticMicro(std::int64_t id, const ElasticMicroParams& params);
+  MicroReport step(const common::Mat3& L, double dt) override;
   [[nodiscard]] common::Mat3 stress() const override { return stress_; }
   /// p and q of the stress, e = (1 + e0) J - 1, Z = 0.
   [[nodiscard]] MicroReport report() const override;
-  /// Fields: elastic/id, elastic/params, elastic/stress, elastic/j,
-  /// elastic/steps.
-  void save(common::StateWriter &writer) const override;
+  /// Fields: elastic/id, elastic/params, elastic/stress, elastic/j, elastic/steps.
+  void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override {
     return static_cast<double>(params_.substeps);
   }
   /// P-wave speed sqrt((lambda + 2 mu) / rho) [m/s].
   [[nodiscard]] double wave_speed() const override;
 
-  /// Rebuilds from save(); throws common::InputError naming a missing or
-  /// malformed field.
-  static std::unique_ptr<MicroModel> load(const common::StateReader &reader);
+  /// Rebuilds from save(); throws common::InputError naming a missing or malformed field.
+  static std::unique_ptr<MicroModel> load(const common::StateReader& reader);
   /// A MicroKind creating ElasticMicro(id, params) for every id.
-  static MicroKind kind(const ElasticMicroParams &params);
+  static MicroKind kind(const ElasticMicroParams& params);
 
-private:
+ private:
   std::int64_t id_;
   ElasticMicroParams params_;
   common::Mat3 stress_;
-  double j_ = 1.0; ///< volume ratio V / V0 [-]
+  double j_ = 1.0;  ///< volume ratio V / V0 [-]
   std::int64_t steps_ = 0;
 };
 
-} // namespace farm
+}  // namespace farm

@@ -13,29 +13,25 @@ void CostAverage::add_window(const std::vector<double> &window) {
     windows_ = 1;
     return;
   }
-  for (std::size_t k = 0; k < avg_.size(); ++k)
-    avg_[k] = decay_ * avg_[k] + window[k];
+  for (std::size_t k = 0; k < avg_.size(); ++k) avg_[k] = decay_ * avg_[k] + window[k];
   ++windows_;
 }
 
-double imbalance(const std::vector<int> &owner, const std::vector<double> &cost,
-                 int nparts) {
+double imbalance(const std::vector<int> &owner, const std::vector<double> &cost, int nparts) {
   const double eff = balance_efficiency(owner, cost, nparts);
   return eff > 0.0 ? 1.0 / eff : 1.0;
 }
 
-RebalancePlan plan_rebalance(const RveGraph &graph,
-                             const std::vector<int> &owner,
-                             const std::vector<double> &cost, int nparts,
-                             double threshold, int seed) {
+RebalancePlan plan_rebalance(const RveGraph &graph, const std::vector<int> &owner,
+                             const std::vector<double> &cost, int nparts, double threshold,
+                             int seed) {
   MPMXDEM_CHECK(cost.size() == owner.size() && graph.size() == owner.size(),
                 "one cost and one owner per RVE of the graph");
   RebalancePlan plan;
   plan.owner = owner;
   plan.imbalance_now = imbalance(owner, cost, nparts);
   plan.imbalance_new = plan.imbalance_now;
-  if (nparts <= 1 || !(plan.imbalance_now > threshold))
-    return plan;
+  if (nparts <= 1 || !(plan.imbalance_now > threshold)) return plan;
   std::vector<int> proposal = partition_metis(graph, cost, nparts, seed);
   plan.imbalance_new = imbalance(proposal, cost, nparts);
   const double margin = 0.5 * std::max(threshold - 1.0, 0.01);
@@ -46,4 +42,4 @@ RebalancePlan plan_rebalance(const RveGraph &graph,
   return plan;
 }
 
-} // namespace farm
+}  // namespace farm

@@ -18,7 +18,7 @@ namespace farm {
 /// window (the first window starts it). With decay 0.8 the average spans ~5
 /// windows (1 / (1 - decay)).
 class CostAverage {
-public:
+ public:
   explicit CostAverage(double decay = 0.8) : decay_(decay) {}
   /// Adds one window of measured costs (seconds per RVE, by index) [s].
   void add_window(const std::vector<double> &window);
@@ -27,7 +27,7 @@ public:
   [[nodiscard]] const std::vector<double> &cost() const { return avg_; }
   [[nodiscard]] int windows() const { return windows_; }
 
-private:
+ private:
   double decay_;
   std::vector<double> avg_;
   int windows_ = 0;
@@ -36,11 +36,9 @@ private:
 /// The decision of one check.
 struct RebalancePlan {
   bool migrate = false;
-  std::vector<int>
-      owner; ///< the new owners when migrate, else the current ones
-  double imbalance_now =
-      1.0; ///< max/mean of part loads with the current owners [-]
-  double imbalance_new = 1.0; ///< the same for METIS's proposal [-]
+  std::vector<int> owner;      ///< the new owners when migrate, else the current ones
+  double imbalance_now = 1.0;  ///< max/mean of part loads with the current owners [-]
+  double imbalance_new = 1.0;  ///< the same for METIS's proposal [-]
 };
 
 /// Proposes a METIS partition of `cost` and adopts it when the current
@@ -48,14 +46,12 @@ struct RebalancePlan {
 /// max(threshold - 1, 0.01) / 2 (the gain must be above the noise a threshold
 /// is set against). threshold <= 1 only keeps the 0.005 margin.
 /// @pre cost.size() == owner.size() == graph.size()
-[[nodiscard]] RebalancePlan plan_rebalance(const RveGraph &graph,
-                                           const std::vector<int> &owner,
-                                           const std::vector<double> &cost,
-                                           int nparts, double threshold,
-                                           int seed);
+[[nodiscard]] RebalancePlan plan_rebalance(const RveGraph &graph, const std::vector<int> &owner,
+                                           const std::vector<double> &cost, int nparts,
+                                           double threshold, int seed);
 
 /// Max over mean of the part loads (>= 1; 1 when every load is zero) [-].
-[[nodiscard]] double imbalance(const std::vector<int> &owner,
-                               const std::vector<double> &cost, int nparts);
+[[nodiscard]] double imbalance(const std::vector<int> &owner, const std::vector<double> &cost,
+                               int nparts);
 
-} // namespace farm
+}  // namespace farm

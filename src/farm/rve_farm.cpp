@@ -1,5 +1,4 @@
-// RveFarm: the master/worker protocol over MPI (see header and docs/farm.md,
-// "Protocol").
+// RveFarm: the master/worker protocol over MPI (see header and docs/farm.md, "Protocol").
 #include "farm/rve_farm.hpp"
 
 #include <omp.h>
@@ -18,63 +17,51 @@ namespace farm {
 
 namespace {
 
-enum Command : std::int32_t {
-  kStep = 1,
-  kCheckpoint = 2,
-  kMigrate = 3,
-  kStop = 4,
-  kStopError = 5
-};
+enum Command : std::int32_t { kStep = 1, kCheckpoint = 2, kMigrate = 3, kStop = 4, kStopError = 5 };
 
-/// Per-RVE record gathered to rank 0 (doubles): stress (9, row-major), p, q, e,
-/// z, t_p, wall_s, wave speed, dem_steps, guards, error kind.
+/// Per-RVE record gathered to rank 0 (doubles): stress (9, row-major), p, q, e, z, t_p, wall_s,
+/// wave speed, dem_steps, guards, error kind.
 constexpr std::size_t kRecord = 19;
 
 double now() {
-  return std::chrono::duration<double>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-template <class T> void append(std::vector<char> &out, const T &v) {
-  const auto *p = reinterpret_cast<const char *>(&v);
+template <class T>
+void append(std::vector<char>& out, const T& v) {
+  const auto* p = reinterpret_cast<const char*>(&v);
   out.insert(out.end(), p, p + sizeof(T));
 }
 
-template <class T> T take(const char *data, std::size_t &pos) {
+template <class T>
+T take(const char* data, std::size_t& pos) {
   T v;
   std::memcpy(&v, data + pos, sizeof(T));
   pos += sizeof(T);
   return v;
 }
 
-/// Every entry is set by exactly one rank (its owner) and zero bits elsewhere:
-/// a bitwise OR of the bit patterns gives every rank the exact values (a
-/// floating-point sum would turn -0.0 into 0.0).
-void allgather_owned(MPI_Comm comm, std::vector<double> &v) {
+/// Every entry is set by exactly one rank (its owner) and zero bits elsewhere: a bitwise OR of the
+/// bit patterns gives every rank the exact values (a floating-point sum would turn -0.0 into 0.0).
+void allgather_owned(MPI_Comm comm, std::vector<double>& v) {
   static_assert(sizeof(double) == sizeof(std::uint64_t));
-  if (v.empty())
-    return;
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), to_count(v.size()), MPI_UINT64_T,
-                MPI_BOR, comm);
+  if (v.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, v.data(), to_count(v.size()), MPI_UINT64_T, MPI_BOR, comm);
 }
 
-} // namespace
+}  // namespace
 
 struct RveFarm::Header {
   std::int32_t cmd = 0;
-  std::int32_t flag = 0; ///< checkpoint: abort mid-write; stop_error: ErrorKind
-  std::int64_t step =
-      0; ///< MPM step number being computed (step), or done (checkpoint)
-  double value = 0.0; ///< step: dt [s]; checkpoint: time [s]
+  std::int32_t flag = 0;  ///< checkpoint: abort mid-write; stop_error: ErrorKind
+  std::int64_t step = 0;  ///< MPM step number being computed (step), or done (checkpoint)
+  double value = 0.0;     ///< step: dt [s]; checkpoint: time [s]
   std::int64_t aux = 0;
 };
 
 RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
-                 const std::vector<common::Vec3> &x, const mpm::Grid &grid,
-                 FarmOptions options)
-    : kind_(std::move(kind)), options_(options), grid_(grid),
-      ids_(std::move(ids)) {
+                 const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options)
+    : kind_(std::move(kind)), options_(options), grid_(grid), ids_(std::move(ids)) {
   MPI_Comm_dup(comm, &comm_);
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
@@ -87,13 +74,11 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
   std::string msg;
   for (std::int64_t k : local_) {
     try {
-      models_[static_cast<std::size_t>(k)] =
-          kind_.create(ids_[static_cast<std::size_t>(k)]);
-    } catch (const std::exception &e) {
+      models_[static_cast<std::size_t>(k)] = kind_.create(ids_[static_cast<std::size_t>(k)]);
+    } catch (const std::exception& e) {
       kind_err = current_error_kind();
       msg = "farm: creating the RVE of point id " +
-            std::to_string(ids_[static_cast<std::size_t>(k)]) +
-            " failed: " + e.what();
+            std::to_string(ids_[static_cast<std::size_t>(k)]) + " failed: " + e.what();
       break;
     }
   }
@@ -101,27 +86,24 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
   initial_costs_and_partition(x, grid, nullptr);
 }
 
-RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo &info,
-                 const std::vector<common::Vec3> &x, const mpm::Grid &grid,
-                 FarmOptions options)
+RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo& info,
+                 const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options)
     : kind_(std::move(kind)), options_(options), grid_(grid), ids_(info.ids) {
   MPI_Comm_dup(comm, &comm_);
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   owner_ = partition_blocks(ids_.size(), size_);
   rebuild_local();
-  std::vector<common::StateStore> states =
-      read_checkpoint_rves(comm_, info, local_);
+  std::vector<common::StateStore> states = read_checkpoint_rves(comm_, info, local_);
   ErrorKind kind_err = ErrorKind::none;
   std::string msg;
   for (std::size_t j = 0; j < local_.size(); ++j) {
     try {
       models_[static_cast<std::size_t>(local_[j])] = kind_.load(states[j]);
-    } catch (const std::exception &e) {
+    } catch (const std::exception& e) {
       kind_err = current_error_kind();
       msg = "checkpoint " + info.path + ": restoring the RVE of point id " +
-            std::to_string(ids_[static_cast<std::size_t>(local_[j])]) +
-            " failed: " + e.what();
+            std::to_string(ids_[static_cast<std::size_t>(local_[j])]) + " failed: " + e.what();
       break;
     }
   }
@@ -132,35 +114,29 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo &info,
 
 RveFarm::~RveFarm() {
   if (rank_ == 0 && size_ > 1 && !stopped_) {
-    // Rank 0 is leaving (an exception unwound the driver): release the workers
-    // with an error rather than leave them waiting.
-    stop_with_error(ErrorKind::internal,
-                    "farm: rank 0 stopped without releasing the workers");
+    // Rank 0 is leaving (an exception unwound the driver): release the workers with an error
+    // rather than leave them waiting.
+    stop_with_error(ErrorKind::internal, "farm: rank 0 stopped without releasing the workers");
   }
-  if (comm_ != MPI_COMM_NULL)
-    MPI_Comm_free(&comm_);
+  if (comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
 }
 
 void RveFarm::rebuild_local() {
   local_.clear();
   models_.resize(ids_.size());
   for (std::size_t k = 0; k < ids_.size(); ++k) {
-    if (owner_[k] == rank_)
-      local_.push_back(static_cast<std::int64_t>(k));
+    if (owner_[k] == rank_) local_.push_back(static_cast<std::int64_t>(k));
   }
 }
 
-void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3> &x,
-                                          const mpm::Grid &grid,
-                                          const std::vector<double> *costs) {
+void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x, const mpm::Grid& grid,
+                                          const std::vector<double>* costs) {
   const std::size_t n = ids_.size();
   std::vector<double> est(n, 0.0);
   std::vector<double> wave(n, 0.0);
   for (std::int64_t k : local_) {
-    est[static_cast<std::size_t>(k)] =
-        models_[static_cast<std::size_t>(k)]->cost_estimate();
-    wave[static_cast<std::size_t>(k)] =
-        models_[static_cast<std::size_t>(k)]->wave_speed();
+    est[static_cast<std::size_t>(k)] = models_[static_cast<std::size_t>(k)]->cost_estimate();
+    wave[static_cast<std::size_t>(k)] = models_[static_cast<std::size_t>(k)]->wave_speed();
   }
   allgather_owned(comm_, est);
   allgather_owned(comm_, wave);
@@ -172,21 +148,18 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3> &x,
   stresses_.assign(n, common::Mat3::Zero());
   bool measured = costs != nullptr && costs->size() == n;
   if (measured) {
-    for (double c : *costs)
-      measured = measured && c > 0.0;
+    for (double c : *costs) measured = measured && c > 0.0;
   }
-  if (measured)
-    cost_total_ = *costs;
+  if (measured) cost_total_ = *costs;
   // Stresses and measures before the first step (outputs at step 0).
-  constexpr std::size_t kInit = 13; // stress (9), p, q, e, Z
+  constexpr std::size_t kInit = 13;  // stress (9), p, q, e, Z
   std::vector<double> s(kInit * n, 0.0);
   for (std::int64_t k : local_) {
-    const MicroModel &m = *models_[static_cast<std::size_t>(k)];
-    double *v = s.data() + kInit * static_cast<std::size_t>(k);
+    const MicroModel& m = *models_[static_cast<std::size_t>(k)];
+    double* v = s.data() + kInit * static_cast<std::size_t>(k);
     const common::Mat3 sig = m.stress();
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b)
-        v[3 * a + b] = sig(a, b);
+      for (int b = 0; b < 3; ++b) v[3 * a + b] = sig(a, b);
     }
     const MicroReport r = m.report();
     v[9] = r.p;
@@ -196,10 +169,9 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3> &x,
   }
   allgather_owned(comm_, s);
   for (std::size_t k = 0; k < n; ++k) {
-    const double *v = s.data() + kInit * k;
+    const double* v = s.data() + kInit * k;
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b)
-        stresses_[k](a, b) = v[3 * a + b];
+      for (int b = 0; b < 3; ++b) stresses_[k](a, b) = v[3 * a + b];
     }
     reports_[k].p = v[9];
     reports_[k].q = v[10];
@@ -209,15 +181,14 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3> &x,
   std::vector<int> part(n, 0);
   if (rank_ == 0) {
     MPMXDEM_CHECK(x.size() == n, "one position per RVE on rank 0");
-    part = partition_metis(cell_graph(grid, x), measured ? *costs : est, size_,
-                           options_.metis_seed);
+    part =
+        partition_metis(cell_graph(grid, x), measured ? *costs : est, size_, options_.metis_seed);
   }
-  if (n > 0)
-    MPI_Bcast(part.data(), to_count(n), MPI_INT, 0, comm_);
+  if (n > 0) MPI_Bcast(part.data(), to_count(n), MPI_INT, 0, comm_);
   exec_migrate(std::move(part));
 }
 
-void RveFarm::send_header(const Header &h) {
+void RveFarm::send_header(const Header& h) {
   MPMXDEM_CHECK(rank_ == 0, "only rank 0 sends commands");
   Header copy = h;
   MPI_Request req = MPI_REQUEST_NULL;
@@ -225,12 +196,10 @@ void RveFarm::send_header(const Header &h) {
   wait_for(req, options_.wait);
 }
 
-void RveFarm::update_stress(std::span<const std::int64_t> ids,
-                            std::span<const common::Mat3> L, double dt,
-                            std::span<common::Mat3> stress) {
+void RveFarm::update_stress(std::span<const std::int64_t> ids, std::span<const common::Mat3> L,
+                            double dt, std::span<common::Mat3> stress) {
   MPMXDEM_CHECK(rank_ == 0, "update_stress is called on rank 0 only");
-  MPMXDEM_CHECK(ids.size() == L.size() && ids.size() == stress.size(),
-                "span sizes differ");
+  MPMXDEM_CHECK(ids.size() == L.size() && ids.size() == stress.size(), "span sizes differ");
   const double t0 = now();
   Header h;
   h.cmd = kStep;
@@ -241,46 +210,38 @@ void RveFarm::update_stress(std::span<const std::int64_t> ids,
   times_.step_wall += now() - t0;
 }
 
-void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
-                        std::span<const common::Mat3> L,
-                        std::span<common::Mat3> stress) {
+void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
+                        std::span<const common::Mat3> L, std::span<common::Mat3> stress) {
   const std::size_t n = ids_.size();
   const double dt = h.value;
   step_ = h.step;
-  // 1. Scatter L to the owners: rank r receives the L of its RVEs in ascending
-  // index order.
+  // 1. Scatter L to the owners: rank r receives the L of its RVEs in ascending index order.
   std::vector<double> sendbuf;
   std::vector<int> counts(static_cast<std::size_t>(size_), 0);
   std::vector<int> displs(static_cast<std::size_t>(size_), 0);
-  std::vector<std::int64_t>
-      slot_of; // rank 0: index -> position in ids/L/stress
+  std::vector<std::int64_t> slot_of;  // rank 0: index -> position in ids/L/stress
   if (rank_ == 0) {
-    MPMXDEM_CHECK(ids.size() == n,
-                  "update_stress needs every RVE id once (got " +
-                      std::to_string(ids.size()) + " of " + std::to_string(n) +
-                      ")");
+    MPMXDEM_CHECK(ids.size() == n, "update_stress needs every RVE id once (got " +
+                                       std::to_string(ids.size()) + " of " + std::to_string(n) +
+                                       ")");
     slot_of.assign(n, -1);
     for (std::size_t p = 0; p < ids.size(); ++p) {
       const auto it = std::lower_bound(ids_.begin(), ids_.end(), ids[p]);
       MPMXDEM_CHECK(it != ids_.end() && *it == ids[p],
                     "point id " + std::to_string(ids[p]) + " has no RVE");
       const auto k = static_cast<std::size_t>(it - ids_.begin());
-      MPMXDEM_CHECK(slot_of[k] < 0,
-                    "point id " + std::to_string(ids[p]) + " given twice");
+      MPMXDEM_CHECK(slot_of[k] < 0, "point id " + std::to_string(ids[p]) + " given twice");
       slot_of[k] = static_cast<std::int64_t>(p);
     }
-    std::vector<std::vector<std::size_t>> members(
-        static_cast<std::size_t>(size_));
-    for (std::size_t k = 0; k < n; ++k)
-      members[static_cast<std::size_t>(owner_[k])].push_back(k);
+    std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(size_));
+    for (std::size_t k = 0; k < n; ++k) members[static_cast<std::size_t>(owner_[k])].push_back(k);
     sendbuf.reserve(9 * n);
     for (int r = 0; r < size_; ++r) {
       displs[static_cast<std::size_t>(r)] = to_count(sendbuf.size());
       for (std::size_t k : members[static_cast<std::size_t>(r)]) {
-        const common::Mat3 &m = L[static_cast<std::size_t>(slot_of[k])];
+        const common::Mat3& m = L[static_cast<std::size_t>(slot_of[k])];
         for (int a = 0; a < 3; ++a) {
-          for (int b = 0; b < 3; ++b)
-            sendbuf.push_back(m(a, b));
+          for (int b = 0; b < 3; ++b) sendbuf.push_back(m(a, b));
         }
       }
       counts[static_cast<std::size_t>(r)] =
@@ -290,36 +251,32 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
   const std::size_t nloc = local_.size();
   std::vector<double> myL(9 * nloc);
   MPI_Request req = MPI_REQUEST_NULL;
-  MPI_Iscatterv(sendbuf.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                myL.data(), to_count(9 * nloc), MPI_DOUBLE, 0, comm_, &req);
+  MPI_Iscatterv(sendbuf.data(), counts.data(), displs.data(), MPI_DOUBLE, myL.data(),
+                to_count(9 * nloc), MPI_DOUBLE, 0, comm_, &req);
   wait_for(req, options_.wait);
 
-  // 2. Advance my RVEs; failures are caught per RVE and travel to rank 0 as
-  // data.
+  // 2. Advance my RVEs; failures are caught per RVE and travel to rank 0 as data.
   std::vector<double> rec(kRecord * nloc, 0.0);
   std::vector<std::string> err(nloc);
   const double t_loop = now();
   const auto nl = static_cast<std::int64_t>(nloc);
-#pragma omp parallel for schedule(dynamic,                                     \
-                                  1) if (options_.omp_over_rves && nl > 1)
+#pragma omp parallel for schedule(dynamic, 1) if (options_.omp_over_rves && nl > 1)
   for (std::int64_t jj = 0; jj < nl; ++jj) {
     const auto j = static_cast<std::size_t>(jj);
-    MicroModel &m = *models_[static_cast<std::size_t>(local_[j])];
+    MicroModel& m = *models_[static_cast<std::size_t>(local_[j])];
     common::Mat3 Lj;
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b)
-        Lj(a, b) = myL[9 * j + static_cast<std::size_t>(3 * a + b)];
+      for (int b = 0; b < 3; ++b) Lj(a, b) = myL[9 * j + static_cast<std::size_t>(3 * a + b)];
     }
-    double *r = rec.data() + kRecord * j;
+    double* r = rec.data() + kRecord * j;
     try {
       const MicroReport rep = m.step(Lj, dt);
       const common::Mat3 s = m.stress();
       if (!s.allFinite())
-        throw common::NumericalError(
-            "non-finite stress (trace = " + std::to_string(s.trace()) + " Pa)");
+        throw common::NumericalError("non-finite stress (trace = " + std::to_string(s.trace()) +
+                                     " Pa)");
       for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b)
-          r[3 * a + b] = s(a, b);
+        for (int b = 0; b < 3; ++b) r[3 * a + b] = s(a, b);
       }
       r[9] = rep.p;
       r[10] = rep.q;
@@ -331,27 +288,23 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
       r[16] = static_cast<double>(rep.dem_steps);
       r[17] = static_cast<double>(rep.guards);
       r[18] = 0.0;
-    } catch (const std::exception &e) {
+    } catch (const std::exception& e) {
       ErrorKind k = ErrorKind::internal;
-      if (dynamic_cast<const common::InputError *>(&e) != nullptr)
-        k = ErrorKind::input;
-      if (dynamic_cast<const common::NumericalError *>(&e) != nullptr)
-        k = ErrorKind::numerical;
+      if (dynamic_cast<const common::InputError*>(&e) != nullptr) k = ErrorKind::input;
+      if (dynamic_cast<const common::NumericalError*>(&e) != nullptr) k = ErrorKind::numerical;
       r[18] = static_cast<double>(static_cast<std::int32_t>(k));
       err[j] = e.what();
     }
   }
   const double loop_wall = now() - t_loop;
 
-  // 3. Gather records (and error texts) to rank 0: [loop
-  // wall][records][errors].
+  // 3. Gather records (and error texts) to rank 0: [loop wall][records][errors].
   std::vector<char> out;
   append(out, loop_wall);
-  const auto *rb = reinterpret_cast<const char *>(rec.data());
+  const auto* rb = reinterpret_cast<const char*>(rec.data());
   out.insert(out.end(), rb, rb + rec.size() * sizeof(double));
   for (std::size_t j = 0; j < nloc; ++j) {
-    if (err[j].empty())
-      continue;
+    if (err[j].empty()) continue;
     append(out, local_[j]);
     append(out, static_cast<std::int64_t>(err[j].size()));
     out.insert(out.end(), err[j].begin(), err[j].end());
@@ -372,18 +325,14 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
     all.resize(static_cast<std::size_t>(total));
   }
   req = MPI_REQUEST_NULL;
-  MPI_Igatherv(out.data(), mine, MPI_CHAR, all.data(), sizes.data(),
-               rdispl.data(), MPI_CHAR, 0, comm_, &req);
+  MPI_Igatherv(out.data(), mine, MPI_CHAR, all.data(), sizes.data(), rdispl.data(), MPI_CHAR, 0,
+               comm_, &req);
   wait_for(req, options_.wait);
-  if (rank_ != 0)
-    return;
+  if (rank_ != 0) return;
 
-  // 4. Rank 0: store by RVE index (never by arrival order), then answer the
-  // solver.
-  std::vector<std::vector<std::size_t>> members(
-      static_cast<std::size_t>(size_));
-  for (std::size_t k = 0; k < n; ++k)
-    members[static_cast<std::size_t>(owner_[k])].push_back(k);
+  // 4. Rank 0: store by RVE index (never by arrival order), then answer the solver.
+  std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(size_));
+  for (std::size_t k = 0; k < n; ++k) members[static_cast<std::size_t>(owner_[k])].push_back(k);
   double busy_max = 0.0;
   double busy_sum = 0.0;
   struct Failure {
@@ -394,7 +343,7 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
   };
   std::vector<Failure> failures;
   for (int r = 0; r < size_; ++r) {
-    const char *base = all.data() + rdispl[static_cast<std::size_t>(r)];
+    const char* base = all.data() + rdispl[static_cast<std::size_t>(r)];
     std::size_t pos = 0;
     const auto wall = take<double>(base, pos);
     busy_max = std::max(busy_max, wall);
@@ -409,10 +358,9 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
         continue;
       }
       for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b)
-          stresses_[k](a, b) = v[3 * a + b];
+        for (int b = 0; b < 3; ++b) stresses_[k](a, b) = v[3 * a + b];
       }
-      MicroReport &rep = reports_[k];
+      MicroReport& rep = reports_[k];
       rep.p = v[9];
       rep.q = v[10];
       rep.void_ratio = v[11];
@@ -425,16 +373,14 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
       cost_total_[k] += rep.wall_s;
       cost_window_[k] += rep.wall_s;
     }
-    const auto end =
-        static_cast<std::size_t>(sizes[static_cast<std::size_t>(r)]);
+    const auto end = static_cast<std::size_t>(sizes[static_cast<std::size_t>(r)]);
     while (pos < end) {
       const auto k = take<std::int64_t>(base, pos);
       const auto len = take<std::int64_t>(base, pos);
       const std::string text(base + pos, static_cast<std::size_t>(len));
       pos += static_cast<std::size_t>(len);
-      for (Failure &f : failures) {
-        if (f.id == ids_[static_cast<std::size_t>(k)])
-          f.text = text;
+      for (Failure& f : failures) {
+        if (f.id == ids_[static_cast<std::size_t>(k)]) f.text = text;
       }
     }
   }
@@ -443,24 +389,21 @@ void RveFarm::exec_step(const Header &h, std::span<const std::int64_t> ids,
   ++times_.steps;
   if (!failures.empty()) {
     std::sort(failures.begin(), failures.end(),
-              [](const Failure &a, const Failure &b) { return a.id < b.id; });
-    const Failure &f = failures.front();
+              [](const Failure& a, const Failure& b) { return a.id < b.id; });
+    const Failure& f = failures.front();
     std::string msg = "farm: MPM step " + std::to_string(step_) + ": RVE id " +
-                      std::to_string(f.id) + " (rank " +
-                      std::to_string(f.rank) + ") failed: " + f.text;
+                      std::to_string(f.id) + " (rank " + std::to_string(f.rank) +
+                      ") failed: " + f.text;
     if (failures.size() > 1)
-      msg +=
-          " (" + std::to_string(failures.size() - 1) + " more RVE(s) failed)";
+      msg += " (" + std::to_string(failures.size() - 1) + " more RVE(s) failed)";
     throw_kind(f.kind, msg);
   }
   wave_speed_ = *std::max_element(wave_.begin(), wave_.end());
-  for (std::size_t k = 0; k < n; ++k)
-    stress[static_cast<std::size_t>(slot_of[k])] = stresses_[k];
+  for (std::size_t k = 0; k < n; ++k) stress[static_cast<std::size_t>(slot_of[k])] = stresses_[k];
 }
 
-void RveFarm::checkpoint(const std::string &path, std::int64_t step,
-                         double time, const std::string &job_text,
-                         const common::StateStore &mpm_state,
+void RveFarm::checkpoint(const std::string& path, std::int64_t step, double time,
+                         const std::string& job_text, const common::StateStore& mpm_state,
                          bool abort_mid_write) {
   MPMXDEM_CHECK(rank_ == 0, "checkpoint is driven by rank 0");
   Header h;
@@ -472,9 +415,8 @@ void RveFarm::checkpoint(const std::string &path, std::int64_t step,
   exec_checkpoint(h, path, job_text, &mpm_state);
 }
 
-void RveFarm::exec_checkpoint(const Header &h, std::string path,
-                              std::string job_text,
-                              const common::StateStore *mpm_state) {
+void RveFarm::exec_checkpoint(const Header& h, std::string path, std::string job_text,
+                              const common::StateStore* mpm_state) {
   bcast_string(comm_, path);
   CheckpointData d;
   d.step = h.step;
@@ -493,22 +435,17 @@ void RveFarm::exec_checkpoint(const Header &h, std::string path,
 }
 
 double RveFarm::imbalance() const {
-  return farm::imbalance(
-      owner_, cost_avg_.windows() > 0 ? cost_avg_.cost() : cost_window_, size_);
+  return farm::imbalance(owner_, cost_avg_.windows() > 0 ? cost_avg_.cost() : cost_window_, size_);
 }
 
-bool RveFarm::rebalance_if_needed(double threshold,
-                                  const std::vector<common::Vec3> &x) {
+bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Vec3>& x) {
   MPMXDEM_CHECK(rank_ == 0, "rebalancing is driven by rank 0");
   cost_avg_.add_window(cost_window_);
   std::fill(cost_window_.begin(), cost_window_.end(), 0.0);
-  if (size_ == 1)
-    return false;
-  RebalancePlan plan =
-      plan_rebalance(cell_graph(grid_, x), owner_, cost_avg_.cost(), size_,
-                     threshold, options_.metis_seed);
-  if (!plan.migrate)
-    return false;
+  if (size_ == 1) return false;
+  RebalancePlan plan = plan_rebalance(cell_graph(grid_, x), owner_, cost_avg_.cost(), size_,
+                                      threshold, options_.metis_seed);
+  if (!plan.migrate) return false;
   Header h;
   h.cmd = kMigrate;
   send_header(h);
@@ -520,10 +457,8 @@ bool RveFarm::rebalance_if_needed(double threshold,
 void RveFarm::migrate_to(std::vector<int> owner) {
   MPMXDEM_CHECK(rank_ == 0, "migration is driven by rank 0");
   MPMXDEM_CHECK(owner.size() == ids_.size(), "one owner per RVE");
-  for (int o : owner)
-    MPMXDEM_CHECK(o >= 0 && o < size_, "owner rank out of range");
-  if (size_ == 1)
-    return;
+  for (int o : owner) MPMXDEM_CHECK(o >= 0 && o < size_, "owner rank out of range");
+  if (size_ == 1) return;
   Header h;
   h.cmd = kMigrate;
   send_header(h);
@@ -533,20 +468,17 @@ void RveFarm::migrate_to(std::vector<int> owner) {
 
 void RveFarm::exec_migrate(std::vector<int> new_owner) {
   const std::size_t n = ids_.size();
-  // Send buffers by destination: RVEs in ascending index order, each [u64
-  // length][bytes].
+  // Send buffers by destination: RVEs in ascending index order, each [u64 length][bytes].
   std::vector<std::vector<char>> to(static_cast<std::size_t>(size_));
   for (std::int64_t k : local_) {
     const int dest = new_owner[static_cast<std::size_t>(k)];
-    if (dest == rank_)
-      continue;
+    if (dest == rank_) continue;
     common::StateStore s;
     models_[static_cast<std::size_t>(k)]->save(s);
     const std::vector<char> bytes = s.serialize();
-    append(to[static_cast<std::size_t>(dest)],
-           static_cast<std::uint64_t>(bytes.size()));
-    to[static_cast<std::size_t>(dest)].insert(
-        to[static_cast<std::size_t>(dest)].end(), bytes.begin(), bytes.end());
+    append(to[static_cast<std::size_t>(dest)], static_cast<std::uint64_t>(bytes.size()));
+    to[static_cast<std::size_t>(dest)].insert(to[static_cast<std::size_t>(dest)].end(),
+                                              bytes.begin(), bytes.end());
     models_[static_cast<std::size_t>(k)].reset();
   }
   std::vector<int> scount(static_cast<std::size_t>(size_));
@@ -554,8 +486,7 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
   std::vector<char> sbuf;
   for (int r = 0; r < size_; ++r) {
     sdispl[static_cast<std::size_t>(r)] = to_count(sbuf.size());
-    scount[static_cast<std::size_t>(r)] =
-        to_count(to[static_cast<std::size_t>(r)].size());
+    scount[static_cast<std::size_t>(r)] = to_count(to[static_cast<std::size_t>(r)].size());
     sbuf.insert(sbuf.end(), to[static_cast<std::size_t>(r)].begin(),
                 to[static_cast<std::size_t>(r)].end());
   }
@@ -568,8 +499,8 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
     total += static_cast<std::size_t>(rcount[static_cast<std::size_t>(r)]);
   }
   std::vector<char> rbuf(total);
-  MPI_Alltoallv(sbuf.data(), scount.data(), sdispl.data(), MPI_CHAR,
-                rbuf.data(), rcount.data(), rdispl.data(), MPI_CHAR, comm_);
+  MPI_Alltoallv(sbuf.data(), scount.data(), sdispl.data(), MPI_CHAR, rbuf.data(), rcount.data(),
+                rdispl.data(), MPI_CHAR, comm_);
   ErrorKind kind_err = ErrorKind::none;
   std::string msg;
   std::vector<std::size_t> pos(static_cast<std::size_t>(size_));
@@ -577,27 +508,23 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
     pos[static_cast<std::size_t>(r)] =
         static_cast<std::size_t>(rdispl[static_cast<std::size_t>(r)]);
   for (std::size_t k = 0; k < n; ++k) {
-    if (new_owner[k] != rank_ || owner_[k] == rank_)
-      continue;
-    auto &p = pos[static_cast<std::size_t>(owner_[k])];
+    if (new_owner[k] != rank_ || owner_[k] == rank_) continue;
+    auto& p = pos[static_cast<std::size_t>(owner_[k])];
     const auto len = take<std::uint64_t>(rbuf.data(), p);
     try {
-      const common::StateStore s =
-          common::StateStore::deserialize(std::span<const char>(
-              rbuf.data() + p, static_cast<std::size_t>(len)));
+      const common::StateStore s = common::StateStore::deserialize(
+          std::span<const char>(rbuf.data() + p, static_cast<std::size_t>(len)));
       models_[k] = kind_.load(s);
-    } catch (const std::exception &e) {
+    } catch (const std::exception& e) {
       kind_err = current_error_kind();
-      msg = "farm: migrating the RVE of point id " + std::to_string(ids_[k]) +
-            " to rank " + std::to_string(rank_) + " failed: " + e.what();
+      msg = "farm: migrating the RVE of point id " + std::to_string(ids_[k]) + " to rank " +
+            std::to_string(rank_) + " failed: " + e.what();
     }
     p += static_cast<std::size_t>(len);
   }
   std::int64_t moved = 0;
-  for (std::size_t k = 0; k < n; ++k)
-    moved += new_owner[k] != owner_[k] ? 1 : 0;
-  if (moved > 0)
-    ++migrations_;
+  for (std::size_t k = 0; k < n; ++k) moved += new_owner[k] != owner_[k] ? 1 : 0;
+  if (moved > 0) ++migrations_;
   moved_ += moved;
   owner_ = std::move(new_owner);
   rebuild_local();
@@ -606,23 +533,19 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
 
 void RveFarm::stop() {
   MPMXDEM_CHECK(rank_ == 0, "stop is sent by rank 0");
-  if (stopped_)
-    return;
+  if (stopped_) return;
   stopped_ = true;
-  if (size_ == 1)
-    return;
+  if (size_ == 1) return;
   Header h;
   h.cmd = kStop;
   send_header(h);
 }
 
-void RveFarm::stop_with_error(ErrorKind kind, const std::string &message) {
+void RveFarm::stop_with_error(ErrorKind kind, const std::string& message) {
   MPMXDEM_CHECK(rank_ == 0, "stop is sent by rank 0");
-  if (stopped_)
-    return;
+  if (stopped_) return;
   stopped_ = true;
-  if (size_ == 1)
-    return;
+  if (size_ == 1) return;
   Header h;
   h.cmd = kStopError;
   h.flag = static_cast<std::int32_t>(kind);
@@ -639,32 +562,31 @@ void RveFarm::serve() {
     MPI_Ibcast(&h, sizeof(Header), MPI_BYTE, 0, comm_, &req);
     wait_for(req, options_.wait);
     switch (h.cmd) {
-    case kStep:
-      exec_step(h, {}, {}, {});
-      break;
-    case kCheckpoint:
-      exec_checkpoint(h, std::string(), std::string(), nullptr);
-      break;
-    case kMigrate: {
-      std::vector<int> part(ids_.size());
-      MPI_Bcast(part.data(), to_count(part.size()), MPI_INT, 0, comm_);
-      exec_migrate(std::move(part));
-      break;
-    }
-    case kStop:
-      stopped_ = true;
-      return;
-    case kStopError: {
-      stopped_ = true;
-      std::string m;
-      bcast_string(comm_, m);
-      throw_kind(static_cast<ErrorKind>(h.flag), m);
-    }
-    default:
-      throw common::InternalError("farm: unknown command " +
-                                  std::to_string(h.cmd));
+      case kStep:
+        exec_step(h, {}, {}, {});
+        break;
+      case kCheckpoint:
+        exec_checkpoint(h, std::string(), std::string(), nullptr);
+        break;
+      case kMigrate: {
+        std::vector<int> part(ids_.size());
+        MPI_Bcast(part.data(), to_count(part.size()), MPI_INT, 0, comm_);
+        exec_migrate(std::move(part));
+        break;
+      }
+      case kStop:
+        stopped_ = true;
+        return;
+      case kStopError: {
+        stopped_ = true;
+        std::string m;
+        bcast_string(comm_, m);
+        throw_kind(static_cast<ErrorKind>(h.flag), m);
+      }
+      default:
+        throw common::InternalError("farm: unknown command " + std::to_string(h.cmd));
     }
   }
 }
 
-} // namespace farm
+}  // namespace farm

@@ -1,7 +1,6 @@
-// farm::RveFarm: mpm::MaterialModel whose points are RVEs spread over MPI
-// ranks. Rank 0 runs the MPM solver and hosts RVEs too; ranks > 0 serve
-// commands (step, checkpoint, migrate, stop). Protocol, ordering rules and
-// measurements: docs/farm.md.
+// farm::RveFarm: mpm::MaterialModel whose points are RVEs spread over MPI ranks. Rank 0 runs the
+// MPM solver and hosts RVEs too; ranks > 0 serve commands (step, checkpoint, migrate, stop).
+// Protocol, ordering rules and measurements: docs/farm.md.
 #pragma once
 
 #include <mpi.h>
@@ -23,121 +22,97 @@
 namespace farm {
 
 struct FarmOptions {
-  WaitMode wait =
-      WaitMode::sleep; ///< how idle ranks wait (docs/farm.md, "Waiting")
-  /// OpenMP over the RVEs of a rank (schedule dynamic, 1); false: one RVE at a
-  /// time, OpenMP left to the inside of each RVE.
+  WaitMode wait = WaitMode::sleep;  ///< how idle ranks wait (docs/farm.md, "Waiting")
+  /// OpenMP over the RVEs of a rank (schedule dynamic, 1); false: one RVE at a time, OpenMP
+  /// left to the inside of each RVE.
   bool omp_over_rves = true;
-  int metis_seed = 1; ///< METIS_OPTION_SEED
+  int metis_seed = 1;  ///< METIS_OPTION_SEED
 };
 
 /// Per-step timing figures seen by rank 0 (cumulative since construction) [s].
 struct FarmTimes {
-  double step_wall = 0.0; ///< wall time inside update_stress on rank 0
-  double critical_busy =
-      0.0; ///< sum over steps of the largest rank's RVE loop time
-  double mean_busy = 0.0; ///< sum over steps of the mean rank RVE loop time
+  double step_wall = 0.0;      ///< wall time inside update_stress on rank 0
+  double critical_busy = 0.0;  ///< sum over steps of the largest rank's RVE loop time
+  double mean_busy = 0.0;      ///< sum over steps of the mean rank RVE loop time
   std::int64_t steps = 0;
 };
 
 class RveFarm final : public mpm::MaterialModel {
-public:
-  /// Collective. Creates the RVEs of `ids` (ascending, identical on every
-  /// rank), first split in blocks, then partitioned with METIS on the RVE graph
-  /// (`x`, positions on rank 0; the grid) weighted by the models' cost
-  /// estimates, migrating RVEs to their owners.
+ public:
+  /// Collective. Creates the RVEs of `ids` (ascending, identical on every rank), first split in
+  /// blocks, then partitioned with METIS on the RVE graph (`x`, positions on rank 0; the grid)
+  /// weighted by the models' cost estimates, migrating RVEs to their owners.
   RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
-          const std::vector<common::Vec3> &x, const mpm::Grid &grid,
-          FarmOptions options);
-  /// Collective restore from a checkpoint on any number of ranks: METIS
-  /// partition weighted by the costs stored in it; every rank reads its RVEs.
-  /// `x`: point positions on rank 0.
-  RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo &info,
-          const std::vector<common::Vec3> &x, const mpm::Grid &grid,
-          FarmOptions options);
+          const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options);
+  /// Collective restore from a checkpoint on any number of ranks: METIS partition weighted by
+  /// the costs stored in it; every rank reads its RVEs. `x`: point positions on rank 0.
+  RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo& info,
+          const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options);
   ~RveFarm() override;
-  RveFarm(const RveFarm &) = delete;
-  RveFarm &operator=(const RveFarm &) = delete;
+  RveFarm(const RveFarm&) = delete;
+  RveFarm& operator=(const RveFarm&) = delete;
 
   // ---- rank 0 (the master) ----
-  /// Rank 0 only. Every RVE whose id is in `ids` (a permutation of ids()) steps
-  /// under L[p]; stress[p] gets its new stress. Results are stored by RVE id. A
-  /// failed RVE (on any rank) throws common::NumericalError naming the RVE id,
-  /// the rank, the MPM step and the cause, after the exchange completed (no
-  /// rank is left in a collective).
-  void update_stress(std::span<const std::int64_t> ids,
-                     std::span<const common::Mat3> L, double dt,
+  /// Rank 0 only. Every RVE whose id is in `ids` (a permutation of ids()) steps under L[p];
+  /// stress[p] gets its new stress. Results are stored by RVE id. A failed RVE (on any rank)
+  /// throws common::NumericalError naming the RVE id, the rank, the MPM step and the cause,
+  /// after the exchange completed (no rank is left in a collective).
+  void update_stress(std::span<const std::int64_t> ids, std::span<const common::Mat3> L, double dt,
                      std::span<common::Mat3> stress) override;
-  /// Largest wave speed over all RVEs as of their last step (or creation)
-  /// [m/s].
+  /// Largest wave speed over all RVEs as of their last step (or creation) [m/s].
   double wave_speed() const override { return wave_speed_; }
-  /// Rank 0 only. Collective checkpoint (all ranks write one HDF5 file; see
-  /// checkpoint.hpp).
-  void checkpoint(const std::string &path, std::int64_t step, double time,
-                  const std::string &job_text,
-                  const common::StateStore &mpm_state, bool abort_mid_write);
-  /// Rank 0 only. Closes a cost window (the RVE step times since the last call)
-  /// into the per-RVE cost average (rebalance.hpp); if the imbalance of that
-  /// average exceeds `threshold` and a METIS partition (graph from `x`, current
-  /// positions by RVE index) lowers it by more than the noise margin of
-  /// plan_rebalance, migrates the RVEs. Returns true if RVEs moved.
-  bool rebalance_if_needed(double threshold,
-                           const std::vector<common::Vec3> &x);
-  /// Rank 0 only: moves the RVEs to `owner` (one rank per RVE index), whatever
-  /// the costs. For tests and benchmarks (e.g. round-robin against METIS).
+  /// Rank 0 only. Collective checkpoint (all ranks write one HDF5 file; see checkpoint.hpp).
+  void checkpoint(const std::string& path, std::int64_t step, double time,
+                  const std::string& job_text, const common::StateStore& mpm_state,
+                  bool abort_mid_write);
+  /// Rank 0 only. Closes a cost window (the RVE step times since the last call) into the per-RVE
+  /// cost average (rebalance.hpp); if the imbalance of that average exceeds `threshold` and a
+  /// METIS partition (graph from `x`, current positions by RVE index) lowers it by more than the
+  /// noise margin of plan_rebalance, migrates the RVEs. Returns true if RVEs moved.
+  bool rebalance_if_needed(double threshold, const std::vector<common::Vec3>& x);
+  /// Rank 0 only: moves the RVEs to `owner` (one rank per RVE index), whatever the costs.
+  /// For tests and benchmarks (e.g. round-robin against METIS).
   void migrate_to(std::vector<int> owner);
   /// Rank 0 only: releases the workers (serve() returns).
   void stop();
-  /// Rank 0 only: makes the workers' serve() throw an error of `kind` with
-  /// `message`.
-  void stop_with_error(ErrorKind kind, const std::string &message);
+  /// Rank 0 only: makes the workers' serve() throw an error of `kind` with `message`.
+  void stop_with_error(ErrorKind kind, const std::string& message);
 
   // ---- ranks > 0 ----
-  /// Command loop until rank 0 calls stop() (returns) or stop_with_error()
-  /// (throws that error).
+  /// Command loop until rank 0 calls stop() (returns) or stop_with_error() (throws that error).
   void serve();
 
   // ---- queries ----
-  [[nodiscard]] const std::vector<std::int64_t> &ids() const { return ids_; }
-  [[nodiscard]] const std::vector<int> &owner() const { return owner_; }
+  [[nodiscard]] const std::vector<std::int64_t>& ids() const { return ids_; }
+  [[nodiscard]] const std::vector<int>& owner() const { return owner_; }
   /// Rank 0: the last report of every RVE, by index (ids() order).
-  [[nodiscard]] const std::vector<MicroReport> &reports() const {
-    return reports_;
-  }
+  [[nodiscard]] const std::vector<MicroReport>& reports() const { return reports_; }
   /// Rank 0: the stress of every RVE, by index [Pa, tension positive].
-  [[nodiscard]] const std::vector<common::Mat3> &stresses() const {
-    return stresses_;
-  }
-  /// Rank 0: measured cost of every RVE (sum of step wall times) [s]; estimates
-  /// before steps.
-  [[nodiscard]] const std::vector<double> &cost() const { return cost_total_; }
-  /// Rank 0: imbalance max/mean over ranks of the averaged RVE costs [-] (>=
-  /// 1).
+  [[nodiscard]] const std::vector<common::Mat3>& stresses() const { return stresses_; }
+  /// Rank 0: measured cost of every RVE (sum of step wall times) [s]; estimates before steps.
+  [[nodiscard]] const std::vector<double>& cost() const { return cost_total_; }
+  /// Rank 0: imbalance max/mean over ranks of the averaged RVE costs [-] (>= 1).
   [[nodiscard]] double imbalance() const;
-  [[nodiscard]] const FarmTimes &times() const { return times_; }
+  [[nodiscard]] const FarmTimes& times() const { return times_; }
   [[nodiscard]] int rank() const { return rank_; }
   [[nodiscard]] int size() const { return size_; }
-  /// The MPM step counter carried in messages (set by the driver after a
-  /// restart).
+  /// The MPM step counter carried in messages (set by the driver after a restart).
   void set_step(std::int64_t step) { step_ = step; }
-  /// Number of migrations done (including the start-up one) and RVEs moved in
-  /// total.
+  /// Number of migrations done (including the start-up one) and RVEs moved in total.
   [[nodiscard]] std::int64_t migrations() const { return migrations_; }
   [[nodiscard]] std::int64_t rves_moved() const { return moved_; }
 
-private:
+ private:
   struct Header;
-  void send_header(const Header &h);
-  void exec_step(const Header &h, std::span<const std::int64_t> ids,
-                 std::span<const common::Mat3> L,
-                 std::span<common::Mat3> stress);
-  void exec_checkpoint(const Header &h, std::string path, std::string job_text,
-                       const common::StateStore *mpm_state);
+  void send_header(const Header& h);
+  void exec_step(const Header& h, std::span<const std::int64_t> ids,
+                 std::span<const common::Mat3> L, std::span<common::Mat3> stress);
+  void exec_checkpoint(const Header& h, std::string path, std::string job_text,
+                       const common::StateStore* mpm_state);
   void exec_migrate(std::vector<int> new_owner);
   void rebuild_local();
-  void initial_costs_and_partition(const std::vector<common::Vec3> &x,
-                                   const mpm::Grid &grid,
-                                   const std::vector<double> *costs);
+  void initial_costs_and_partition(const std::vector<common::Vec3>& x, const mpm::Grid& grid,
+                                   const std::vector<double>* costs);
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0;
@@ -147,15 +122,14 @@ private:
   mpm::Grid grid_;
   std::vector<std::int64_t> ids_;
   std::vector<int> owner_;
-  std::vector<std::int64_t> local_; ///< my RVE indices, ascending
-  std::vector<std::unique_ptr<MicroModel>>
-      models_;                         ///< by index; null if not mine
-  std::vector<MicroReport> reports_;   ///< rank 0, by index
-  std::vector<common::Mat3> stresses_; ///< rank 0, by index
-  std::vector<double> cost_total_;     ///< rank 0, by index
-  std::vector<double> cost_window_;    ///< rank 0, since the last check
-  CostAverage cost_avg_;               ///< rank 0, over check windows
-  std::vector<double> wave_;           ///< rank 0, by index
+  std::vector<std::int64_t> local_;                  ///< my RVE indices, ascending
+  std::vector<std::unique_ptr<MicroModel>> models_;  ///< by index; null if not mine
+  std::vector<MicroReport> reports_;                 ///< rank 0, by index
+  std::vector<common::Mat3> stresses_;               ///< rank 0, by index
+  std::vector<double> cost_total_;                   ///< rank 0, by index
+  std::vector<double> cost_window_;                  ///< rank 0, since the last check
+  CostAverage cost_avg_;                             ///< rank 0, over check windows
+  std::vector<double> wave_;                         ///< rank 0, by index
   double wave_speed_ = 0.0;
   std::int64_t step_ = 0;
   std::int64_t migrations_ = 0;
@@ -164,4 +138,4 @@ private:
   bool stopped_ = false;
 };
 
-} // namespace farm
+}  // namespace farm

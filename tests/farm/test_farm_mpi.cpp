@@ -1,6 +1,5 @@
-// MPI tests of the farm, run under mpiexec (names carry the rank count:
-// farm.mpi.np2/np3). Every rank runs every test. Sub-communicators give runs on
-// 1, 2, ... ranks inside one launch.
+// MPI tests of the farm, run under mpiexec (names carry the rank count: farm.mpi.np2/np3).
+// Every rank runs every test. Sub-communicators give runs on 1, 2, ... ranks inside one launch.
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <unistd.h>
@@ -34,33 +33,30 @@ int world_size() {
   return s;
 }
 
-/// Scratch root of this launch: rank 0's pid makes concurrent launches (np2,
-/// np3, smoke) safe.
-const std::string &scratch_root() {
+/// Scratch root of this launch: rank 0's pid makes concurrent launches (np2, np3, smoke) safe.
+const std::string& scratch_root() {
   static const std::string root = [] {
     long pid = world_rank() == 0 ? static_cast<long>(::getpid()) : 0;
     MPI_Bcast(&pid, 1, MPI_LONG, 0, MPI_COMM_WORLD);
-    return (fs::temp_directory_path() /
-            ("mpmxdem_farm_test_" + std::to_string(pid)))
-        .string();
+    return (fs::temp_directory_path() / ("mpmxdem_farm_test_" + std::to_string(pid))).string();
   }();
   return root;
 }
 
 /// Removes the scratch root after the last test.
 class ScratchCleanup : public ::testing::Environment {
-public:
+ public:
   void TearDown() override {
     MPI_Barrier(MPI_COMM_WORLD);
     if (world_rank() == 0 && !::testing::UnitTest::GetInstance()->Failed())
       fs::remove_all(scratch_root());
   }
 };
-[[maybe_unused]] const auto *const kCleanup =
+[[maybe_unused]] const auto* const kCleanup =
     ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
 
 /// A fresh directory shared by all ranks (created by rank 0).
-std::string scratch(const std::string &name) {
+std::string scratch(const std::string& name) {
   const std::string dir = scratch_root() + "/" + name;
   if (world_rank() == 0) {
     fs::remove_all(dir);
@@ -73,30 +69,27 @@ std::string scratch(const std::string &name) {
 /// Communicator of the first n world ranks (MPI_COMM_NULL on the others).
 MPI_Comm first_ranks(int n) {
   MPI_Comm c = MPI_COMM_NULL;
-  MPI_Comm_split(MPI_COMM_WORLD, world_rank() < n ? 0 : MPI_UNDEFINED,
-                 world_rank(), &c);
+  MPI_Comm_split(MPI_COMM_WORLD, world_rank() < n ? 0 : MPI_UNDEFINED, world_rank(), &c);
   return c;
 }
 
-void free_comm(MPI_Comm &c) {
-  if (c != MPI_COMM_NULL)
-    MPI_Comm_free(&c);
+void free_comm(MPI_Comm& c) {
+  if (c != MPI_COMM_NULL) MPI_Comm_free(&c);
 }
 
 /// Runs on the first n ranks; returns the summary there.
-farm::RunSummary run_on(int n, const farm::CoupledConfig &cfg,
-                        const std::string *restart = nullptr) {
+farm::RunSummary run_on(int n, const farm::CoupledConfig& cfg,
+                        const std::string* restart = nullptr) {
   MPI_Comm c = first_ranks(n);
   farm::RunSummary s;
   if (c != MPI_COMM_NULL)
-    s = restart ? farm::restart_coupled(cfg, *restart, c)
-                : farm::run_coupled(cfg, c);
+    s = restart ? farm::restart_coupled(cfg, *restart, c) : farm::run_coupled(cfg, c);
   free_comm(c);
   MPI_Barrier(MPI_COMM_WORLD);
   return s;
 }
 
-} // namespace
+}  // namespace
 
 // 2-rank smoke test: a tiny coupled job, a few steps, every output present.
 TEST(Farm, SmokeTinyCoupledJob) {
@@ -107,30 +100,25 @@ TEST(Farm, SmokeTinyCoupledJob) {
   EXPECT_EQ(s.steps, 6);
   EXPECT_GT(s.time, 0.0);
   if (world_rank() == 0) {
-    for (const char *f : {"results.h5", "points.xmf", "means.csv",
-                          "checkpoint_0000000006.h5"}) {
+    for (const char* f : {"results.h5", "points.xmf", "means.csv", "checkpoint_0000000006.h5"}) {
       EXPECT_TRUE(fs::exists(fs::path(dir) / f)) << f;
     }
-    const auto stress =
-        farm::testing::read_words(dir + "/results.h5", "/rve/stress");
-    EXPECT_EQ(stress.size(), 7u * 8u * 9u); // rows for steps 0..6, 8 RVEs
+    const auto stress = farm::testing::read_words(dir + "/results.h5", "/rve/stress");
+    EXPECT_EQ(stress.size(), 7u * 8u * 9u);  // rows for steps 0..6, 8 RVEs
     std::ifstream csv(dir + "/means.csv");
     std::string line;
     int lines = 0;
-    while (std::getline(csv, line))
-      ++lines;
+    while (std::getline(csv, line)) ++lines;
     EXPECT_EQ(lines, 2 + 7);
-    const farm::CheckpointInfo info =
-        farm::inspect_checkpoint(dir + "/checkpoint_0000000006.h5");
+    const farm::CheckpointInfo info = farm::inspect_checkpoint(dir + "/checkpoint_0000000006.h5");
     EXPECT_EQ(info.step, 6);
     EXPECT_EQ(info.nranks, world_size());
     EXPECT_EQ(info.ids.size(), 8u);
   }
 }
 
-// The same job on 1, 2, ... world ranks gives bit-for-bit identical results.h5
-// (stresses of every RVE and point, p, q, e, ...), with rebalancing active
-// (threshold 1.0, every 3 steps).
+// The same job on 1, 2, ... world ranks gives bit-for-bit identical results.h5 (stresses of every
+// RVE and point, p, q, e, ...), with rebalancing active (threshold 1.0, every 3 steps).
 TEST(Farm, ResultsIdenticalOnAnyRankCount) {
   const std::string base = scratch("ranks");
   for (int n = 1; n <= world_size(); ++n) {
@@ -141,23 +129,21 @@ TEST(Farm, ResultsIdenticalOnAnyRankCount) {
   if (world_rank() == 0) {
     for (int n = 2; n <= world_size(); ++n) {
       EXPECT_EQ(
-          compare_results(base + "/n1/results.h5",
-                          base + "/n" + std::to_string(n) + "/results.h5"),
+          compare_results(base + "/n1/results.h5", base + "/n" + std::to_string(n) + "/results.h5"),
           "")
           << "1 rank vs " << n << " ranks";
     }
   }
 }
 
-// N steps straight == N/2, checkpoint, restart (on min(world, 2) ranks), N/2:
-// bit for bit. At np3 the checkpoint is written by 3 ranks and restarted on 2.
+// N steps straight == N/2, checkpoint, restart (on min(world, 2) ranks), N/2: bit for bit.
+// At np3 the checkpoint is written by 3 ranks and restarted on 2.
 TEST(Farm, RestartContinuesBitForBit) {
   const std::string base = scratch("restart");
   const int n_write = world_size();
   const int n_read = std::min(world_size(), 2);
   run_on(n_write, triaxial_job(base + "/straight", 12, mixed_elastic_kind()));
-  farm::CoupledConfig half =
-      triaxial_job(base + "/split", 6, mixed_elastic_kind());
+  farm::CoupledConfig half = triaxial_job(base + "/split", 6, mixed_elastic_kind());
   half.checkpoint.at_end = true;
   run_on(n_write, half);
   const std::string ckpt = farm::checkpoint_path(base + "/split", 6);
@@ -166,13 +152,11 @@ TEST(Farm, RestartContinuesBitForBit) {
     EXPECT_EQ(info.nranks, n_write);
     EXPECT_EQ(info.step, 6);
   }
-  const farm::RunSummary s = run_on(
-      n_read, triaxial_job(base + "/split", 12, mixed_elastic_kind()), &ckpt);
+  const farm::RunSummary s =
+      run_on(n_read, triaxial_job(base + "/split", 12, mixed_elastic_kind()), &ckpt);
   if (world_rank() == 0) {
     EXPECT_EQ(s.steps, 12);
-    EXPECT_EQ(compare_results(base + "/straight/results.h5",
-                              base + "/split/results.h5"),
-              "")
+    EXPECT_EQ(compare_results(base + "/straight/results.h5", base + "/split/results.h5"), "")
         << "written by " << n_write << " ranks, restarted on " << n_read;
   }
 }
@@ -184,48 +168,38 @@ TEST(Farm, MigrationKeepsResults) {
   std::vector<common::Vec3> x(n_rve);
   for (std::int64_t k = 0; k < n_rve; ++k) {
     ids[static_cast<std::size_t>(k)] = 3 * k + 1;
-    x[static_cast<std::size_t>(k)] =
-        common::Vec3(0.05 * static_cast<double>(k), 0.5, 0.5);
+    x[static_cast<std::size_t>(k)] = common::Vec3(0.05 * static_cast<double>(k), 0.5, 0.5);
   }
-  const mpm::Grid grid{common::Vec3::Zero(), common::Vec3::Ones(),
-                       common::Vec3i(2, 1, 1)};
+  const mpm::Grid grid{common::Vec3::Zero(), common::Vec3::Ones(), common::Vec3i(2, 1, 1)};
   farm::RveFarm f(MPI_COMM_WORLD, mixed_elastic_kind(), ids, x, grid, {});
   // Reference: the same models stepped serially, in this process.
   farm::MicroKind k = mixed_elastic_kind();
   std::vector<std::unique_ptr<farm::MicroModel>> ref;
-  for (std::int64_t id : ids)
-    ref.push_back(k.create(id));
+  for (std::int64_t id : ids) ref.push_back(k.create(id));
   auto L_of = [](std::int64_t id, int step) {
     common::Mat3 L;
-    L << 0.01 * id, 0.002 * step, 0.0, -0.003, 0.005, 0.001 * id, 0.0, 0.004,
-        -0.02;
+    L << 0.01 * id, 0.002 * step, 0.0, -0.003, 0.005, 0.001 * id, 0.0, 0.004, -0.02;
     return L;
   };
   if (world_rank() == 0) {
-    // Points in a scrambled order: results are stored by RVE id, never by
-    // position.
+    // Points in a scrambled order: results are stored by RVE id, never by position.
     std::vector<std::int64_t> order(ids.rbegin(), ids.rend());
     std::vector<common::Mat3> L(order.size());
     std::vector<common::Mat3> stress(order.size());
     for (int step = 1; step <= 9; ++step) {
-      for (std::size_t p = 0; p < order.size(); ++p)
-        L[p] = L_of(order[p], step);
+      for (std::size_t p = 0; p < order.size(); ++p) L[p] = L_of(order[p], step);
       f.update_stress(order, L, 1e-3, stress);
       for (std::size_t p = 0; p < order.size(); ++p) {
-        const auto r = static_cast<std::size_t>(
-            std::find(ids.begin(), ids.end(), order[p]) - ids.begin());
+        const auto r =
+            static_cast<std::size_t>(std::find(ids.begin(), ids.end(), order[p]) - ids.begin());
         ref[r]->step(L_of(order[p], step), 1e-3);
-        ASSERT_EQ(std::memcmp(stress[p].data(), ref[r]->stress().data(),
-                              sizeof(double) * 9),
-                  0)
+        ASSERT_EQ(std::memcmp(stress[p].data(), ref[r]->stress().data(), sizeof(double) * 9), 0)
             << "RVE id " << order[p] << " step " << step;
       }
       if (step % 3 == 0) {
-        // Rotate the owners: every RVE moves at every migration (when there are
-        // 2+ ranks).
+        // Rotate the owners: every RVE moves at every migration (when there are 2+ ranks).
         std::vector<int> owner = f.owner();
-        for (int &o : owner)
-          o = (o + 1) % f.size();
+        for (int& o : owner) o = (o + 1) % f.size();
         f.migrate_to(owner);
       }
     }
@@ -236,9 +210,8 @@ TEST(Farm, MigrationKeepsResults) {
   }
 }
 
-// An RVE failure on any rank stops the job on every rank with the RVE id, the
-// step and the cause; nothing is left hanging, and no checkpoint is written
-// after the failure.
+// An RVE failure on any rank stops the job on every rank with the RVE id, the step and the cause;
+// nothing is left hanging, and no checkpoint is written after the failure.
 TEST(Farm, RveFailureStopsEveryRank) {
   const std::string dir = scratch("failure");
   // RVE id 7 is the last point: owned by the last rank after METIS on 2+ ranks.
@@ -247,7 +220,7 @@ TEST(Farm, RveFailureStopsEveryRank) {
   try {
     farm::run_coupled(cfg, MPI_COMM_WORLD);
     ADD_FAILURE() << "the run should have failed";
-  } catch (const common::NumericalError &e) {
+  } catch (const common::NumericalError& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("RVE id 7"), std::string::npos) << m;
     EXPECT_NE(m.find("MPM step 4"), std::string::npos) << m;
@@ -263,32 +236,30 @@ TEST(Farm, RveFailureStopsEveryRank) {
 namespace {
 
 /// Edits a copy of a checkpoint with HDF5 (rank 0).
-void tamper(const std::string &path, const std::function<void(hid_t)> &edit) {
+void tamper(const std::string& path, const std::function<void(hid_t)>& edit) {
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   ASSERT_GE(f, 0);
   edit(f);
   H5Fclose(f);
 }
 
-void expect_refused(const farm::CoupledConfig &cfg, const std::string &path,
-                    const std::vector<std::string> &needles) {
+void expect_refused(const farm::CoupledConfig& cfg, const std::string& path,
+                    const std::vector<std::string>& needles) {
   try {
     farm::restart_coupled(cfg, path, MPI_COMM_WORLD);
     ADD_FAILURE() << "restart from " << path << " should have been refused";
-  } catch (const common::InputError &e) {
+  } catch (const common::InputError& e) {
     const std::string m = e.what();
-    for (const std::string &n : needles)
-      EXPECT_NE(m.find(n), std::string::npos) << m;
+    for (const std::string& n : needles) EXPECT_NE(m.find(n), std::string::npos) << m;
   }
   if (world_rank() == 0) {
     EXPECT_THROW(farm::inspect_checkpoint(path), common::InputError);
   }
 }
 
-} // namespace
+}  // namespace
 
-// A damaged or incompatible checkpoint is refused with a message naming the
-// file and the dataset.
+// A damaged or incompatible checkpoint is refused with a message naming the file and the dataset.
 TEST(Farm, DamagedCheckpointRefused) {
   const std::string dir = scratch("damaged");
   farm::CoupledConfig cfg = triaxial_job(dir, 4, mixed_elastic_kind());
@@ -300,8 +271,7 @@ TEST(Farm, DamagedCheckpointRefused) {
   const std::string missing = dir + "/missing.h5";
   const std::string truncated = dir + "/truncated.h5";
   if (world_rank() == 0) {
-    for (const auto &p : {flipped, version, missing, truncated})
-      fs::copy_file(good, p);
+    for (const auto& p : {flipped, version, missing, truncated}) fs::copy_file(good, p);
     tamper(flipped, [](hid_t f) {
       const hid_t d = H5Dopen2(f, "/rve/fields/elastic/stress", H5P_DEFAULT);
       const hid_t s = H5Dget_space(d);
@@ -321,30 +291,26 @@ TEST(Farm, DamagedCheckpointRefused) {
       H5Awrite(a, H5T_NATIVE_INT64, &v);
       H5Aclose(a);
     });
-    tamper(missing,
-           [](hid_t f) { H5Ldelete(f, "/mpm/points/x", H5P_DEFAULT); });
+    tamper(missing, [](hid_t f) { H5Ldelete(f, "/mpm/points/x", H5P_DEFAULT); });
     fs::resize_file(truncated, fs::file_size(truncated) / 2);
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  farm::CoupledConfig again =
-      triaxial_job(dir + "/again", 8, mixed_elastic_kind());
-  expect_refused(again, flipped,
-                 {flipped, "/rve/fields/elastic/stress", "checksum mismatch"});
+  farm::CoupledConfig again = triaxial_job(dir + "/again", 8, mixed_elastic_kind());
+  expect_refused(again, flipped, {flipped, "/rve/fields/elastic/stress", "checksum mismatch"});
   expect_refused(again, version, {version, "format_version = 99"});
   expect_refused(again, missing, {missing, "/mpm/points/x", "missing"});
   expect_refused(again, truncated, {truncated});
   expect_refused(again, dir + "/nothing.h5", {"nothing.h5", "does not exist"});
 }
 
-// DemMicro (dem::Rve, 40 and 70 spheres): identical results on 1, 2, ... ranks,
-// and a restart from a checkpoint written by all ranks onto min(world, 2) ranks
-// continues bit for bit.
+// DemMicro (dem::Rve, 40 and 70 spheres): identical results on 1, 2, ... ranks, and a restart
+// from a checkpoint written by all ranks onto min(world, 2) ranks continues bit for bit.
 TEST(Farm, DemResultsIdenticalOnAnyRankCountAndRestart) {
   const std::string base = scratch("dem");
   const std::int64_t steps = 4;
   for (int n = 1; n <= world_size(); ++n) {
-    run_on(n, triaxial_job(base + "/n" + std::to_string(n), steps,
-                           farm::testing::small_dem_kind()));
+    run_on(n,
+           triaxial_job(base + "/n" + std::to_string(n), steps, farm::testing::small_dem_kind()));
   }
   farm::CoupledConfig half =
       triaxial_job(base + "/split", steps / 2, farm::testing::small_dem_kind());
@@ -352,33 +318,25 @@ TEST(Farm, DemResultsIdenticalOnAnyRankCountAndRestart) {
   run_on(world_size(), half);
   const std::string ckpt = farm::checkpoint_path(base + "/split", steps / 2);
   run_on(std::min(world_size(), 2),
-         triaxial_job(base + "/split", steps, farm::testing::small_dem_kind()),
-         &ckpt);
+         triaxial_job(base + "/split", steps, farm::testing::small_dem_kind()), &ckpt);
   if (world_rank() == 0) {
     for (int n = 2; n <= world_size(); ++n) {
       EXPECT_EQ(
-          compare_results(base + "/n1/results.h5",
-                          base + "/n" + std::to_string(n) + "/results.h5"),
+          compare_results(base + "/n1/results.h5", base + "/n" + std::to_string(n) + "/results.h5"),
           "")
           << "DEM: 1 rank vs " << n << " ranks";
     }
-    EXPECT_EQ(
-        compare_results(base + "/n1/results.h5", base + "/split/results.h5"),
-        "")
+    EXPECT_EQ(compare_results(base + "/n1/results.h5", base + "/split/results.h5"), "")
         << "DEM restart: written by " << world_size() << " ranks, restarted on "
         << std::min(world_size(), 2);
     // The DEM did something: non-zero DEM steps and coordination.
-    const auto z =
-        farm::testing::read_words(base + "/n1/results.h5", "/rve/dem_steps");
+    const auto z = farm::testing::read_words(base + "/n1/results.h5", "/rve/dem_steps");
     ASSERT_FALSE(z.empty());
     EXPECT_GT(z.back(), 0u);
-    // Row 0 (before the first step) holds the measures of the prepared RVEs,
-    // not zeros: the coordination number is positive and close to that after
-    // the first (small) step.
-    const auto zw =
-        farm::testing::read_words(base + "/n1/results.h5", "/rve/z");
-    const auto ids =
-        farm::testing::read_words(base + "/n1/results.h5", "/rve/id");
+    // Row 0 (before the first step) holds the measures of the prepared RVEs, not zeros: the
+    // coordination number is positive and close to that after the first (small) step.
+    const auto zw = farm::testing::read_words(base + "/n1/results.h5", "/rve/z");
+    const auto ids = farm::testing::read_words(base + "/n1/results.h5", "/rve/id");
     ASSERT_GE(zw.size(), 2 * ids.size());
     for (std::size_t k = 0; k < ids.size(); ++k) {
       double z0 = 0.0;
