@@ -57,11 +57,12 @@ void MixedController::update(Simulation& sim) {
 void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
              const std::function<void(const Simulation&)>& observer) {
   const std::int64_t refresh = sim.numerics().dt_refresh;
+  const Simulation::StepHook between = [refresh, ctl](Simulation& s) {
+    if (s.steps() % refresh == 0) s.refresh_dt();
+    if (ctl != nullptr) ctl->update(s);
+  };
   for (std::int64_t s = 0; s < n; ++s) {
-    sim.compute_forces();
-    if (sim.steps() % refresh == 0) sim.refresh_dt();
-    if (ctl != nullptr) ctl->update(sim);
-    sim.integrate();
+    sim.step(between);
     if (observer) observer(sim);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <string>
 
@@ -16,6 +17,7 @@ using common::Vec3;
 
 namespace {
 constexpr std::int64_t kStressBlock = 512;  // fixed reduction blocks, independent of threads
+constexpr std::int64_t kParallelSpheres = 512;  // fewer spheres: one thread (fork costs more)
 
 inline double sgn(double v) { return (v > 0.0) - (v < 0.0); }
 }  // namespace
@@ -52,8 +54,11 @@ void Simulation::update_neighbors() {
   }
 }
 
-void Simulation::compute_forces() {
-  update_neighbors();
+// One parallel region per step: the pair loop and the per-sphere loop are work-shared loops of
+// the same team (an implicit barrier between them), not separate regions: on 2 threads each
+// region's fork and join cost as much as a few hundred spheres of work (docs/dem.md).
+
+void Simulation::pair_forces_shared() {
   const auto np = static_cast<std::int64_t>(contacts_.size());
   const Mat3 h = cell_.h;
   const Mat3 l = cell_.l;
@@ -61,9 +66,7 @@ void Simulation::compute_forces() {
   Contacts& c = contacts_;
   const Spheres& s = spheres_;
   const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
-  std::vector<Mat3> block_stress(static_cast<std::size_t>(nblocks), Mat3::Zero());
-
-#pragma omp parallel for schedule(static) if (nblocks > 1)
+#pragma omp for schedule(static)
   for (std::int64_t b = 0; b < nblocks; ++b) {
     Mat3 sum = Mat3::Zero();
     const std::int64_t end = std::min(np, (b + 1) * kStressBlock);
@@ -98,65 +101,130 @@ void Simulation::compute_forces() {
       c.fn[p] = res.fn;
       sum += res.force * d.transpose();
     }
-    block_stress[static_cast<std::size_t>(b)] = sum;
+    block_stress_[static_cast<std::size_t>(b)] = sum;
   }
+}
+
+void Simulation::prepare_pair_pass() {
+  update_neighbors();
+  const auto np = static_cast<std::int64_t>(contacts_.size());
+  block_stress_.assign(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock),
+                       Mat3::Zero());
+}
+
+void Simulation::finish_stress() {
   Mat3 total = Mat3::Zero();
-  for (const Mat3& m : block_stress) total += m;
+  for (const Mat3& m : block_stress_) total += m;
   // Love-Weber with the force on sphere 1 (-F) and the branch from 1 to 2: tension positive.
   stress_ = -total / cell_.volume();
+}
 
-  // Per-sphere sums in the fixed pair order of the CSR lists.
-  const auto ns = static_cast<std::int64_t>(s.size());
-#pragma omp parallel for schedule(static) if (ns > 512)
-  for (std::int64_t q = 0; q < ns; ++q) {
-    Vec3 f = Vec3::Zero();
-    Vec3 t = Vec3::Zero();
-    for (std::int64_t e = c.sphere_offset[q]; e < c.sphere_offset[q + 1]; ++e) {
-      const std::int64_t p = c.sphere_pairs[e];
-      if (p >= 0) {
-        if (!c.active[p]) continue;
-        f -= c.force[p];
-        t += c.torque_i[p];
-      } else {
-        const std::int64_t pj = -p - 1;
-        if (!c.active[pj]) continue;
-        f += c.force[pj];
-        t += c.torque_j[pj];
-      }
+// Per-sphere sums in the fixed pair order of the CSR lists.
+inline void Simulation::sum_sphere(std::int64_t q) {
+  const Contacts& c = contacts_;
+  Vec3 f = Vec3::Zero();
+  Vec3 t = Vec3::Zero();
+  for (std::int64_t e = c.sphere_offset[q]; e < c.sphere_offset[q + 1]; ++e) {
+    const std::int64_t p = c.sphere_pairs[e];
+    if (p >= 0) {
+      if (!c.active[p]) continue;
+      f -= c.force[p];
+      t += c.torque_i[p];
+    } else {
+      const std::int64_t pj = -p - 1;
+      if (!c.active[pj]) continue;
+      f += c.force[pj];
+      t += c.torque_j[pj];
     }
-    spheres_.force[q] = f;
-    spheres_.torque[q] = t;
   }
+  spheres_.force[q] = f;
+  spheres_.torque[q] = t;
+}
+
+// Leap-frog with Cundall damping of the fluctuating velocity and the spin (YADE's NewtonIntegrator).
+inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& l) {
+  Spheres& s = spheres_;
+  const double lambda = num_.damping;
+  if (!s.fixed[q]) {
+    Vec3 a = s.force[q] / s.m[q];
+    Vec3 al = s.torque[q] / s.inertia[q];
+    for (int k = 0; k < 3; ++k) {
+      a[k] *= 1.0 - lambda * sgn(a[k] * (s.u[q][k] + 0.5 * dt * a[k]));
+      al[k] *= 1.0 - lambda * sgn(al[k] * (s.w[q][k] + 0.5 * dt * al[k]));
+    }
+    s.u[q] += dt * a;
+    s.w[q] += dt * al;
+  }
+  s.x[q] += dt * (s.u[q] + l * s.x[q]);
+}
+
+void Simulation::compute_forces() {
+  prepare_pair_pass();
+  const auto ns = static_cast<std::int64_t>(spheres_.size());
+#pragma omp parallel if (ns > kParallelSpheres)
+  {
+    pair_forces_shared();
+#pragma omp for schedule(static)
+    for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
+  }
+  finish_stress();
 }
 
 void Simulation::integrate() {
-  Spheres& s = spheres_;
   const double dt = dt_;
-  const double lambda = num_.damping;
   const Mat3 l = cell_.l;
-  const auto ns = static_cast<std::int64_t>(s.size());
-#pragma omp parallel for schedule(static) if (ns > 512)
-  for (std::int64_t q = 0; q < ns; ++q) {
-    if (!s.fixed[q]) {
-      Vec3 a = s.force[q] / s.m[q];
-      Vec3 al = s.torque[q] / s.inertia[q];
-      for (int k = 0; k < 3; ++k) {
-        a[k] *= 1.0 - lambda * sgn(a[k] * (s.u[q][k] + 0.5 * dt * a[k]));
-        al[k] *= 1.0 - lambda * sgn(al[k] * (s.w[q][k] + 0.5 * dt * al[k]));
-      }
-      s.u[q] += dt * a;
-      s.w[q] += dt * al;
-    }
-    s.x[q] += dt * (s.u[q] + l * s.x[q]);
-  }
-  cell_.deform(dt);
-  time_ += dt;
+  const auto ns = static_cast<std::int64_t>(spheres_.size());
+#pragma omp parallel for schedule(static) if (ns > kParallelSpheres)
+  for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+  advance_cell_and_clock();
+}
+
+void Simulation::advance_cell_and_clock() {
+  cell_.deform(dt_);
+  time_ += dt_;
   ++steps_;
 }
 
-void Simulation::step() {
-  compute_forces();
-  integrate();
+void Simulation::step() { step(StepHook{}); }
+
+void Simulation::step(const StepHook& between) {
+  prepare_pair_pass();
+  const auto ns = static_cast<std::int64_t>(spheres_.size());
+  std::exception_ptr error;
+#pragma omp parallel if (ns > kParallelSpheres)
+  {
+    pair_forces_shared();
+    if (between) {
+#pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
+#pragma omp single
+      {
+        finish_stress();
+        try {
+          between(*this);
+        } catch (...) {
+          error = std::current_exception();  // an exception must not leave the region
+        }
+      }  // implicit barrier: every thread sees the hook's dt and cell().l
+      if (!error) {
+        const double dt = dt_;
+        const Mat3 l = cell_.l;
+#pragma omp for schedule(static)
+        for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+      }
+    } else {
+      const double dt = dt_;
+      const Mat3 l = cell_.l;
+#pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < ns; ++q) {
+        sum_sphere(q);
+        integrate_sphere(q, dt, l);
+      }
+    }
+  }
+  if (error) std::rethrow_exception(error);
+  if (!between) finish_stress();
+  advance_cell_and_clock();
 }
 
 double Simulation::critical_dt() const {
@@ -165,7 +233,7 @@ double Simulation::critical_dt() const {
   const auto ns = static_cast<std::int64_t>(s.size());
   double best = std::numeric_limits<double>::infinity();
   if (!c.sphere_offset.empty()) {
-#pragma omp parallel for reduction(min : best) schedule(static) if (ns > 512)
+#pragma omp parallel for reduction(min : best) schedule(static) if (ns > kParallelSpheres)
     for (std::int64_t q = 0; q < ns; ++q) {
       Vec3 kt = Vec3::Zero();
       Vec3 kr = Vec3::Zero();

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <vector>
 
 #include "common/types.hpp"
 #include "dem/contact_law_cohfrict.hpp"
@@ -20,9 +22,16 @@ class Simulation {
   /// @pre spheres inside or near the cell, material and numerics valid (checked).
   Simulation(Spheres spheres, const PeriodicCell& cell, const Material& mat, const Numerics& num);
 
+  /// Runs between the forces and the integration of a step (a stress servo): sees the new
+  /// stress() and forces, may set cell().l and dt. Called by one thread.
+  using StepHook = std::function<void(Simulation&)>;
   /// One step: neighbour update if needed, contact forces, integration, cell deformation with
-  /// cell().l. Equivalent to compute_forces(); integrate().
+  /// cell().l. Same results as compute_forces(); integrate(), in ONE OpenMP parallel region.
   void step();
+  /// The same with `between` run after the forces (compute_forces(); between(*this);
+  /// integrate()). An exception from `between` propagates after the region; the step is then
+  /// not integrated.
+  void step(const StepHook& between);
   /// Neighbour update if needed, contact forces and torques, Love-Weber stress.
   void compute_forces();
   /// Leap-frog update of velocities, positions and the cell with the forces of compute_forces().
@@ -65,6 +74,15 @@ class Simulation {
 
  private:
   void update_neighbors();
+  /// Neighbour update and a zeroed stress block per kStressBlock pairs.
+  void prepare_pair_pass();
+  /// Work-shared pair loop (called inside a parallel region): forces, torques, block stresses.
+  void pair_forces_shared();
+  /// Stress from the block sums, in block order (thread-count independent).
+  void finish_stress();
+  void sum_sphere(std::int64_t q);
+  void integrate_sphere(std::int64_t q, double dt, const common::Mat3& l);
+  void advance_cell_and_clock();
 
   Spheres spheres_;
   PeriodicCell cell_;
@@ -77,6 +95,7 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   bool force_rebuild_ = true;
+  std::vector<common::Mat3> block_stress_;  ///< scratch of the pair pass (no state)
 };
 
 }  // namespace dem
