@@ -2,6 +2,7 @@
 // materials of the bodies, geometry). Single-key rules live in the schema.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "app/job.hpp"
@@ -114,8 +115,34 @@ void mpm_rules(const Job& job, Rules& r) {
   if (any_dem && !job.has_section("dem")) r.fail_missing("dem", "required section when a body has material = \"dem\"");
   for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
     const std::string base = fmt::format("mpm.velocity[{}].", i);
+    const bool face = job.has(base + "face");
+    const bool node = job.has(base + "node");
+    if (face == node) {
+      if (face) {
+        r.fail(base + "node", "give either face or node, not both");
+      } else {
+        r.fail_missing(base + "face", "required: give face (a grid face) or node (a grid node position)");
+      }
+      continue;
+    }
+    const std::string where = base + (face ? "face" : "node");
     if (!job.has(base + "x") && !job.has(base + "y") && !job.has(base + "z")) {
-      r.fail(base + "face", "a velocity constraint needs at least one of x, y, z");
+      r.fail(where, "a velocity constraint needs at least one of x, y, z");
+    }
+    if (!node) continue;
+    const auto& x = job.numbers(base + "node");
+    if (x.size() != 3) {
+      r.fail(base + "node", fmt::format("must have 3 coordinates, not {}", x.size()));
+      continue;
+    }
+    for (int a = 0; a < 3; ++a) {
+      const double k = (x[a] - origin[a]) / h[a];
+      if (std::abs(k - std::round(k)) > 1e-9 || k < -1e-9 || k > static_cast<double>(n[a]) + 1e-9) {
+        r.fail(base + "node",
+               fmt::format("({}, {}, {}) is not a node of the grid (origin + i spacing, i in 0..cells) on axis {}", x[0],
+                           x[1], x[2], "xyz"[a]));
+        break;
+      }
     }
   }
 }

@@ -69,9 +69,6 @@ MpmSetup mpm_setup(const Job& job) {
 
   for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
     const std::string base = fmt::format("mpm.velocity[{}].", i);
-    int axis = 0;
-    int side = 0;
-    face_axis_side(job.text(base + "face"), axis, side);
     std::array<bool, 3> fixed{};
     common::Vec3 v = common::Vec3::Zero();
     for (int a = 0; a < 3; ++a) {
@@ -81,7 +78,14 @@ MpmSetup mpm_setup(const Job& job) {
         v[a] = job.number(key);
       }
     }
-    setup.constraints.push_back(mpm::face_constraint(cfg.grid, axis, side, fixed, v));
+    if (job.has(base + "face")) {
+      int axis = 0;
+      int side = 0;
+      face_axis_side(job.text(base + "face"), axis, side);
+      setup.constraints.push_back(mpm::face_constraint(cfg.grid, axis, side, fixed, v));
+    } else {
+      setup.constraints.push_back(mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v));
+    }
   }
   for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {
     const std::string base = fmt::format("mpm.traction[{}].", i);

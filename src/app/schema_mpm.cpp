@@ -51,8 +51,13 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.elastic.young_modulus", Type::Float, "Young's modulus.").unit(Q::Pressure).in(0, std::nullopt, true).need();
   s.add("mpm.elastic.poisson_ratio", Type::Float, "Poisson's ratio.").in(-1, 0.5, true, true).need();
 
-  s.add("mpm.velocity[]", Type::TableList, "Imposed velocity components on the nodes of a grid face.");
-  s.add("mpm.velocity[].face", Type::String, "Grid face.").one_of({"x-", "x+", "y-", "y+", "z-", "z+"}).need();
+  s.add("mpm.velocity[]", Type::TableList,
+        "Imposed velocity components on the nodes of a grid face, or on one grid node.");
+  s.add("mpm.velocity[].face", Type::String, "Grid face (give face or node).")
+      .one_of({"x-", "x+", "y-", "y+", "z-", "z+"});
+  s.add("mpm.velocity[].node", Type::FloatList,
+        "Position of one grid node (give face or node), e.g. to pin rigid motions: docs/mpm.md.")
+      .unit(Q::Length);
   s.add("mpm.velocity[].x", Type::Float, "Imposed x velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].y", Type::Float, "Imposed y velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].z", Type::Float, "Imposed z velocity; absent: free.").unit(Q::Velocity);

@@ -28,6 +28,17 @@ VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::ar
   return c;
 }
 
+VelocityConstraint node_constraint(const Grid& grid, const common::Vec3& node, std::array<bool, 3> fixed,
+                                   const common::Vec3& velocity) {
+  VelocityConstraint c;
+  // A box of a quarter spacing around the node selects it and no neighbour.
+  c.lo = node - 0.25 * grid.spacing;
+  c.hi = node + 0.25 * grid.spacing;
+  c.fixed = fixed;
+  c.velocity = velocity;
+  return c;
+}
+
 ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c) {
   ResolvedConstraint r{c, {}, {}};
   const common::Vec3 tol = 1e-9 * grid.spacing;

@@ -39,6 +39,9 @@ struct VelocityConstraint {
 /// axis in {0, 1, 2}, side -1 (lower) or +1 (upper).
 VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::array<bool, 3> fixed,
                                    const common::Vec3& velocity = common::Vec3::Zero());
+/// One grid node at `node` [m] (a box of +/- spacing / 4 around it).
+VelocityConstraint node_constraint(const Grid& grid, const common::Vec3& node, std::array<bool, 3> fixed,
+                                   const common::Vec3& velocity = common::Vec3::Zero());
 
 /// A constraint with its node list resolved (sorted), built once by the solver.
 struct ResolvedConstraint {

@@ -135,6 +135,13 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
   for (int axis : {0, 1}) {
     for (int side : {-1, 1}) solver.add_traction({axis, side, tc.pressure, Vec3::Zero()});
   }
+  if (tc.pin_rigid_modes) {
+    // 3-2-1 support in the horizontal plane: node (0,0,0) fixed in x and y, node (1,0,0) in y.
+    // Removes the rigid translations in x, y and the rotation about z; any homogeneous
+    // deformation (which keeps (0,0,0) in place and (1,0,0) on the x axis) is left free.
+    solver.add_constraint(node_constraint(cfg.grid, Vec3::Zero(), {true, true, false}));
+    solver.add_constraint(node_constraint(cfg.grid, Vec3(1, 0, 0), {false, true, false}));
+  }
 
   TriaxialResult r;
   double eps = 0;

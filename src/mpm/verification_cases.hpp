@@ -57,6 +57,9 @@ struct TriaxialConfig {
   /// Added to the initial stress -p I (e.g. a small shear, as DEM RVEs carry) [Pa].
   common::Mat3 initial_stress_seed = common::Mat3::Zero();
   bool move_points = true;  ///< SolverConfig::move_points
+  /// Also constrain the rigid motions in the horizontal plane (3-2-1 support on the bottom
+  /// nodes (0,0,0) in x, y and (1,0,0) in y); the paper's set-up leaves them free.
+  bool pin_rigid_modes = false;
 };
 struct TriaxialResult {
   double lateral_error = 0.0;     ///< max over points and steps of |sigma_xx or yy / (-p) - 1|

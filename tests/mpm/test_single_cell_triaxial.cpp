@@ -2,6 +2,7 @@
 // linear elastic material (verification_cases.hpp, run_single_cell_triaxial).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "mpm/verification_cases.hpp"
@@ -60,6 +61,49 @@ TEST(SingleCellTriaxial, ShearSeedWithFixedPointsStaysStable) {
   EXPECT_LT(r.lateral_error_end, 0.01);
   EXPECT_LT(r.axial_error, 0.01);
   EXPECT_EQ(r.max_displacement, 0.0);
+}
+
+// The case of jobs/elastic_triaxial.toml that went unstable (docs/validation.md): nu = 0.3 (with
+// nu = 0.25 the same set-up stays stable), platen at 1 mm/s, to 1 % axial strain.
+mpm::TriaxialConfig unstable_case() {
+  mpm::TriaxialConfig tc;
+  tc.initial_stress_seed(0, 2) = tc.initial_stress_seed(2, 0) = 1.4e3;
+  tc.poisson_ratio = 0.3;
+  tc.density = 1696.0;
+  tc.inertial_number = 1e-3 / std::sqrt(tc.pressure / tc.density);  // 1 mm/s
+  tc.axial_strain = 0.01;
+  return tc;
+}
+
+// The unstable mode is the rigid motion of the cell in the horizontal plane (translations in x,
+// y and the rotation about z), which nothing in the paper's set-up restrains: only z is
+// prescribed on the platens, x and y are held by pressures alone. A 3-2-1 support of two bottom
+// nodes removes those three motions and nothing else; then the shear seed with MOVING points
+// stays stable, with the same bounds as with fixed points.
+TEST(SingleCellTriaxial, ShearSeedWithMovingPointsIsStableOnceRigidModesArePinned) {
+  mpm::TriaxialConfig tc = unstable_case();
+  tc.pin_rigid_modes = true;
+  const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
+  std::printf("shear seed, moving points, pinned rigid modes: lateral error max %.3e end %.3e, axial error %.3e, "
+              "max displacement %.3e m, %lld steps\n",
+              r.lateral_error, r.lateral_error_end, r.axial_error, r.max_displacement,
+              static_cast<long long>(r.steps));
+  EXPECT_LT(r.lateral_error, 0.02);
+  EXPECT_LT(r.lateral_error_end, 0.01);
+  EXPECT_LT(r.axial_error, 0.01);
+  // The points follow the homogeneous deformation only: at 1 % axial strain the top points move
+  // by 0.75 * 1 % of the cell (measured 6.4 mm; the unstable run moves them by 0.58 m).
+  EXPECT_LT(r.max_displacement, 0.01);
+}
+
+// The same seed without the pins: unstable (the case above is not stable by accident of the
+// seed or of the step): the points rotate away and lateral control is lost.
+TEST(SingleCellTriaxial, ShearSeedWithMovingPointsAndFreeRigidModesGoesUnstable) {
+  const mpm::TriaxialConfig tc = unstable_case();
+  const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
+  std::printf("shear seed, moving points, free rigid modes: lateral error max %.3e, max displacement %.3e m\n",
+              r.lateral_error, r.max_displacement);
+  EXPECT_GT(r.lateral_error, 0.05);
 }
 
 }  // namespace
