@@ -13,7 +13,8 @@ namespace farm {
 /// How a rank waits for a non-blocking collective.
 enum class WaitMode {
   spin,   ///< MPI_Wait: Open MPI busy-polls (a core at 100 %)
-  sleep,  ///< MPI_Test, then sleeps with a back-off from 10 us to 100 us (frees the core)
+  sleep,  ///< polls MPI_Test for up to 200 us, then sleeps with a back-off from 10 us to 100 us
+          ///< (a long wait frees the core)
 };
 
 /// Completes `request` according to `mode`.

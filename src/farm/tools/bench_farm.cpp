@@ -1,5 +1,6 @@
 // bench_farm: figures of the RVE farm (a program, never a test). Run under mpiexec, e.g.
 //   mpiexec -n 2 --bind-to none bench_farm overhead [--wait spin|sleep] [--steps 10]
+//       [--output-every 10] (rows of results.h5: the paper's job writes every 10th step)
 //   mpiexec -n 2 --bind-to none bench_farm balance  [--rves 32] [--steps 20]
 //   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
@@ -113,16 +114,17 @@ void overhead(const Args& a, MPI_Comm comm) {
                                    dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)),
                                    std::stod(a.get("speed", "1")));
   c.farm = farm_options(a);
+  c.output.every = std::stoll(a.get("output-every", "10"));
   const double t0 = now();
   const farm::RunSummary s = farm::run_coupled(c, comm);
   const double total = now() - t0;
   if (rank_of(comm) == 0) {
     const farm::FarmTimes& t = s.times;
     std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, platen x%s eq. 13, wait %s, "
-                "omp over RVEs %s\n",
+                "omp over RVEs %s, results row every %lld steps\n",
                 size_of(comm), static_cast<long long>(s.steps), a.get("speed", "1").c_str(),
-                a.get("wait", "sleep").c_str(),
-                a.get("omp-over-rves", "1").c_str());
+                a.get("wait", "sleep").c_str(), a.get("omp-over-rves", "1").c_str(),
+                static_cast<long long>(c.output.every));
     std::printf(
         "  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
         s.wall_s, s.wall_s / static_cast<double>(steps), total);
