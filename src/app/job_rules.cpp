@@ -117,15 +117,36 @@ void mpm_rules(const Job& job, Rules& r) {
     const std::string base = fmt::format("mpm.velocity[{}].", i);
     const bool face = job.has(base + "face");
     const bool node = job.has(base + "node");
-    if (face == node) {
-      if (face) {
-        r.fail(base + "node", "give either face or node, not both");
+    const bool box = job.has(base + "min") || job.has(base + "max");
+    const int given = static_cast<int>(face) + static_cast<int>(node) + static_cast<int>(box);
+    if (given != 1) {
+      if (given > 1) {
+        r.fail(base + (node ? "node" : "max"), "give one of face, node or a box (min and max), not several");
       } else {
-        r.fail_missing(base + "face", "required: give face (a grid face) or node (a grid node position)");
+        r.fail_missing(base + "face",
+                       "required: give face (a grid face), node (a grid node position) or a box (min and max)");
       }
       continue;
     }
-    const std::string where = base + (face ? "face" : "node");
+    const std::string where = base + (face ? "face" : node ? "node" : "max");
+    if (box) {
+      if (!job.has(base + "min") || !job.has(base + "max")) {
+        r.fail_missing(base + (job.has(base + "min") ? "max" : "min"), "required: a box needs both min and max");
+        continue;
+      }
+      const auto& lo = job.numbers(base + "min");
+      const auto& hi = job.numbers(base + "max");
+      if (lo.size() != 3 || hi.size() != 3) {
+        r.fail(base + "max", "min and max must have 3 coordinates each");
+        continue;
+      }
+      for (int a = 0; a < 3; ++a) {
+        if (!(hi[a] >= lo[a])) {
+          r.fail(base + "max", fmt::format("must be >= min on every axis (axis {})", "xyz"[a]));
+          break;
+        }
+      }
+    }
     if (!job.has(base + "x") && !job.has(base + "y") && !job.has(base + "z")) {
       r.fail(where, "a velocity constraint needs at least one of x, y, z");
     }

@@ -83,8 +83,10 @@ MpmSetup mpm_setup(const Job& job) {
       int side = 0;
       face_axis_side(job.text(base + "face"), axis, side);
       setup.constraints.push_back(mpm::face_constraint(cfg.grid, axis, side, fixed, v));
-    } else {
+    } else if (job.has(base + "node")) {
       setup.constraints.push_back(mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v));
+    } else {
+      setup.constraints.push_back({vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")), fixed, v, {}});
     }
   }
   for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {

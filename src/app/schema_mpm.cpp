@@ -52,12 +52,16 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.elastic.poisson_ratio", Type::Float, "Poisson's ratio.").in(-1, 0.5, true, true).need();
 
   s.add("mpm.velocity[]", Type::TableList,
-        "Imposed velocity components on the nodes of a grid face, or on one grid node.");
-  s.add("mpm.velocity[].face", Type::String, "Grid face (give face or node).")
+        "Imposed velocity components on grid nodes: a grid face, one node, or the nodes in a box.");
+  s.add("mpm.velocity[].face", Type::String, "Grid face (give one of face, node, min and max).")
       .one_of({"x-", "x+", "y-", "y+", "z-", "z+"});
   s.add("mpm.velocity[].node", Type::FloatList,
-        "Position of one grid node (give face or node), e.g. to pin rigid motions: docs/mpm.md.")
+        "Position of one grid node, e.g. to pin rigid motions (docs/mpm.md).")
       .unit(Q::Length);
+  s.add("mpm.velocity[].min", Type::FloatList,
+        "Lower corner of a box: every node inside it, boundary included (e.g. a padded grid's platen).")
+      .unit(Q::Length);
+  s.add("mpm.velocity[].max", Type::FloatList, "Upper corner of the box of min.").unit(Q::Length);
   s.add("mpm.velocity[].x", Type::Float, "Imposed x velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].y", Type::Float, "Imposed y velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].z", Type::Float, "Imposed z velocity; absent: free.").unit(Q::Velocity);

@@ -89,3 +89,32 @@ TEST(MpmSetup, MappedSetUpHoldsTheConfiningPressure) {
     EXPECT_LT(s(2, 2), -1e5) << "point " << p;  // compressed axially
   }
 }
+
+// [[mpm.velocity]] selects a grid face, one node (a box of +/- h/4 around it) or a box of nodes;
+// resolved on the grid, each selects exactly the nodes meant.
+TEST(MpmSetup, VelocityConstraintsOnFaceNodeAndBox) {
+  std::string job = kJob;
+  job.replace(job.find("cells = [1, 1, 1]"), 17, "cells = [2, 2, 2]");
+  job += R"(
+[[mpm.velocity]]
+node = [1.0, 0.0, 0.0]
+y = 0.0
+
+[[mpm.velocity]]
+min = [0.0, 0.0, 2.0]
+max = [2.0, 1.0, 2.0]
+x = "2 mm/s"
+)";
+  const auto setup = app::mpm_setup(app::Job::parse(job, "job.toml"));
+  ASSERT_EQ(setup.constraints.size(), 4u);
+  const mpm::Grid& g = setup.config.grid;
+  const mpm::ResolvedConstraint face = mpm::resolve(g, setup.constraints[0]);
+  const mpm::ResolvedConstraint node = mpm::resolve(g, setup.constraints[2]);
+  const mpm::ResolvedConstraint box = mpm::resolve(g, setup.constraints[3]);
+  EXPECT_EQ(face.nodes.size(), 9u);  // the z = 0 plane of a 3 x 3 x 3 node grid
+  ASSERT_EQ(node.nodes.size(), 1u);
+  EXPECT_EQ(node.nodes[0], g.node_index(1, 0, 0));
+  EXPECT_EQ(box.nodes.size(), 6u);  // z = 2, x in {0, 1, 2}, y in {0, 1}
+  EXPECT_TRUE(setup.constraints[2].fixed[1] && !setup.constraints[2].fixed[0]);
+  EXPECT_DOUBLE_EQ(setup.constraints[3].velocity[0], 2e-3);
+}
