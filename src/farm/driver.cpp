@@ -141,7 +141,17 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
       mpm::Solver solver(cfg.solver, cfg.points, {farm.get()});
       for (const auto& c : cfg.constraints) solver.add_constraint(c);
       for (const auto& t : cfg.tractions) solver.add_traction(t);
-      if (info) solver.load(mpm_state);
+      if (info) {
+        solver.load(mpm_state);
+      } else {
+        // A fresh run: every point starts with its RVE's stress (the prepared sample's), not
+        // the config's (zero for DEM points): row 0 of the outputs, and MUSL's first step.
+        mpm::MaterialPoints& pts = solver.points();
+        for (std::size_t p = 0; p < pts.size(); ++p) {
+          const auto k = std::lower_bound(ids.begin(), ids.end(), pts.id[p]) - ids.begin();
+          pts.stress[p] = farm->stresses()[static_cast<std::size_t>(k)];
+        }
+      }
       farm->set_step(solver.step_count());
       const std::int64_t start_step = solver.step_count();
       ResultsWriter results(cfg.output.dir, ids, solver.points(), info ? info->step : -1);

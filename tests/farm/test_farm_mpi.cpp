@@ -346,5 +346,11 @@ TEST(Farm, DemResultsIdenticalOnAnyRankCountAndRestart) {
       EXPECT_GT(z0, 2.0) << "RVE " << k;
       EXPECT_NEAR(z0, z1, 0.5) << "RVE " << k;
     }
+    // ... and the points start with their RVE's stress (compressive), not zero.
+    const auto ps = farm::testing::read_words(base + "/n1/results.h5", "/points/stress");
+    ASSERT_GE(ps.size(), 9u);
+    double sxx0 = 0.0;
+    std::memcpy(&sxx0, &ps[0], sizeof sxx0);
+    EXPECT_LT(sxx0, -1e3);
   }
 }
