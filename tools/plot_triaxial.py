@@ -2,7 +2,7 @@
 """Figures of a drained triaxial test, like Duverger et al. 2022 (figs. 1 and 2).
 
 Usage (Debian's python3-matplotlib and python3-h5py; use /usr/bin/python3):
-  tools/plot_triaxial.py --out FIG_PREFIX [--run DIR[=LABEL]]... [--csv FILE[=LABEL]]...
+  tools/plot_triaxial.py --out FIG_PREFIX [--run DIR[=LABEL]]... [--csv FILE[=LABEL]]... [--summary]
 
   --run DIR   an `mpmxdem run` output directory (means.csv, results.h5): sample means, and
               per-RVE principal stresses, coordination number and axial over lateral stress
@@ -99,11 +99,37 @@ def plot_rves(directory, label, prefix, index):
     print("wrote", name)
 
 
+def summary(directory, label):
+    """Numbers of docs/validation.md: peak q, q and eps_v at 10/20/30 %, lateral stress per RVE."""
+    import h5py
+
+    eps, epsv, q = series_of_run(directory)
+    k = int(np.argmax(q))
+    print(f"{label}: peak q {q[k] / 1e3:.1f} kPa at eps_ax {100 * eps[k]:.2f} %")
+    for e in (0.10, 0.20, 0.30):
+        if eps[-1] >= e - 0.002:  # the last row may stop just short of the target
+            at = min(e, eps[-1])
+            print(f"  at {100 * at:.1f} %: q {np.interp(at, eps, q) / 1e3:.1f} kPa, eps_v {100 * np.interp(at, eps, epsv):.2f} %")
+    with h5py.File(os.path.join(directory, "results.h5"), "r") as f:
+        stress = -f["rve/stress"][:].reshape(len(f["time"]), -1, 3, 3)
+        ids = f["rve/id"][:]
+    lat = np.stack([stress[:, :, 0, 0], stress[:, :, 1, 1]], axis=-1)  # [row, rve, 2]
+    worst = 0.0
+    for j, rve in enumerate(ids):
+        lo, hi = lat[:, j].min() / 1e3, lat[:, j].max() / 1e3
+        worst = max(worst, abs(lo - 100.0), abs(hi - 100.0))
+        print(f"  RVE {rve}: lateral stress {lo:.1f} .. {hi:.1f} kPa, at the end {lat[-1, j, 0] / 1e3:.1f} / {lat[-1, j, 1] / 1e3:.1f}")
+    print(f"  largest lateral deviation from 100 kPa over all RVEs and rows: {worst:.1f} kPa"
+          f" ({'within' if worst <= 5.0 else 'NOT within'} 5 %)")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", required=True, help="prefix of the PNG files")
     ap.add_argument("--run", action="append", default=[], help="mpmxdem run output directory[=label]")
     ap.add_argument("--csv", action="append", default=[], help="series CSV[=label]")
+    ap.add_argument("--summary", action="store_true",
+                    help="also print, for every --run: peak q, q and eps_v at 10/20/30 %%, lateral stress per RVE")
     a = ap.parse_args()
     if not a.run and not a.csv:
         ap.error("give at least one --run or --csv")
@@ -118,6 +144,8 @@ def main():
     for i, arg in enumerate(a.run):
         path, label = split_label(arg)
         plot_rves(path, label, a.out, i)
+        if a.summary:
+            summary(path, label)
 
 
 if __name__ == "__main__":
