@@ -7,7 +7,7 @@
 
 namespace farm {
 
-void CostAverage::add_window(const std::vector<double> &window) {
+void CostAverage::add_window(const std::vector<double>& window) {
   if (windows_ == 0 || avg_.size() != window.size()) {
     avg_ = window;
     windows_ = 1;
@@ -17,13 +17,13 @@ void CostAverage::add_window(const std::vector<double> &window) {
   ++windows_;
 }
 
-double imbalance(const std::vector<int> &owner, const std::vector<double> &cost, int nparts) {
+double imbalance(const std::vector<int>& owner, const std::vector<double>& cost, int nparts) {
   const double eff = balance_efficiency(owner, cost, nparts);
   return eff > 0.0 ? 1.0 / eff : 1.0;
 }
 
-RebalancePlan plan_rebalance(const RveGraph &graph, const std::vector<int> &owner,
-                             const std::vector<double> &cost, int nparts, double threshold,
+RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,
+                             const std::vector<double>& cost, int nparts, double threshold,
                              int seed) {
   MPMXDEM_CHECK(cost.size() == owner.size() && graph.size() == owner.size(),
                 "one cost and one owner per RVE of the graph");

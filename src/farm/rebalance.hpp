@@ -1,11 +1,9 @@
-// When to repartition the RVEs: per-RVE costs are smoothed over check windows,
-// and a new partition is adopted only when its predicted gain is above the
-// measurement noise.
+// When to repartition the RVEs: per-RVE costs are smoothed over check windows, and a new partition
+// is adopted only when its predicted gain is above the measurement noise.
 //
-// A window of check_every MPM steps (~0.1 s of DEM) times every RVE with a
-// noise of several per cent; deciding on one window moved 1347 identical RVEs
-// in one 30 % run (issue 5). The cost of an RVE belongs to the RVE, not to its
-// rank, so the average survives a migration.
+// A window of check_every MPM steps (~0.1 s of DEM) times every RVE with a noise of several per
+// cent; deciding on one window moved 1347 identical RVEs in one 30 % run (issue 5). The cost of an
+// RVE belongs to the RVE, not to its rank, so the average survives a migration.
 #pragma once
 
 #include <vector>
@@ -14,17 +12,15 @@
 
 namespace farm {
 
-/// Exponentially weighted per-RVE cost: after each window, avg = decay * avg +
-/// window (the first window starts it). With decay 0.8 the average spans ~5
-/// windows (1 / (1 - decay)).
+/// Exponentially weighted per-RVE cost: after each window, avg = decay * avg + window (the first
+/// window starts it). With decay 0.8 the average spans ~5 windows (1 / (1 - decay)).
 class CostAverage {
  public:
   explicit CostAverage(double decay = 0.8) : decay_(decay) {}
   /// Adds one window of measured costs (seconds per RVE, by index) [s].
-  void add_window(const std::vector<double> &window);
-  /// Average cost per RVE (arbitrary scale: only ratios matter); empty before
-  /// any window.
-  [[nodiscard]] const std::vector<double> &cost() const { return avg_; }
+  void add_window(const std::vector<double>& window);
+  /// Average cost per RVE (arbitrary scale: only ratios matter); empty before any window.
+  [[nodiscard]] const std::vector<double>& cost() const { return avg_; }
   [[nodiscard]] int windows() const { return windows_; }
 
  private:
@@ -41,17 +37,16 @@ struct RebalancePlan {
   double imbalance_new = 1.0;  ///< the same for METIS's proposal [-]
 };
 
-/// Proposes a METIS partition of `cost` and adopts it when the current
-/// imbalance exceeds `threshold` AND the proposal lowers it by more than
-/// max(threshold - 1, 0.01) / 2 (the gain must be above the noise a threshold
-/// is set against). threshold <= 1 only keeps the 0.005 margin.
+/// Proposes a METIS partition of `cost` and adopts it when the current imbalance exceeds
+/// `threshold` AND the proposal lowers it by more than max(threshold - 1, 0.01) / 2 (the gain must
+/// be above the noise a threshold is set against). threshold <= 1 only keeps the 0.005 margin.
 /// @pre cost.size() == owner.size() == graph.size()
-[[nodiscard]] RebalancePlan plan_rebalance(const RveGraph &graph, const std::vector<int> &owner,
-                                           const std::vector<double> &cost, int nparts,
+[[nodiscard]] RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,
+                                           const std::vector<double>& cost, int nparts,
                                            double threshold, int seed);
 
 /// Max over mean of the part loads (>= 1; 1 when every load is zero) [-].
-[[nodiscard]] double imbalance(const std::vector<int> &owner, const std::vector<double> &cost,
+[[nodiscard]] double imbalance(const std::vector<int>& owner, const std::vector<double>& cost,
                                int nparts);
 
 }  // namespace farm

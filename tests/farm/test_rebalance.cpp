@@ -1,5 +1,5 @@
-// Unit tests of the rebalancing policy (farm/rebalance.hpp): no migration on
-// timing noise, one migration on a real change of cost.
+// Unit tests of the rebalancing policy (farm/rebalance.hpp): no migration on timing noise, one
+// migration on a real change of cost.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -8,8 +8,7 @@
 
 namespace {
 
-/// 8 RVEs at the points of a 2x2x2 arrangement inside one grid cell (the
-/// paper's job).
+/// 8 RVEs at the points of a 2x2x2 arrangement inside one grid cell (the paper's job).
 farm::RveGraph one_cell_graph() {
   const mpm::Grid g{common::Vec3::Zero(), common::Vec3::Ones(), common::Vec3i(1, 1, 1)};
   std::vector<common::Vec3> x;
@@ -18,12 +17,12 @@ farm::RveGraph one_cell_graph() {
   return farm::cell_graph(g, x);
 }
 
-/// Runs `windows` checks of 8 RVEs with costs base[k] * (1 + noise * u), u
-/// uniform in [-1, 1], from the METIS partition of `base`; returns the number
-/// of migrations. `change` is applied to the base costs at window `at`.
+/// Runs `windows` checks of 8 RVEs with costs base[k] * (1 + noise * u), u uniform in [-1, 1], from
+/// the METIS partition of `base`; returns the number of migrations. `change` is applied to the base
+/// costs at window `at`.
 int migrations(double decay, double noise, int windows, std::vector<double> base,
-               const std::vector<double> &change = {}, int at = -1,
-               std::vector<int> *final_owner = nullptr) {
+               const std::vector<double>& change = {}, int at = -1,
+               std::vector<int>* final_owner = nullptr) {
   const farm::RveGraph g = one_cell_graph();
   std::vector<int> owner = farm::partition_metis(g, base, 2, 1);
   farm::CostAverage avg(decay);
@@ -47,18 +46,16 @@ int migrations(double decay, double noise, int windows, std::vector<double> base
 
 }  // namespace
 
-// Identical RVEs timed with +/-15 % noise per window: deciding on single
-// windows (decay 0, the old policy) migrates again and again; the averaged
-// costs never do.
+// Identical RVEs timed with +/-15 % noise per window: deciding on single windows (decay 0, the old
+// policy) migrates again and again; the averaged costs never do.
 TEST(Rebalance, IdenticalRvesWithTimingNoiseDoNotMigrate) {
   const std::vector<double> equal(8, 1.0);
   EXPECT_GT(migrations(0.0, 0.15, 3000, equal), 50);
   EXPECT_EQ(migrations(0.8, 0.15, 3000, equal), 0);
 }
 
-// One RVE becomes 3x as expensive (it gained contacts): the imbalance 6/5 = 1.2
-// is removed by one migration within a few windows, and nothing moves after
-// that.
+// One RVE becomes 3x as expensive (it gained contacts): the imbalance 6/5 = 1.2 is removed by one
+// migration within a few windows, and nothing moves after that.
 TEST(Rebalance, RealCostChangeMigratesOnce) {
   std::vector<double> changed(8, 1.0);
   changed[0] = 3.0;
