@@ -5,9 +5,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 
+#include "app/progress.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
 
@@ -98,14 +100,27 @@ dem::Simulation prepared_sample(const Job& job) {
   prep.compaction_rate = job.number("dem.preparation.inertial_number") / t_ref;
   prep.target.max_rate = prep.compaction_rate;
   std::int64_t steps = 0;
+  // A line every 10 s: preparation can take minutes (a 30,000-sphere compaction) and has no end
+  // known in advance, so the line says where it stands instead of an ETA.
+  const auto start = std::chrono::steady_clock::now();
+  auto last = start;
+  const dem::CheckObserver observe = [&](const dem::Simulation& s, const dem::Measures& m) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::seconds(10)) return;
+    last = now;
+    spdlog::info("preparation: {} DEM steps, p = {:.4g} of {:.4g} Pa, e = {:.4f}, Z = {:.3f}, unbalanced {:.3g}, "
+                 "elapsed {}",
+                 s.steps(), m.p, prep.target.pressure, m.void_ratio, m.z, m.unbalanced,
+                 Progress::clock(std::chrono::duration<double>(now - start).count()));
+  };
   if (generated) {
     spdlog::info("sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
                  packing.r.size(), job.integer("dem.sample.seed"), prep.target.pressure, prep.friction_comp_deg);
-    steps = dem::prepare(sim, prep);
+    steps = dem::prepare(sim, prep, observe);
   } else {
     spdlog::info("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa", packing.r.size(),
                  job.text("dem.sample.packing"), prep.target.pressure);
-    steps = dem::equilibrate(sim, prep.target);
+    steps = dem::equilibrate(sim, prep.target, observe);
   }
   const dem::Measures m = dem::measure(sim);
   spdlog::info("prepared in {} DEM steps: p = {:.5g} Pa, q = {:.4g} Pa, e = {:.4f}, Z = {:.3f} (without rattlers {:.3f}), "

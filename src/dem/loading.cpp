@@ -99,7 +99,7 @@ Simulation make_simulation(const Packing& pk, const Material& mat, const Numeric
   return sim;
 }
 
-std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t) {
+std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t, const CheckObserver& observe) {
   MixedControl mc;
   mc.stress_axis = {true, true, true};
   mc.target = Vec3::Constant(-t.pressure);
@@ -110,6 +110,7 @@ std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t) {
     advance(sim, &ctl, t.check_every);
     done += t.check_every;
     const Measures m = measure(sim);
+    if (observe) observe(sim, m);
     double worst = 0.0;
     for (int a = 0; a < 3; ++a) worst = std::max(worst, std::abs(m.stress(a, a) + t.pressure));
     if (worst <= t.stress_tol * t.pressure && m.unbalanced <= t.unbalanced_tol &&
@@ -170,17 +171,42 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
   const double side = std::cbrt(vs / solid);
   Packing pk;
   pk.cell.h = Mat3::Identity() * side;
+  // Overlap test against the placed spheres of the 27 periodic bins around the candidate only
+  // (bins at least one largest diameter wide): the same accepted positions as testing all
+  // spheres, in O(n) instead of O(n^2) (30,000 spheres: 43 s before).
+  const int nb = std::max(1, static_cast<int>(side / (2.0 * r.front())));
+  const double bw = side / nb;
+  std::vector<std::vector<std::int32_t>> bins(static_cast<std::size_t>(nb) * nb * nb);
+  auto bin_of = [&](double c) { return std::clamp(static_cast<int>(c / bw), 0, nb - 1); };
+  auto bin_index = [&](int i, int j, int k) {
+    auto wrap = [&](int v) { return (v % nb + nb) % nb; };
+    return static_cast<std::size_t>((wrap(k) * nb + wrap(j)) * nb + wrap(i));
+  };
   for (double ri : r) {
     bool placed = false;
     for (int attempt = 0; attempt < 100000 && !placed; ++attempt) {
       const Vec3 x(uniform01(gen) * side, uniform01(gen) * side, uniform01(gen) * side);
+      const int bi = bin_of(x[0]);
+      const int bj = bin_of(x[1]);
+      const int bk = bin_of(x[2]);
+      const int reach = nb >= 3 ? 1 : 0;  // fewer than 3 bins: one bin holds everything
       bool ok = true;
-      for (std::size_t q = 0; q < pk.x.size() && ok; ++q) {
-        Vec3 d = pk.x[q] - x;
-        for (int a = 0; a < 3; ++a) d[a] -= side * std::round(d[a] / side);
-        ok = d.norm() > pk.r[q] + ri;
+      for (int dk = -reach; dk <= reach && ok; ++dk) {
+        for (int dj = -reach; dj <= reach && ok; ++dj) {
+          for (int di = -reach; di <= reach && ok; ++di) {
+            for (const std::int32_t q : bins[nb >= 3 ? bin_index(bi + di, bj + dj, bk + dk) : 0]) {
+              Vec3 d = pk.x[static_cast<std::size_t>(q)] - x;
+              for (int a = 0; a < 3; ++a) d[a] -= side * std::round(d[a] / side);
+              if (!(d.norm() > pk.r[static_cast<std::size_t>(q)] + ri)) {
+                ok = false;
+                break;
+              }
+            }
+          }
+        }
       }
       if (ok) {
+        bins[nb >= 3 ? bin_index(bi, bj, bk) : 0].push_back(static_cast<std::int32_t>(pk.x.size()));
         pk.x.push_back(x);
         pk.r.push_back(ri);
         placed = true;
@@ -191,14 +217,14 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
   return pk;
 }
 
-std::int64_t prepare(Simulation& sim, const Preparation& prep) {
+std::int64_t prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe) {
   const double phi = sim.law().material().friction_deg;
   sim.set_friction_deg(prep.friction_comp_deg, true);
   EquilibriumTarget comp = prep.target;
   comp.max_rate = prep.compaction_rate;
-  std::int64_t steps = equilibrate(sim, comp);
+  std::int64_t steps = equilibrate(sim, comp, observe);
   sim.set_friction_deg(phi, true);
-  steps += equilibrate(sim, prep.target);
+  steps += equilibrate(sim, prep.target, observe);
   return steps;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
 #include "dem/simulation.hpp"
 
@@ -63,9 +64,13 @@ struct EquilibriumTarget {
   std::int64_t check_every = 200;
   std::int64_t max_steps = 2000000;
 };
+/// Called at every check of equilibrate / prepare with the state and its measures (progress).
+using CheckObserver = std::function<void(const Simulation&, const Measures&)>;
+
 /// Run isotropic servo steps until the target is met; returns steps done (throws NumericalError
-/// if max_steps pass without reaching it).
-std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& target);
+/// if max_steps pass without reaching it). `observe` sees every check (every check_every steps).
+std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& target,
+                         const CheckObserver& observe = {});
 
 /// Particle size distribution: diameters [m] ascending with the mass fraction passing [0..1].
 struct Psd {
@@ -84,7 +89,7 @@ struct Preparation {
 };
 /// Isotropic compaction with lowered friction, then friction restored (also on existing contacts)
 /// and re-equilibration. Returns the number of steps.
-std::int64_t prepare(Simulation& sim, const Preparation& prep);
+std::int64_t prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe = {});
 
 }  // namespace dem
 
