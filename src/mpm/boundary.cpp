@@ -4,8 +4,10 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "common/errors.hpp"
 
@@ -156,30 +158,25 @@ ShapeKind face_basis(ShapeKind kind) {
   return kind == ShapeKind::bspline2 ? ShapeKind::bspline2 : ShapeKind::linear;
 }
 
-/// Position in cell units along axis d, clipped to where the basis stencil lies in the grid.
-double clipped_s(ShapeKind basis, const Grid& grid, int d, double x) {
-  const double margin = basis == ShapeKind::bspline2 ? 0.5 : 0.0;
-  const double s = (x - grid.origin[d]) / grid.spacing[d];
-  return std::clamp(s, margin, std::nextafter(grid.cells[d] - margin, 0.0));
-}
-
-}  // namespace
-
-double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
-                      const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
-                      GridFields& fields) {
+/// Forces of one traction load on its facets (Nanson area vectors, 2 x 2 Gauss points per
+/// facet), distributed with the value-only weights of `Shape` (the stencil is computed once per
+/// Gauss point and kept for the distribution pass). Returns the loaded (deformed) area [m^2].
+template <class Shape>
+double traction_on_facets(const Grid& grid, const TractionLoad& load, const MaterialPoints& points,
+                          const std::vector<std::int64_t>& facet_points, GridFields& fields) {
+  constexpr int ns = Shape::support;
   const int n = load.axis;
-  if (n < 0 || n > 2 || (load.side != -1 && load.side != 1)) {
-    throw common::InputError("mpm traction load: axis = " + std::to_string(n) + ", side = " +
-                             std::to_string(load.side) + ": axis must be 0..2 and side -1 or +1");
-  }
   const int t1 = (n + 1) % 3;
   const int t2 = (n + 2) % 3;
-  const ShapeKind basis = face_basis(kind);
-  const int ns = stencil_width(basis);
   common::Vec3 N = common::Vec3::Zero();
   N[n] = load.side;
   const double g = 1.0 / std::sqrt(3.0);
+  // A Gauss point is clipped (in cell units) to where its stencil lies in the grid.
+  const double margin = std::is_same_v<Shape, BSpline2Shape> ? 0.5 : 0.0;
+  std::array<double, 3> s_hi{};
+  for (int d = 0; d < 3; ++d) s_hi[static_cast<std::size_t>(d)] = std::nextafter(grid.cells[d] - margin, 0.0);
+  std::array<std::int64_t, ns * ns * ns> node_k{};
+  std::array<double, ns * ns * ns> S_k{};
   double area = 0.0;
   for (const std::int64_t slot : facet_points) {
     const auto p = static_cast<std::size_t>(slot);
@@ -196,39 +193,60 @@ double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load
     for (const double alpha : {-g, g}) {
       for (const double beta : {-g, g}) {
         const common::Vec3 x = centre + alpha * g1 + beta * g2;
-        std::array<Weights1D, 3> w;
+        std::array<int, 3> base{};
+        std::array<std::array<double, ns>, 3> w{};
         for (int d = 0; d < 3; ++d) {
-          w[static_cast<std::size_t>(d)] =
-              weights_1d(basis, clipped_s(basis, grid, d, x[d]), 0.0, grid.spacing[d]);
+          const auto du = static_cast<std::size_t>(d);
+          const double sd = std::clamp((x[d] - grid.origin[d]) / grid.spacing[d], margin, s_hi[du]);
+          base[du] = Shape::stencil_base(sd, 0.0);
+          for (int i = 0; i < ns; ++i) w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
         }
+        // The active nodes of the stencil with their weights, and the weights' sum.
+        int m = 0;
         double sum = 0.0;
-        for (int pass = 0; pass < 2; ++pass) {
-          for (int k = 0; k < ns; ++k) {
-            for (int j = 0; j < ns; ++j) {
-              for (int i = 0; i < ns; ++i) {
-                const std::int64_t node = grid.node_index(w[0].base + i, w[1].base + j, w[2].base + k);
-                const double S = w[0].w[static_cast<std::size_t>(i)] * w[1].w[static_cast<std::size_t>(j)] *
-                                 w[2].w[static_cast<std::size_t>(k)];
-                if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
-                if (pass == 0) {
-                  sum += S;
-                } else {
-                  fields.force[static_cast<std::size_t>(node)] += (0.25 * S / sum) * f;
-                }
-              }
+        for (int k = 0; k < ns; ++k) {
+          for (int j = 0; j < ns; ++j) {
+            for (int i = 0; i < ns; ++i) {
+              const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
+              const double S = w[0][static_cast<std::size_t>(i)] * w[1][static_cast<std::size_t>(j)] *
+                               w[2][static_cast<std::size_t>(k)];
+              if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
+              sum += S;
+              node_k[static_cast<std::size_t>(m)] = node;
+              S_k[static_cast<std::size_t>(m)] = S;
+              ++m;
             }
           }
-          if (pass == 0 && !(sum > 0.0)) {
-            throw common::NumericalError(
-                "mpm traction load on axis " + std::to_string(n) + " side " +
-                std::to_string(load.side) + ": the facet of point id " + std::to_string(points.id[p]) +
-                " touches no node holding material");
-          }
+        }
+        if (!(sum > 0.0)) {
+          throw common::NumericalError("mpm traction load on axis " + std::to_string(n) + " side " +
+                                       std::to_string(load.side) + ": the facet of point id " +
+                                       std::to_string(points.id[p]) + " touches no node holding material");
+        }
+        for (int c = 0; c < m; ++c) {
+          const auto cu = static_cast<std::size_t>(c);
+          fields.force[static_cast<std::size_t>(node_k[cu])] += (0.25 * S_k[cu] / sum) * f;
         }
       }
     }
   }
   return area;
+}
+
+}  // namespace
+
+double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
+                      const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
+                      GridFields& fields) {
+  if (load.axis < 0 || load.axis > 2 || (load.side != -1 && load.side != 1)) {
+    throw common::InputError("mpm traction load: axis = " + std::to_string(load.axis) + ", side = " +
+                             std::to_string(load.side) + ": axis must be 0..2 and side -1 or +1");
+  }
+  // Facets use the grid basis: the linear hat (uGIMP's too) or the quadratic B-spline.
+  if (face_basis(kind) == ShapeKind::bspline2) {
+    return traction_on_facets<BSpline2Shape>(grid, load, points, facet_points, fields);
+  }
+  return traction_on_facets<LinearShape>(grid, load, points, facet_points, fields);
 }
 
 }  // namespace mpm

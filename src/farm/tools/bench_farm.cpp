@@ -21,6 +21,7 @@
 #include "farm/elastic_micro.hpp"
 #include "farm/partition.hpp"
 #include "farm/rve_farm.hpp"
+#include "mpm/boundary.hpp"
 #include "mpm/material_points.hpp"
 
 namespace {
@@ -79,13 +80,16 @@ farm::FarmOptions farm_options(const Args& a) {
   return o;
 }
 
-// The paper's single-cell triaxial (8 points, 1 m cell, 100 kPa, platen at eq. 13 speed).
+// The paper's single-cell triaxial as jobs/triaxial_mpmxdem.toml sets it up (8 fixed points, 1 m
+// cell, USF, 100 kPa, platen at eq. 13 speed, 3-2-1 support of two bottom nodes).
 farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::MicroKind kind,
                              double speed) {
   farm::CoupledConfig c;
   c.solver.grid = {Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
   c.solver.damping = 0.2;
   c.solver.cfl = 0.5;
+  c.solver.stress_update = mpm::StressUpdate::usf;
+  c.solver.move_points = false;
   const double rho = 1600.0;
   const double p = 100e3;
   mpm::fill_box(c.points, c.solver.grid, Vec3::Zero(), Vec3::Ones(), 2, rho, 0);
@@ -95,6 +99,8 @@ farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::M
       {Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
   c.constraints.push_back(
       {Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
+  c.constraints.push_back(mpm::node_constraint(c.solver.grid, Vec3::Zero(), {true, true, false}));
+  c.constraints.push_back(mpm::node_constraint(c.solver.grid, Vec3(1, 0, 0), {false, true, false}));
   for (int axis : {0, 1}) {
     for (int side : {-1, 1}) c.tractions.push_back({axis, side, p, Vec3::Zero()});
   }
