@@ -134,6 +134,15 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
            : std::make_unique<RveFarm>(comm, cfg.micro, ids, x, cfg.solver.grid, cfg.farm);
 
   RunSummary sum;
+  sum.wait = farm->wait_mode();
+  if (rank == 0) {
+    spdlog::info("farm: {} RVEs on {} rank(s), waits {} ({})", ids.size(), size,
+                 to_string(sum.wait),
+                 cfg.farm.wait == WaitMode::automatic
+                     ? (sum.wait == WaitMode::spin ? "auto: every thread of the node has a core"
+                                                   : "auto: the node's threads share cores")
+                     : "as configured");
+  }
   if (rank != 0) {
     farm->serve();  // throws the error rank 0 reports
   } else {
@@ -221,6 +230,7 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
                        s, solver.time(), m.eps_ax, m.q, fmt_duration(left * per_step),
                        farm->imbalance());
         }
+        if (cfg.on_step) cfg.on_step(s, farm->times());
       }
       sum.wall_s = wall_now() - t0;
       if (results.rows() == 0 || solver.step_count() % cfg.output.every != 0) output();

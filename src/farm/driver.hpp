@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,10 @@ struct CoupledConfig {
   CheckpointOptions checkpoint;
   BalanceOptions balance;
   FarmOptions farm;
+  /// Optional, rank 0: called after every MPM step (its outputs, balancing and checkpoint
+  /// included) with the step count and the farm's cumulative times; benchmarks take per-step
+  /// figures from it.
+  std::function<void(std::int64_t step, const FarmTimes& times)> on_step;
   /// Throws common::InputError naming the field, value and rule.
   void validate() const;
 };
@@ -70,6 +75,7 @@ struct RunSummary {
   FarmTimes times;                       ///< farm timing (rank 0)
   std::int64_t migrations = 0;           ///< repartitions that moved RVEs (start-up one included)
   std::int64_t rves_moved = 0;
+  WaitMode wait = WaitMode::automatic;   ///< the wait mode the farm used (resolved)
 };
 
 /// Collective over `comm`: a fresh coupled run. Errors: common::InputError (config, exit 2),

@@ -2,6 +2,7 @@
 #include "farm/mpi_util.hpp"
 
 #include <omp.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <chrono>
@@ -115,6 +116,44 @@ std::vector<std::string> allgather_strings(MPI_Comm comm, const std::vector<std:
     }
   }
   return out;
+}
+
+const char* to_string(WaitMode mode) {
+  switch (mode) {
+    case WaitMode::automatic:
+      return "auto";
+    case WaitMode::spin:
+      return "spin";
+    case WaitMode::sleep:
+      return "sleep";
+  }
+  return "?";
+}
+
+WaitMode resolve_wait_mode(MPI_Comm comm, WaitMode mode) {
+  if (mode != WaitMode::automatic) return mode;
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  // The cores this rank may run on, as a bit mask; OR-ed over the node's ranks.
+  constexpr int kWords = CPU_SETSIZE / 64;
+  std::vector<std::uint64_t> mask(kWords, 0);
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    for (int c = 0; c < CPU_SETSIZE; ++c) {
+      if (CPU_ISSET(c, &set)) mask[static_cast<std::size_t>(c / 64)] |= std::uint64_t{1} << (c % 64);
+    }
+  } else {
+    for (int c = 0; c < std::min(omp_get_num_procs(), CPU_SETSIZE); ++c)
+      mask[static_cast<std::size_t>(c / 64)] |= std::uint64_t{1} << (c % 64);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, mask.data(), kWords, MPI_UINT64_T, MPI_BOR, node);
+  int threads = omp_get_max_threads();
+  MPI_Allreduce(MPI_IN_PLACE, &threads, 1, MPI_INT, MPI_SUM, node);
+  MPI_Comm_free(&node);
+  int cores = 0;
+  for (const std::uint64_t w : mask) cores += __builtin_popcountll(w);
+  return threads <= cores ? WaitMode::spin : WaitMode::sleep;
 }
 
 int threads_per_rank(MPI_Comm comm) {

@@ -12,12 +12,23 @@ namespace farm {
 
 /// How a rank waits for a non-blocking collective.
 enum class WaitMode {
-  spin,   ///< MPI_Wait: Open MPI busy-polls (a core at 100 %)
-  sleep,  ///< polls MPI_Test for up to 200 us, then sleeps with a back-off from 10 us to 100 us
-          ///< (a long wait frees the core)
+  automatic,  ///< spin where every thread of the node's ranks has a core, sleep where they share
+              ///< cores (resolve_wait_mode; docs/farm.md, "Waiting")
+  spin,       ///< MPI_Wait: Open MPI busy-polls (a core at 100 %)
+  sleep,      ///< polls MPI_Test for up to 200 us, then sleeps with a back-off from 10 us to
+              ///< 100 us (a long wait frees the core)
 };
 
-/// Completes `request` according to `mode`.
+/// "auto", "spin", "sleep".
+const char* to_string(WaitMode mode);
+
+/// Collective over `comm`. `automatic` becomes `spin` when the OpenMP threads of the ranks that
+/// share this rank's node (sum of omp_get_max_threads) fit in the cores they may run on (union of
+/// their affinity masks), else `sleep`; other modes are returned as they are. Every rank of a node
+/// gets the same answer.
+WaitMode resolve_wait_mode(MPI_Comm comm, WaitMode mode);
+
+/// Completes `request` according to `mode` (automatic is treated as sleep: resolve it first).
 void wait_for(MPI_Request& request, WaitMode mode);
 
 /// Error kinds that travel between ranks (exit codes differ in the app).

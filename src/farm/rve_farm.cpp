@@ -17,7 +17,14 @@ namespace farm {
 
 namespace {
 
-enum Command : std::int32_t { kStep = 1, kCheckpoint = 2, kMigrate = 3, kStop = 4, kStopError = 5 };
+enum Command : std::int32_t {
+  kStep = 1,
+  kCheckpoint = 2,
+  kMigrate = 3,
+  kStop = 4,
+  kStopError = 5,
+  kErrorTexts = 6
+};
 
 /// Per-RVE record gathered to rank 0 (doubles): stress (9, row-major), p, q, e, z, t_p, wall_s,
 /// wave speed, dem_steps, guards, error kind.
@@ -65,6 +72,7 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
   MPI_Comm_dup(comm, &comm_);
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
+  options_.wait = resolve_wait_mode(comm_, options_.wait);
   MPMXDEM_CHECK(std::is_sorted(ids_.begin(), ids_.end()) &&
                     std::adjacent_find(ids_.begin(), ids_.end()) == ids_.end(),
                 "RVE ids must be ascending and unique");
@@ -92,6 +100,7 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo& info,
   MPI_Comm_dup(comm, &comm_);
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
+  options_.wait = resolve_wait_mode(comm_, options_.wait);
   owner_ = partition_blocks(ids_.size(), size_);
   rebuild_local();
   std::vector<common::StateStore> states = read_checkpoint_rves(comm_, info, local_);
@@ -124,9 +133,32 @@ RveFarm::~RveFarm() {
 void RveFarm::rebuild_local() {
   local_.clear();
   models_.resize(ids_.size());
+  members_.assign(static_cast<std::size_t>(size_), {});
   for (std::size_t k = 0; k < ids_.size(); ++k) {
     if (owner_[k] == rank_) local_.push_back(static_cast<std::int64_t>(k));
+    members_[static_cast<std::size_t>(owner_[k])].push_back(k);
   }
+  // Message layouts of the step exchange: rank r's command is [header][9 doubles per RVE], its
+  // records [loop wall][kRecord doubles per RVE], both in ascending RVE index order.
+  cmd_counts_.assign(static_cast<std::size_t>(size_), 0);
+  cmd_displs_.assign(static_cast<std::size_t>(size_), 0);
+  rec_counts_.assign(static_cast<std::size_t>(size_), 0);
+  rec_displs_.assign(static_cast<std::size_t>(size_), 0);
+  std::size_t cmd_total = 0;
+  std::size_t rec_total = 0;
+  for (std::size_t r = 0; r < members_.size(); ++r) {
+    cmd_displs_[r] = to_count(cmd_total);
+    cmd_counts_[r] = to_count(sizeof(Header) + 9 * sizeof(double) * members_[r].size());
+    cmd_total += static_cast<std::size_t>(cmd_counts_[r]);
+    rec_displs_[r] = to_count(rec_total);
+    rec_counts_[r] = to_count(1 + kRecord * members_[r].size());
+    rec_total += static_cast<std::size_t>(rec_counts_[r]);
+  }
+  cmd_send_.assign(rank_ == 0 ? cmd_total : 0, 0);
+  cmd_recv_.assign(static_cast<std::size_t>(cmd_counts_[static_cast<std::size_t>(rank_)]), 0);
+  rec_.assign(1 + kRecord * local_.size(), 0.0);
+  rec_all_.assign(rank_ == 0 ? rec_total : 0, 0.0);
+  errors_.assign(local_.size(), std::string());
 }
 
 void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x, const mpm::Grid& grid,
@@ -188,12 +220,25 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x, co
   exec_migrate(std::move(part));
 }
 
-void RveFarm::send_header(const Header& h) {
+void RveFarm::send_command(const Header& h) {
   MPMXDEM_CHECK(rank_ == 0, "only rank 0 sends commands");
-  Header copy = h;
+  for (std::size_t r = 0; r < cmd_displs_.size(); ++r) {
+    std::memcpy(cmd_send_.data() + cmd_displs_[r], &h, sizeof(Header));
+  }
   MPI_Request req = MPI_REQUEST_NULL;
-  MPI_Ibcast(&copy, sizeof(Header), MPI_BYTE, 0, comm_, &req);
+  MPI_Iscatterv(cmd_send_.data(), cmd_counts_.data(), cmd_displs_.data(), MPI_BYTE,
+                cmd_recv_.data(), cmd_counts_[0], MPI_BYTE, 0, comm_, &req);
   wait_for(req, options_.wait);
+}
+
+RveFarm::Header RveFarm::receive_command() {
+  MPI_Request req = MPI_REQUEST_NULL;
+  MPI_Iscatterv(nullptr, nullptr, nullptr, MPI_BYTE, cmd_recv_.data(),
+                cmd_counts_[static_cast<std::size_t>(rank_)], MPI_BYTE, 0, comm_, &req);
+  wait_for(req, options_.wait);
+  Header h;
+  std::memcpy(&h, cmd_recv_.data(), sizeof(Header));
+  return h;
 }
 
 void RveFarm::update_stress(std::span<const std::int64_t> ids, std::span<const common::Mat3> L,
@@ -201,74 +246,65 @@ void RveFarm::update_stress(std::span<const std::int64_t> ids, std::span<const c
   MPMXDEM_CHECK(rank_ == 0, "update_stress is called on rank 0 only");
   MPMXDEM_CHECK(ids.size() == L.size() && ids.size() == stress.size(), "span sizes differ");
   const double t0 = now();
+  const std::size_t n = ids_.size();
+  MPMXDEM_CHECK(ids.size() == n, "update_stress needs every RVE id once (got " +
+                                     std::to_string(ids.size()) + " of " + std::to_string(n) + ")");
+  // The solver may hand the points in any order: map RVE index -> slot.
+  slot_of_.assign(n, -1);
+  for (std::size_t p = 0; p < ids.size(); ++p) {
+    const auto it = std::lower_bound(ids_.begin(), ids_.end(), ids[p]);
+    MPMXDEM_CHECK(it != ids_.end() && *it == ids[p],
+                  "point id " + std::to_string(ids[p]) + " has no RVE");
+    const auto k = static_cast<std::size_t>(it - ids_.begin());
+    MPMXDEM_CHECK(slot_of_[k] < 0, "point id " + std::to_string(ids[p]) + " given twice");
+    slot_of_[k] = static_cast<std::int64_t>(p);
+  }
+  // L of every rank's RVEs, in ascending index order, after that rank's header.
+  for (std::size_t r = 0; r < members_.size(); ++r) {
+    char* out = cmd_send_.data() + cmd_displs_[r] + sizeof(Header);
+    for (const std::size_t k : members_[r]) {
+      const common::Mat3& m = L[static_cast<std::size_t>(slot_of_[k])];
+      double v[9];
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) v[3 * a + b] = m(a, b);
+      }
+      std::memcpy(out, v, sizeof v);
+      out += sizeof v;
+    }
+  }
   Header h;
   h.cmd = kStep;
   h.step = step_ + 1;
   h.value = dt;
-  send_header(h);
-  exec_step(h, ids, L, stress);
+  send_command(h);
+  exec_step(h, stress);
   times_.step_wall += now() - t0;
 }
 
-void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
-                        std::span<const common::Mat3> L, std::span<common::Mat3> stress) {
+void RveFarm::exec_step(const Header& h, std::span<common::Mat3> stress) {
   const std::size_t n = ids_.size();
   const double dt = h.value;
   step_ = h.step;
-  // 1. Scatter L to the owners: rank r receives the L of its RVEs in ascending index order.
-  std::vector<double> sendbuf;
-  std::vector<int> counts(static_cast<std::size_t>(size_), 0);
-  std::vector<int> displs(static_cast<std::size_t>(size_), 0);
-  std::vector<std::int64_t> slot_of;  // rank 0: index -> position in ids/L/stress
-  if (rank_ == 0) {
-    MPMXDEM_CHECK(ids.size() == n, "update_stress needs every RVE id once (got " +
-                                       std::to_string(ids.size()) + " of " + std::to_string(n) +
-                                       ")");
-    slot_of.assign(n, -1);
-    for (std::size_t p = 0; p < ids.size(); ++p) {
-      const auto it = std::lower_bound(ids_.begin(), ids_.end(), ids[p]);
-      MPMXDEM_CHECK(it != ids_.end() && *it == ids[p],
-                    "point id " + std::to_string(ids[p]) + " has no RVE");
-      const auto k = static_cast<std::size_t>(it - ids_.begin());
-      MPMXDEM_CHECK(slot_of[k] < 0, "point id " + std::to_string(ids[p]) + " given twice");
-      slot_of[k] = static_cast<std::int64_t>(p);
-    }
-    std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(size_));
-    for (std::size_t k = 0; k < n; ++k) members[static_cast<std::size_t>(owner_[k])].push_back(k);
-    sendbuf.reserve(9 * n);
-    for (int r = 0; r < size_; ++r) {
-      displs[static_cast<std::size_t>(r)] = to_count(sendbuf.size());
-      for (std::size_t k : members[static_cast<std::size_t>(r)]) {
-        const common::Mat3& m = L[static_cast<std::size_t>(slot_of[k])];
-        for (int a = 0; a < 3; ++a) {
-          for (int b = 0; b < 3; ++b) sendbuf.push_back(m(a, b));
-        }
-      }
-      counts[static_cast<std::size_t>(r)] =
-          to_count(sendbuf.size()) - displs[static_cast<std::size_t>(r)];
-    }
-  }
-  const std::size_t nloc = local_.size();
-  std::vector<double> myL(9 * nloc);
-  MPI_Request req = MPI_REQUEST_NULL;
-  MPI_Iscatterv(sendbuf.data(), counts.data(), displs.data(), MPI_DOUBLE, myL.data(),
-                to_count(9 * nloc), MPI_DOUBLE, 0, comm_, &req);
-  wait_for(req, options_.wait);
+  // 1. My L arrived with the command (cmd_recv_ after the header), in ascending index order.
+  const char* myL = cmd_recv_.data() + sizeof(Header);
 
   // 2. Advance my RVEs; failures are caught per RVE and travel to rank 0 as data.
-  std::vector<double> rec(kRecord * nloc, 0.0);
-  std::vector<std::string> err(nloc);
+  const std::size_t nloc = local_.size();
+  double* rec = rec_.data() + 1;
   const double t_loop = now();
   const auto nl = static_cast<std::int64_t>(nloc);
 #pragma omp parallel for schedule(dynamic, 1) if (options_.omp_over_rves && nl > 1)
   for (std::int64_t jj = 0; jj < nl; ++jj) {
     const auto j = static_cast<std::size_t>(jj);
     MicroModel& m = *models_[static_cast<std::size_t>(local_[j])];
+    double v[9];
+    std::memcpy(v, myL + 9 * sizeof(double) * j, sizeof v);
     common::Mat3 Lj;
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) Lj(a, b) = myL[9 * j + static_cast<std::size_t>(3 * a + b)];
+      for (int b = 0; b < 3; ++b) Lj(a, b) = v[3 * a + b];
     }
-    double* r = rec.data() + kRecord * j;
+    double* r = rec + kRecord * j;
+    errors_[j].clear();
     try {
       const MicroReport rep = m.step(Lj, dt);
       const common::Mat3 s = m.stress();
@@ -293,46 +329,20 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
       if (dynamic_cast<const common::InputError*>(&e) != nullptr) k = ErrorKind::input;
       if (dynamic_cast<const common::NumericalError*>(&e) != nullptr) k = ErrorKind::numerical;
       r[18] = static_cast<double>(static_cast<std::int32_t>(k));
-      err[j] = e.what();
+      errors_[j] = e.what();
     }
   }
-  const double loop_wall = now() - t_loop;
+  rec_[0] = now() - t_loop;
 
-  // 3. Gather records (and error texts) to rank 0: [loop wall][records][errors].
-  std::vector<char> out;
-  append(out, loop_wall);
-  const auto* rb = reinterpret_cast<const char*>(rec.data());
-  out.insert(out.end(), rb, rb + rec.size() * sizeof(double));
-  for (std::size_t j = 0; j < nloc; ++j) {
-    if (err[j].empty()) continue;
-    append(out, local_[j]);
-    append(out, static_cast<std::int64_t>(err[j].size()));
-    out.insert(out.end(), err[j].begin(), err[j].end());
-  }
-  const int mine = to_count(out.size());
-  std::vector<int> sizes(static_cast<std::size_t>(size_), 0);
-  req = MPI_REQUEST_NULL;
-  MPI_Igather(&mine, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm_, &req);
-  wait_for(req, options_.wait);
-  std::vector<int> rdispl(static_cast<std::size_t>(size_), 0);
-  std::vector<char> all;
-  if (rank_ == 0) {
-    std::int64_t total = 0;
-    for (std::size_t r = 0; r < sizes.size(); ++r) {
-      rdispl[r] = to_count(static_cast<std::size_t>(total));
-      total += sizes[r];
-    }
-    all.resize(static_cast<std::size_t>(total));
-  }
-  req = MPI_REQUEST_NULL;
-  MPI_Igatherv(out.data(), mine, MPI_CHAR, all.data(), sizes.data(), rdispl.data(), MPI_CHAR, 0,
-               comm_, &req);
+  // 3. Gather [loop wall][records] to rank 0: one collective of sizes known to every rank.
+  MPI_Request req = MPI_REQUEST_NULL;
+  MPI_Igatherv(rec_.data(), rec_counts_[static_cast<std::size_t>(rank_)], MPI_DOUBLE,
+               rec_all_.data(), rec_counts_.data(), rec_displs_.data(), MPI_DOUBLE, 0, comm_,
+               &req);
   wait_for(req, options_.wait);
   if (rank_ != 0) return;
 
   // 4. Rank 0: store by RVE index (never by arrival order), then answer the solver.
-  std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(size_));
-  for (std::size_t k = 0; k < n; ++k) members[static_cast<std::size_t>(owner_[k])].push_back(k);
   double busy_max = 0.0;
   double busy_sum = 0.0;
   struct Failure {
@@ -343,18 +353,16 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
   };
   std::vector<Failure> failures;
   for (int r = 0; r < size_; ++r) {
-    const char* base = all.data() + rdispl[static_cast<std::size_t>(r)];
-    std::size_t pos = 0;
-    const auto wall = take<double>(base, pos);
+    const double* base = rec_all_.data() + rec_displs_[static_cast<std::size_t>(r)];
+    const double wall = base[0];
     busy_max = std::max(busy_max, wall);
     busy_sum += wall;
-    for (std::size_t k : members[static_cast<std::size_t>(r)]) {
-      double v[kRecord];
-      std::memcpy(v, base + pos, sizeof v);
-      pos += sizeof v;
+    const double* v = base + 1;
+    for (const std::size_t k : members_[static_cast<std::size_t>(r)]) {
       const auto ek = static_cast<ErrorKind>(static_cast<std::int32_t>(v[18]));
       if (ek != ErrorKind::none) {
         failures.push_back({ids_[k], r, ek, ""});
+        v += kRecord;
         continue;
       }
       for (int a = 0; a < 3; ++a) {
@@ -372,22 +380,23 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
       rep.guards = static_cast<std::uint32_t>(v[17]);
       cost_total_[k] += rep.wall_s;
       cost_window_[k] += rep.wall_s;
-    }
-    const auto end = static_cast<std::size_t>(sizes[static_cast<std::size_t>(r)]);
-    while (pos < end) {
-      const auto k = take<std::int64_t>(base, pos);
-      const auto len = take<std::int64_t>(base, pos);
-      const std::string text(base + pos, static_cast<std::size_t>(len));
-      pos += static_cast<std::size_t>(len);
-      for (Failure& f : failures) {
-        if (f.id == ids_[static_cast<std::size_t>(k)]) f.text = text;
-      }
+      v += kRecord;
     }
   }
   times_.critical_busy += busy_max;
   times_.mean_busy += busy_sum / size_;
   ++times_.steps;
   if (!failures.empty()) {
+    // Rare: fetch the texts with a command of their own (the step exchange carries none).
+    Header e;
+    e.cmd = kErrorTexts;
+    e.step = step_;
+    send_command(e);
+    for (const auto& [k, text] : exec_error_texts()) {
+      for (Failure& f : failures) {
+        if (f.id == ids_[static_cast<std::size_t>(k)]) f.text = text;
+      }
+    }
     std::sort(failures.begin(), failures.end(),
               [](const Failure& a, const Failure& b) { return a.id < b.id; });
     const Failure& f = failures.front();
@@ -399,7 +408,39 @@ void RveFarm::exec_step(const Header& h, std::span<const std::int64_t> ids,
     throw_kind(f.kind, msg);
   }
   wave_speed_ = *std::max_element(wave_.begin(), wave_.end());
-  for (std::size_t k = 0; k < n; ++k) stress[static_cast<std::size_t>(slot_of[k])] = stresses_[k];
+  for (std::size_t k = 0; k < n; ++k) stress[static_cast<std::size_t>(slot_of_[k])] = stresses_[k];
+}
+
+std::vector<std::pair<std::int64_t, std::string>> RveFarm::exec_error_texts() {
+  // [index][length][text] for every failed RVE of mine, gathered to rank 0.
+  std::vector<char> out;
+  for (std::size_t j = 0; j < local_.size(); ++j) {
+    if (errors_[j].empty()) continue;
+    append(out, local_[j]);
+    append(out, static_cast<std::int64_t>(errors_[j].size()));
+    out.insert(out.end(), errors_[j].begin(), errors_[j].end());
+  }
+  const int mine = to_count(out.size());
+  std::vector<int> sizes(static_cast<std::size_t>(size_), 0);
+  MPI_Gather(&mine, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm_);
+  std::vector<int> displ(static_cast<std::size_t>(size_), 0);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < sizes.size(); ++r) {
+    displ[r] = to_count(total);
+    total += static_cast<std::size_t>(sizes[r]);
+  }
+  std::vector<char> all(rank_ == 0 ? total : 0);
+  MPI_Gatherv(out.data(), mine, MPI_CHAR, all.data(), sizes.data(), displ.data(), MPI_CHAR, 0,
+              comm_);
+  std::vector<std::pair<std::int64_t, std::string>> texts;
+  std::size_t pos = 0;
+  while (pos < all.size()) {
+    const auto k = take<std::int64_t>(all.data(), pos);
+    const auto len = take<std::int64_t>(all.data(), pos);
+    texts.emplace_back(k, std::string(all.data() + pos, static_cast<std::size_t>(len)));
+    pos += static_cast<std::size_t>(len);
+  }
+  return texts;
 }
 
 void RveFarm::checkpoint(const std::string& path, std::int64_t step, double time,
@@ -411,7 +452,7 @@ void RveFarm::checkpoint(const std::string& path, std::int64_t step, double time
   h.flag = abort_mid_write ? 1 : 0;
   h.step = step;
   h.value = time;
-  send_header(h);
+  send_command(h);
   exec_checkpoint(h, path, job_text, &mpm_state);
 }
 
@@ -448,7 +489,7 @@ bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Ve
   if (!plan.migrate) return false;
   Header h;
   h.cmd = kMigrate;
-  send_header(h);
+  send_command(h);
   MPI_Bcast(plan.owner.data(), to_count(plan.owner.size()), MPI_INT, 0, comm_);
   exec_migrate(std::move(plan.owner));
   return true;
@@ -461,7 +502,7 @@ void RveFarm::migrate_to(std::vector<int> owner) {
   if (size_ == 1) return;
   Header h;
   h.cmd = kMigrate;
-  send_header(h);
+  send_command(h);
   MPI_Bcast(owner.data(), to_count(owner.size()), MPI_INT, 0, comm_);
   exec_migrate(std::move(owner));
 }
@@ -538,7 +579,7 @@ void RveFarm::stop() {
   if (size_ == 1) return;
   Header h;
   h.cmd = kStop;
-  send_header(h);
+  send_command(h);
 }
 
 void RveFarm::stop_with_error(ErrorKind kind, const std::string& message) {
@@ -549,7 +590,7 @@ void RveFarm::stop_with_error(ErrorKind kind, const std::string& message) {
   Header h;
   h.cmd = kStopError;
   h.flag = static_cast<std::int32_t>(kind);
-  send_header(h);
+  send_command(h);
   std::string m = message;
   bcast_string(comm_, m);
 }
@@ -557,13 +598,10 @@ void RveFarm::stop_with_error(ErrorKind kind, const std::string& message) {
 void RveFarm::serve() {
   MPMXDEM_CHECK(rank_ != 0, "rank 0 drives the farm; it does not serve");
   for (;;) {
-    Header h;
-    MPI_Request req = MPI_REQUEST_NULL;
-    MPI_Ibcast(&h, sizeof(Header), MPI_BYTE, 0, comm_, &req);
-    wait_for(req, options_.wait);
+    const Header h = receive_command();
     switch (h.cmd) {
       case kStep:
-        exec_step(h, {}, {}, {});
+        exec_step(h, {});
         break;
       case kCheckpoint:
         exec_checkpoint(h, std::string(), std::string(), nullptr);
@@ -574,6 +612,9 @@ void RveFarm::serve() {
         exec_migrate(std::move(part));
         break;
       }
+      case kErrorTexts:
+        exec_error_texts();
+        break;
       case kStop:
         stopped_ = true;
         return;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/state_store.hpp"
@@ -22,7 +23,7 @@
 namespace farm {
 
 struct FarmOptions {
-  WaitMode wait = WaitMode::sleep;  ///< how idle ranks wait (docs/farm.md, "Waiting")
+  WaitMode wait = WaitMode::automatic;  ///< how idle ranks wait (docs/farm.md, "Waiting")
   /// OpenMP over the RVEs of a rank (schedule dynamic, 1); false: one RVE at a time, OpenMP
   /// left to the inside of each RVE.
   bool omp_over_rves = true;
@@ -95,6 +96,8 @@ class RveFarm final : public mpm::MaterialModel {
   [[nodiscard]] double imbalance() const;
   [[nodiscard]] const FarmTimes& times() const { return times_; }
   [[nodiscard]] int rank() const { return rank_; }
+  /// The wait mode in use (options' `automatic` resolved at construction).
+  [[nodiscard]] WaitMode wait_mode() const { return options_.wait; }
   [[nodiscard]] int size() const { return size_; }
   /// The MPM step counter carried in messages (set by the driver after a restart).
   void set_step(std::int64_t step) { step_ = step; }
@@ -104,9 +107,16 @@ class RveFarm final : public mpm::MaterialModel {
 
  private:
   struct Header;
-  void send_header(const Header& h);
-  void exec_step(const Header& h, std::span<const std::int64_t> ids,
-                 std::span<const common::Mat3> L, std::span<common::Mat3> stress);
+  /// Rank 0: one MPI_Iscatterv gives every rank the header and, for a step, the L of its RVEs
+  /// (cmd_send_ holds them at cmd_displs_).
+  void send_command(const Header& h);
+  /// Ranks > 0: the next command (its L block stays in cmd_recv_).
+  Header receive_command();
+  /// Every rank: advance my RVEs under the L of the command; rank 0 stores the gathered records
+  /// and writes `stress` (by point slot).
+  void exec_step(const Header& h, std::span<common::Mat3> stress);
+  /// Every rank: the texts of the RVE failures of the last step, gathered to rank 0 by index.
+  std::vector<std::pair<std::int64_t, std::string>> exec_error_texts();
   void exec_checkpoint(const Header& h, std::string path, std::string job_text,
                        const common::StateStore* mpm_state);
   void exec_migrate(std::vector<int> new_owner);
@@ -124,6 +134,16 @@ class RveFarm final : public mpm::MaterialModel {
   std::vector<int> owner_;
   std::vector<std::int64_t> local_;                  ///< my RVE indices, ascending
   std::vector<std::unique_ptr<MicroModel>> models_;  ///< by index; null if not mine
+  // Per-step exchange, laid out once per partition by rebuild_local() (no allocation per step).
+  std::vector<std::vector<std::size_t>> members_;    ///< RVE indices of every rank, ascending
+  std::vector<int> cmd_counts_, cmd_displs_;         ///< bytes of every rank's command message
+  std::vector<char> cmd_send_;                       ///< rank 0: [header][L] of every rank
+  std::vector<char> cmd_recv_;                       ///< my [header][L block]
+  std::vector<int> rec_counts_, rec_displs_;         ///< doubles of every rank's records
+  std::vector<double> rec_;                          ///< my [loop wall][records]
+  std::vector<double> rec_all_;                      ///< rank 0: every rank's, by rank
+  std::vector<std::string> errors_;                  ///< my failures of the last step, by j
+  std::vector<std::int64_t> slot_of_;                ///< rank 0: RVE index -> point slot
   std::vector<MicroReport> reports_;                 ///< rank 0, by index
   std::vector<common::Mat3> stresses_;               ///< rank 0, by index
   std::vector<double> cost_total_;                   ///< rank 0, by index

@@ -1,12 +1,13 @@
 // bench_farm: figures of the RVE farm (a program, never a test). Run under mpiexec, e.g.
-//   mpiexec -n 2 --bind-to none bench_farm overhead [--wait spin|sleep] [--steps 10]
+//   mpiexec -n 2 --bind-to none bench_farm overhead [--wait auto|spin|sleep] [--steps 10]
 //       [--output-every 10] (rows of results.h5: the paper's job writes every 10th step)
 //   mpiexec -n 2 --bind-to none bench_farm balance  [--rves 32] [--steps 20]
 //   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
-// --omp-over-rves 0|1, --wait spin|sleep. Figures and commands: docs/farm.md, "Benchmarks".
+// --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores). Figures and commands: docs/farm.md, "Benchmarks".
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -75,7 +76,10 @@ farm::MicroKind dem_kind(const std::string& packing_file) {
 
 farm::FarmOptions farm_options(const Args& a) {
   farm::FarmOptions o;
-  o.wait = a.get("wait", "sleep") == "spin" ? farm::WaitMode::spin : farm::WaitMode::sleep;
+  const std::string w = a.get("wait", "auto");
+  o.wait = w == "spin"    ? farm::WaitMode::spin
+           : w == "sleep" ? farm::WaitMode::sleep
+                          : farm::WaitMode::automatic;
   o.omp_over_rves = a.get("omp-over-rves", "1") == "1";
   return o;
 }
@@ -121,16 +125,38 @@ void overhead(const Args& a, MPI_Comm comm) {
                                    std::stod(a.get("speed", "1")));
   c.farm = farm_options(a);
   c.output.every = std::stoll(a.get("output-every", "10"));
+  // Per window of output.every steps (each window writes one results row): the share of the
+  // loop's wall time not spent in the critical rank's RVEs. The median over windows is robust to
+  // this VM's stolen time slices, which land on a few windows only.
+  std::vector<double> window_share;
+  double last_wall = -1.0;
+  double last_crit = 0.0;
+  double w_wall = 0.0;
+  double w_crit = 0.0;
+  c.on_step = [&](std::int64_t step, const farm::FarmTimes& t) {
+    const double tn = now();
+    if (last_wall >= 0.0) {
+      w_wall += tn - last_wall;
+      w_crit += t.critical_busy - last_crit;
+      if (step % c.output.every == 0) {
+        window_share.push_back((w_wall - w_crit) / w_wall);
+        w_wall = 0.0;
+        w_crit = 0.0;
+      }
+    }
+    last_wall = tn;
+    last_crit = t.critical_busy;
+  };
   const double t0 = now();
   const farm::RunSummary s = farm::run_coupled(c, comm);
   const double total = now() - t0;
   if (rank_of(comm) == 0) {
     const farm::FarmTimes& t = s.times;
-    std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, platen x%s eq. 13, wait %s, "
-                "omp over RVEs %s, results row every %lld steps\n",
+    std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, platen x%s eq. 13, wait %s "
+                "(resolved: %s), omp over RVEs %s, results row every %lld steps\n",
                 size_of(comm), static_cast<long long>(s.steps), a.get("speed", "1").c_str(),
-                a.get("wait", "sleep").c_str(), a.get("omp-over-rves", "1").c_str(),
-                static_cast<long long>(c.output.every));
+                a.get("wait", "auto").c_str(), farm::to_string(s.wait),
+                a.get("omp-over-rves", "1").c_str(), static_cast<long long>(c.output.every));
     std::printf(
         "  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
         s.wall_s, s.wall_s / static_cast<double>(steps), total);
@@ -143,6 +169,16 @@ void overhead(const Args& a, MPI_Comm comm) {
                 s.wall_s - t.step_wall);
     std::printf("  => communication + MPM + outputs = %.3f %% of the step time\n",
                 100.0 * (s.wall_s - t.critical_busy) / s.wall_s);
+    if (!window_share.empty()) {
+      std::sort(window_share.begin(), window_share.end());
+      auto q = [&](double f) {
+        return 100.0 * window_share[static_cast<std::size_t>(f * (window_share.size() - 1))];
+      };
+      std::printf("  => per window of %lld steps (one results row each, %zu windows): median "
+                  "%.3f %%, quartiles %.3f-%.3f %%\n",
+                  static_cast<long long>(c.output.every), window_share.size(), q(0.5), q(0.25),
+                  q(0.75));
+    }
   }
 }
 
