@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -98,6 +99,15 @@ void write_text_atomic(const std::string& path, const std::string& text) {
 struct ResultsWriter::Series {
   Handle dset;
   std::vector<hsize_t> row;
+  hid_t type = H5T_NATIVE_DOUBLE;
+  std::size_t row_bytes = 0;  ///< one row's values (8 bytes each)
+  std::vector<char> pending;  ///< rows appended but not written yet, in order
+  void set_layout(const SeriesSpec& spec, std::size_t n_rve, std::size_t n_pts) {
+    row = row_dims(spec, n_rve, n_pts);
+    type = spec.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
+    row_bytes = 8;
+    for (const hsize_t r : row) row_bytes *= static_cast<std::size_t>(r);
+  }
 };
 
 SampleMeans sample_means(const mpm::MaterialPoints& points, const std::vector<MicroReport>& reports,
@@ -151,7 +161,7 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     while (keep < nt[0] && steps[keep] <= restart_step) ++keep;
     for (const SeriesSpec& s : kSeries) {
       auto se = std::make_unique<Series>();
-      se->row = row_dims(s, n, m);
+      se->set_layout(s, n, m);
       se->dset = Handle(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), H5Dclose);
       if (!se->dset.valid()) {
         throw common::InputError("output " + path + ": dataset /" + std::string(s.name) +
@@ -173,7 +183,7 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   write_static(file_.get(), "/points/id", point_ids_);
   for (const SeriesSpec& s : kSeries) {
     auto se = std::make_unique<Series>();
-    se->row = row_dims(s, n, m);
+    se->set_layout(s, n, m);
     std::vector<hsize_t> dims{0};
     std::vector<hsize_t> maxd{H5S_UNLIMITED};
     std::vector<hsize_t> chunk{std::max<hsize_t>(1, s.over == '-' ? 256 : 1)};
@@ -198,22 +208,47 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   }
 }
 
-ResultsWriter::~ResultsWriter() = default;
+ResultsWriter::~ResultsWriter() {
+  // A run that stops on an error keeps the rows of the steps it completed.
+  try {
+    write_pending();
+  } catch (const std::exception& e) {
+    std::cerr << "results.h5: " << pending_ << " row(s) could not be written: " << e.what() << "\n";
+  }
+}
 
-void ResultsWriter::write_row(const std::string& name, hid_t type, const void* data) {
+void ResultsWriter::stage_row(const std::string& name, const void* data) {
   Series& s = *series_.at(name);
-  std::vector<hsize_t> dims{static_cast<hsize_t>(rows_ + 1)};
-  dims.insert(dims.end(), s.row.begin(), s.row.end());
-  check(H5Dset_extent(s.dset.get(), dims.data()), "extend " + name);
-  Handle fs(H5Dget_space(s.dset.get()), H5Sclose);
-  std::vector<hsize_t> start(dims.size(), 0);
-  start[0] = static_cast<hsize_t>(rows_);
-  std::vector<hsize_t> count = dims;
-  count[0] = 1;
-  check(H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-        "select " + name);
-  Handle ms(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
-  check(H5Dwrite(s.dset.get(), type, ms.get(), fs.get(), H5P_DEFAULT, data), "write " + name);
+  const auto* b = static_cast<const char*>(data);
+  s.pending.insert(s.pending.end(), b, b + s.row_bytes);
+  pending_bytes_ += s.row_bytes;
+}
+
+void ResultsWriter::write_pending() {
+  if (pending_ == 0) return;
+  const auto first = static_cast<hsize_t>(rows_);
+  const auto count0 = static_cast<hsize_t>(pending_);
+  for (auto& [name, sp] : series_) {
+    Series& s = *sp;
+    std::vector<hsize_t> dims{first + count0};
+    dims.insert(dims.end(), s.row.begin(), s.row.end());
+    check(H5Dset_extent(s.dset.get(), dims.data()), "extend " + name);
+    Handle fs(H5Dget_space(s.dset.get()), H5Sclose);
+    std::vector<hsize_t> start(dims.size(), 0);
+    start[0] = first;
+    std::vector<hsize_t> count = dims;
+    count[0] = count0;
+    check(H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                              nullptr),
+          "select " + name);
+    Handle ms(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
+    check(H5Dwrite(s.dset.get(), s.type, ms.get(), fs.get(), H5P_DEFAULT, s.pending.data()),
+          "write " + name);
+    s.pending.clear();
+  }
+  rows_ += pending_;
+  pending_ = 0;
+  pending_bytes_ = 0;
 }
 
 void ResultsWriter::append(std::int64_t step, double time,
@@ -228,18 +263,18 @@ void ResultsWriter::append(std::int64_t step, double time,
       for (int j = 0; j < 3; ++j) out[3 * i + j] = a(i, j);
     }
   };
-  write_row("time", H5T_NATIVE_DOUBLE, &time);
-  write_row("step", H5T_NATIVE_INT64, &step);
+  stage_row("time", &time);
+  stage_row("step", &step);
   std::vector<double> buf(9 * std::max(n, m));
   for (std::size_t k = 0; k < n; ++k) mat9(rve_stress[k], buf.data() + 9 * k);
-  write_row("rve/stress", H5T_NATIVE_DOUBLE, buf.data());
+  stage_row("rve/stress", buf.data());
   auto rve_scalar = [&](const char* name, auto get) {
     std::vector<double> v(n);
     for (std::size_t k = 0; k < n; ++k) v[k] = get(reports[k]);
-    write_row(name, H5T_NATIVE_DOUBLE, v.data());
+    stage_row(name, v.data());
     std::vector<double> w(m);
     for (std::size_t p = 0; p < m; ++p) w[p] = v[rve_of_point_[p]];
-    write_row(std::string("points/") + (name + 4), H5T_NATIVE_DOUBLE, w.data());
+    stage_row(std::string("points/") + (name + 4), w.data());
   };
   rve_scalar("rve/p", [](const MicroReport& r) { return r.p; });
   rve_scalar("rve/q", [](const MicroReport& r) { return r.q; });
@@ -253,26 +288,30 @@ void ResultsWriter::append(std::int64_t step, double time,
     ds[k] = reports[k].dem_steps;
     gd[k] = reports[k].guards;
   }
-  write_row("rve/t_p", H5T_NATIVE_DOUBLE, tp.data());
-  write_row("rve/dem_steps", H5T_NATIVE_INT64, ds.data());
-  write_row("rve/guards", H5T_NATIVE_INT64, gd.data());
+  stage_row("rve/t_p", tp.data());
+  stage_row("rve/dem_steps", ds.data());
+  stage_row("rve/guards", gd.data());
   std::vector<double> x(3 * m);
   for (std::size_t p = 0; p < m; ++p) {
     for (int a = 0; a < 3; ++a) x[3 * p + static_cast<std::size_t>(a)] = points.x[p][a];
   }
-  write_row("points/x", H5T_NATIVE_DOUBLE, x.data());
+  stage_row("points/x", x.data());
   for (std::size_t p = 0; p < m; ++p) mat9(points.stress[p], buf.data() + 9 * p);
-  write_row("points/stress", H5T_NATIVE_DOUBLE, buf.data());
-  write_row("means/eps_ax", H5T_NATIVE_DOUBLE, &means.eps_ax);
-  write_row("means/eps_v", H5T_NATIVE_DOUBLE, &means.eps_v);
-  write_row("means/p", H5T_NATIVE_DOUBLE, &means.p);
-  write_row("means/q", H5T_NATIVE_DOUBLE, &means.q);
-  ++rows_;
+  stage_row("points/stress", buf.data());
+  stage_row("means/eps_ax", &means.eps_ax);
+  stage_row("means/eps_v", &means.eps_v);
+  stage_row("means/p", &means.p);
+  stage_row("means/q", &means.q);
+  ++pending_;
   steps_.push_back(step);
   times_.push_back(time);
+  // Rows are written in blocks: one HDF5 extend + write per series for many rows (a row of its
+  // own cost ~0.15-0.2 ms, 3 % of an MPM step of the paper's job at one row per 10 steps).
+  if (pending_ >= kRowsPerWrite || pending_bytes_ >= kBytesPerWrite) write_pending();
 }
 
 void ResultsWriter::flush() {
+  write_pending();
   H5Fflush(file_.get(), H5F_SCOPE_LOCAL);
   write_xdmf();
   write_csv();

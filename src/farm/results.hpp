@@ -37,17 +37,25 @@ class ResultsWriter {
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
-  /// One output row. rve_stress/reports by RVE index (ascending ids).
+  /// One output row. rve_stress/reports by RVE index (ascending ids). Rows are kept in memory
+  /// and written in blocks (kRowsPerWrite rows or kBytesPerWrite bytes), by flush() and by the
+  /// destructor (a run that stops on an error keeps its completed rows).
   void append(std::int64_t step, double time, const std::vector<common::Mat3>& rve_stress,
               const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
               const SampleMeans& means);
-  /// Flushes results.h5 and rewrites points.xmf and means.csv (atomic rename each).
+  /// Writes the pending rows, flushes results.h5 and rewrites points.xmf and means.csv (atomic
+  /// rename each).
   void flush();
-  [[nodiscard]] std::int64_t rows() const { return rows_; }
+  /// Rows appended so far (written or pending), restart rows included.
+  [[nodiscard]] std::int64_t rows() const { return rows_ + pending_; }
+
+  static constexpr std::int64_t kRowsPerWrite = 64;
+  static constexpr std::size_t kBytesPerWrite = 8u << 20;
 
  private:
   struct Series;
-  void write_row(const std::string& name, hid_t type, const void* data);
+  void stage_row(const std::string& name, const void* data);
+  void write_pending();
   void write_xdmf() const;
   void write_csv() const;
 
@@ -57,7 +65,9 @@ class ResultsWriter {
   std::vector<std::size_t> rve_of_point_;  ///< RVE index of every point slot
   h5::Handle file_;
   std::map<std::string, std::unique_ptr<Series>> series_;
-  std::int64_t rows_ = 0;
+  std::int64_t rows_ = 0;           ///< rows written to results.h5
+  std::int64_t pending_ = 0;        ///< rows appended, not written yet
+  std::size_t pending_bytes_ = 0;
   std::vector<std::int64_t> steps_;
   std::vector<double> times_;
 };

@@ -1,0 +1,147 @@
+// Tests of src/farm/results.*: rows are kept in memory and written in blocks; what is read back
+// must be every row, in order, with the values given, whether written by a block, by flush() or by
+// the destructor (a run stopping on an error).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "farm/results.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string scratch(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("mpmxdem_results_test_" + std::to_string(getpid())) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+/// The whole dataset `name` of `file` as doubles (integers converted by HDF5).
+std::vector<double> read_all(const std::string& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << file;
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << name;
+  const hid_t s = H5Dget_space(d);
+  const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(s));
+  std::vector<double> v(n);
+  if (n > 0) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(s);
+  H5Dclose(d);
+  H5Fclose(f);
+  return v;
+}
+
+// Three RVEs (ids 1, 5, 9); the points come in another order (9, 1, 5).
+struct Sample {
+  std::vector<std::int64_t> rve_ids{1, 5, 9};
+  mpm::MaterialPoints points;
+  Sample() {
+    points.resize(3);
+    points.id = {9, 1, 5};
+    for (std::size_t p = 0; p < 3; ++p) {
+      points.x[p] = common::Vec3(0.1 * static_cast<double>(p), 0.5, 0.5);
+      points.volume[p] = 1.0;
+      points.volume0[p] = 1.0;
+      points.F[p] = common::Mat3::Identity();
+    }
+  }
+  /// Row r's RVE reports: p = 1000 r + k (k: RVE index), dem_steps = r + k.
+  std::vector<farm::MicroReport> reports(int r) const {
+    std::vector<farm::MicroReport> out(3);
+    for (std::size_t k = 0; k < 3; ++k) {
+      out[k].p = 1000.0 * r + static_cast<double>(k);
+      out[k].dem_steps = r + static_cast<std::int64_t>(k);
+    }
+    return out;
+  }
+  void append(farm::ResultsWriter& w, int r) const {
+    const std::vector<common::Mat3> stress(3, -1.0 * r * common::Mat3::Identity());
+    farm::SampleMeans m;
+    m.q = 7.0 * r;
+    w.append(10 * r, 0.5 * r, stress, reports(r), points, m);
+  }
+};
+
+TEST(Results, RowsWrittenInBlocksReadBackInOrder) {
+  const std::string dir = scratch("blocks");
+  const Sample smp;
+  const int rows = 2 * static_cast<int>(farm::ResultsWriter::kRowsPerWrite) + 7;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    for (int r = 0; r < rows; ++r) {
+      smp.append(w, r);
+      EXPECT_EQ(w.rows(), r + 1);
+    }
+    w.flush();
+  }
+  const std::string h5 = dir + "/results.h5";
+  const std::vector<double> step = read_all(h5, "/step");
+  const std::vector<double> rve_p = read_all(h5, "/rve/p");
+  const std::vector<double> pts_p = read_all(h5, "/points/p");
+  const std::vector<double> ds = read_all(h5, "/rve/dem_steps");
+  const std::vector<double> q = read_all(h5, "/means/q");
+  const std::vector<double> stress = read_all(h5, "/rve/stress");
+  ASSERT_EQ(step.size(), static_cast<std::size_t>(rows));
+  ASSERT_EQ(rve_p.size(), 3u * rows);
+  ASSERT_EQ(stress.size(), 27u * rows);
+  const std::size_t rve_of_point[3] = {2, 0, 1};  // point ids 9, 1, 5
+  for (int r = 0; r < rows; ++r) {
+    const auto ru = static_cast<std::size_t>(r);
+    EXPECT_EQ(step[ru], 10.0 * r);
+    EXPECT_EQ(q[ru], 7.0 * r);
+    EXPECT_EQ(stress[27 * ru + 9 * 2 + 8], -1.0 * r);
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(rve_p[3 * ru + k], 1000.0 * r + static_cast<double>(k));
+      EXPECT_EQ(ds[3 * ru + k], static_cast<double>(r + static_cast<int>(k)));
+      EXPECT_EQ(pts_p[3 * ru + k], 1000.0 * r + static_cast<double>(rve_of_point[k]));
+    }
+  }
+  // means.csv: two header lines and one line per row.
+  std::ifstream csv(dir + "/means.csv");
+  int lines = 0;
+  for (std::string l; std::getline(csv, l);) ++lines;
+  EXPECT_EQ(lines, rows + 2);
+}
+
+// Rows not yet written when the writer goes away (an error unwinding the driver) are written.
+TEST(Results, PendingRowsAreWrittenByTheDestructor) {
+  const std::string dir = scratch("pending");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    for (int r = 0; r < 5; ++r) smp.append(w, r);
+  }
+  const std::vector<double> step = read_all(dir + "/results.h5", "/step");
+  ASSERT_EQ(step.size(), 5u);
+  EXPECT_EQ(step[4], 40.0);
+}
+
+// A restarted writer keeps the rows up to the checkpoint's step and continues after them.
+TEST(Results, RestartKeepsRowsUpToTheCheckpointAndAppends) {
+  const std::string dir = scratch("restart");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    for (int r = 0; r < 100; ++r) smp.append(w, r);
+  }
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, 500);  // rows of steps 0..500 stay
+    EXPECT_EQ(w.rows(), 51);
+    for (int r = 51; r < 60; ++r) smp.append(w, r);
+    w.flush();
+  }
+  const std::vector<double> step = read_all(dir + "/results.h5", "/step");
+  ASSERT_EQ(step.size(), 60u);
+  for (std::size_t r = 0; r < 60; ++r) EXPECT_EQ(step[r], 10.0 * static_cast<double>(r));
+}
+
+}  // namespace
