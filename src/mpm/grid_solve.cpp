@@ -16,25 +16,23 @@ double typical_nodal_mass(const GridFields& fields) {
 
 void compute_nodal_velocity(double threshold, GridFields& fields) {
   const auto n = static_cast<std::int64_t>(fields.active.size());
-#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
-  for (std::int64_t q = 0; q < n; ++q) {
+  for_each_index(n, [&](std::int64_t q) {
     const auto i = static_cast<std::size_t>(fields.active[static_cast<std::size_t>(q)]);
     const double m_i = fields.mass[i];
     fields.velocity[i] = (m_i >= threshold && m_i > 0.0) ? common::Vec3(fields.momentum[i] / m_i)
                                                          : common::Vec3::Zero();
-  }
+  });
 }
 
 void compute_nodal_acceleration(double threshold, double damping, DampingMode mode,
                                 GridFields& fields) {
   const auto n = static_cast<std::int64_t>(fields.active.size());
-#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
-  for (std::int64_t q = 0; q < n; ++q) {
+  for_each_index(n, [&](std::int64_t q) {
     const auto i = static_cast<std::size_t>(fields.active[static_cast<std::size_t>(q)]);
     const double m_i = fields.mass[i];
     if (!(m_i >= threshold && m_i > 0.0)) {
       fields.acceleration[i].setZero();
-      continue;
+      return;
     }
     // Eq. 8 on the free components only: the force along a prescribed component is reacted by
     // the constraint (e.g. the platen load), not an out-of-balance force to damp.
@@ -59,7 +57,7 @@ void compute_nodal_acceleration(double threshold, double damping, DampingMode mo
       }
     }
     fields.acceleration[i] = f_damped / m_i;
-  }
+  });
 }
 
 }  // namespace mpm

@@ -42,8 +42,7 @@ void LinearElastic::update_stress(std::span<const std::int64_t> ids,
   for (const std::int64_t id : ids) ensure(id);
   const auto n = static_cast<std::int64_t>(ids.size());
   const common::Mat3 I = common::Mat3::Identity();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
-  for (std::int64_t p = 0; p < n; ++p) {
+  for_each_index(n, [&](std::int64_t p) {
     const common::Mat3& L_p = L[static_cast<std::size_t>(p)];
     const common::Mat3 D = 0.5 * (L_p + L_p.transpose());
     const common::Mat3 W = 0.5 * (L_p - L_p.transpose());
@@ -51,7 +50,7 @@ void LinearElastic::update_stress(std::span<const std::int64_t> ids,
     common::Mat3& s = stress_[static_cast<std::size_t>(ids[static_cast<std::size_t>(p)])];
     s = Q * s * Q.transpose() + dt * (lambda_ * D.trace() * I + 2.0 * mu_ * D);
     stress[static_cast<std::size_t>(p)] = s;
-  }
+  });
 }
 
 double LinearElastic::wave_speed() const { return std::sqrt((lambda_ + 2.0 * mu_) / density_); }

@@ -137,13 +137,12 @@ void Solver::update_stress(double dt) {
   const auto n = static_cast<std::int64_t>(points_.size());
   const common::Mat3 I = common::Mat3::Identity();
   // Kinematics: F <- (I + L dt) F, V <- det(I + L dt) V.
-#pragma omp parallel for schedule(static) if (n >= kMinParallelPoints)
-  for (std::int64_t q = 0; q < n; ++q) {
+  for_each_index(n, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
     const common::Mat3 dF = I + dt * points_.L[p];
     points_.F[p] = dF * points_.F[p];
     points_.volume[p] *= dF.determinant();
-  }
+  });
   if (materials_.size() == 1) {
     materials_[0]->update_stress(points_.id, points_.L, dt, points_.stress);
     return;
