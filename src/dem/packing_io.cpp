@@ -96,12 +96,17 @@ void write_packing(const std::string& path, const Packing& pk, const std::string
   std::fclose(f);
 }
 
-Packing tile_packing(const Packing& pk, int n) {
+Packing tile_packing(const Packing& pk, int n) { return tile_packing(pk, {n, n, n}); }
+
+Packing tile_packing(const Packing& pk, const std::array<int, 3>& n) {
+  for (const int k : n) {
+    if (k < 1) throw common::InputError("dem: tile counts must be >= 1, got " + std::to_string(k));
+  }
   Packing out;
-  out.cell.h = pk.cell.h * static_cast<double>(n);
-  for (int c = 0; c < n; ++c) {
-    for (int b = 0; b < n; ++b) {
-      for (int a = 0; a < n; ++a) {
+  out.cell.h = pk.cell.h * common::Vec3(n[0], n[1], n[2]).asDiagonal();
+  for (int c = 0; c < n[2]; ++c) {
+    for (int b = 0; b < n[1]; ++b) {
+      for (int a = 0; a < n[0]; ++a) {
         const common::Vec3 shift = pk.cell.h * common::Vec3(a, b, c);
         for (std::size_t i = 0; i < pk.r.size(); ++i) {
           out.x.push_back(pk.x[i] + shift);

@@ -2,6 +2,7 @@
 // "HSIZE" + 9 numbers (cell matrix row-major, columns are the cell vectors), "x y z r" per sphere.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -23,5 +24,8 @@ struct Packing {
 void write_packing(const std::string& path, const Packing& packing, const std::string& comment = "");
 /// Tile a packing n x n x n times (exact periodic copies).
 [[nodiscard]] Packing tile_packing(const Packing& packing, int n);
+/// Tile a packing n[0] x n[1] x n[2] times along its cell vectors (exact periodic copies: the
+/// same state in a larger cell). Throws common::InputError for a count < 1.
+[[nodiscard]] Packing tile_packing(const Packing& packing, const std::array<int, 3>& n);
 
 }  // namespace dem

@@ -6,6 +6,8 @@
 
 #include "common/errors.hpp"
 #include "dem/packing_io.hpp"
+#include "dem/loading.hpp"
+#include "dem/measures.hpp"
 #include "dem_test_util.hpp"
 
 namespace {
@@ -55,6 +57,27 @@ TEST(PackingIo, TilingMakesExactCopies) {
   const dem::Packing t = dem::tile_packing(pk, 2);
   EXPECT_EQ(t.r.size(), 8000u);
   EXPECT_EQ(t.cell.h, pk.cell.h * 2.0);
+}
+
+// 2 x 1 x 1 copies of the reference packing are the same state in a cell twice as long: the same
+// stress (to rounding: every contact is there twice, in twice the volume).
+TEST(PackingIo, TilingAlongOneAxisKeepsTheStress) {
+  const dem::Packing pk = dem_test::reference_packing();
+  const dem::Packing t = dem::tile_packing(pk, {2, 1, 1});
+  ASSERT_EQ(t.r.size(), 2000u);
+  EXPECT_EQ(t.cell.h.col(0), 2.0 * pk.cell.h.col(0));
+  EXPECT_EQ(t.cell.h.col(1), pk.cell.h.col(1));
+  EXPECT_EQ(t.cell.h.col(2), pk.cell.h.col(2));
+  dem::Simulation a = dem::make_simulation(pk, dem_test::reference_material(), dem::Numerics{});
+  dem::Simulation b = dem::make_simulation(t, dem_test::reference_material(), dem::Numerics{});
+  a.compute_forces();
+  b.compute_forces();
+  const common::Mat3 sa = dem::measure(a).stress;
+  const common::Mat3 sb = dem::measure(b).stress;
+  EXPECT_GT(sa.norm(), 1e4);
+  EXPECT_LT((sa - sb).norm(), 1e-9 * sa.norm());
+  EXPECT_EQ(dem::measure(b).z, dem::measure(a).z);
+  EXPECT_THROW((void)dem::tile_packing(pk, {1, 0, 1}), common::InputError);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // bench_farm: figures of the RVE farm (a program, never a test). Run under mpiexec, e.g.
 //   mpiexec -n 2 --bind-to none bench_farm overhead [--wait auto|spin|sleep] [--steps 10]
 //       [--output-every 10] (rows of results.h5: the paper's job writes every 10th step)
-//   mpiexec -n 2 --bind-to none bench_farm balance  [--rves 32] [--steps 20]
+//   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12] [--steps 20]
 //   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
 // --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores). Figures and commands: docs/farm.md, "Benchmarks".
@@ -182,24 +182,52 @@ void overhead(const Args& a, MPI_Comm comm) {
   }
 }
 
+// Load balance of RVEs of mixed cost: mean over max of the ranks' RVE busy times, for
+// round-robin and METIS partitions. --micro elastic: ElasticMicro RVEs of cost classes 1/2/5/10
+// (substeps); --micro dem: DEM RVEs of 1000 / 2000 / 4000 spheres (the reference packing tiled
+// 1x1x1, 2x1x1, 2x2x1: the same prepared state in larger cells) under the paper's strain rate.
 void balance(const Args& a, MPI_Comm comm) {
-  const int n = std::stoi(a.get("rves", "32"));
+  const bool dem = a.get("micro", "elastic") == "dem";
+  const int n = std::stoi(a.get("rves", dem ? "12" : "32"));
   const int steps = std::stoi(a.get("steps", "20"));
   const int size = size_of(comm);
-  // Mixed RVE sizes: cost classes 1, 2, 5, 10 (x base) in a scrambled order.
-  const std::int64_t base = std::stoll(a.get("substeps", "20000"));
-  farm::ElasticMicroParams p;
-  p.young = 50e6;
-  p.poisson = 0.25;
-  p.density = 1600.0;
   farm::MicroKind kind;
-  kind.create = [p, base](std::int64_t id) {
-    static const int cls[] = {1, 10, 2, 5, 1, 2, 10, 1, 5, 2, 1, 5};
-    farm::ElasticMicroParams q = p;
-    q.substeps = base * cls[id % 12];
-    return std::make_unique<farm::ElasticMicro>(id, q);
-  };
-  kind.load = [](const common::StateReader& r) { return farm::ElasticMicro::load(r); };
+  std::string what;
+  static const int kClass[] = {1, 10, 2, 5, 1, 2, 10, 1, 5, 2, 1, 5};  // scrambled cost classes
+  if (dem) {
+    const dem::Packing base = dem::read_packing(a.get("packing", MPMXDEM_DEFAULT_PACKING));
+    std::map<int, dem::Packing> by_class;  // 1, 2, 4 times the reference's spheres
+    by_class[1] = base;
+    by_class[2] = dem::tile_packing(base, {2, 1, 1});
+    by_class[4] = dem::tile_packing(base, {2, 2, 1});
+    auto size_class = [](std::int64_t id) {
+      const int c = kClass[id % 12];
+      return c == 1 ? 1 : (c == 2 || c == 5 ? 2 : 4);
+    };
+    farm::DemMicroParams p;
+    p.rve.material = dem_material();
+    kind = farm::DemMicro::kind(
+        p, [by_class, size_class](std::int64_t id) { return by_class.at(size_class(id)); });
+    std::int64_t spheres = 0;
+    for (int k = 0; k < n; ++k) spheres += size_class(k) * static_cast<std::int64_t>(base.r.size());
+    what = std::to_string(n) + " DEM RVEs of " + std::to_string(base.r.size()) + ", " +
+           std::to_string(2 * base.r.size()) + " and " + std::to_string(4 * base.r.size()) +
+           " spheres (" + std::to_string(spheres) + " in all)";
+  } else {
+    const std::int64_t base = std::stoll(a.get("substeps", "20000"));
+    farm::ElasticMicroParams p;
+    p.young = 50e6;
+    p.poisson = 0.25;
+    p.density = 1600.0;
+    kind.create = [p, base](std::int64_t id) {
+      farm::ElasticMicroParams q = p;
+      q.substeps = base * kClass[id % 12];
+      return std::make_unique<farm::ElasticMicro>(id, q);
+    };
+    kind.load = [](const common::StateReader& r) { return farm::ElasticMicro::load(r); };
+    what = std::to_string(n) + " ElasticMicro RVEs of cost classes 1/2/5/10 x " +
+           std::to_string(base) + " substeps";
+  }
   std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
   std::vector<Vec3> x(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
@@ -207,34 +235,43 @@ void balance(const Args& a, MPI_Comm comm) {
     x[static_cast<std::size_t>(k)] = Vec3((k % 4 + 0.5) / 4.0, ((k / 4) % 4 + 0.5) / 4.0, 0.5);
   }
   const mpm::Grid grid{Vec3::Zero(), Vec3(0.5, 0.5, 1.0), common::Vec3i(2, 2, 1)};
+  // The start-up partition: METIS on the models' cost estimates (DEM: particle counts).
   farm::RveFarm f(comm, kind, ids, x, grid, farm_options(a));
   if (f.rank() != 0) {
     f.serve();
     return;
   }
+  // DEM: the paper's platen strain rate (eq. 13 over a 1 m sample) and MPM step (CFL 0.5 over
+  // 1 m at 336 m/s); elastic: a larger increment.
   std::vector<Mat3> L(static_cast<std::size_t>(n), Mat3::Zero());
-  for (auto& l : L) l(2, 2) = -1e-2;
+  for (auto& l : L) l(2, 2) = dem ? -2.5e-4 * std::sqrt(100e3 / 1600.0) : -1e-2;
+  const double dt = dem ? 1.5e-3 : 1e-3;
   std::vector<Mat3> s(static_cast<std::size_t>(n));
+  std::vector<double> cost_before = f.cost();
   auto measure = [&](const char* name) {
     const farm::FarmTimes t0 = f.times();
-    for (int k = 0; k < steps; ++k) f.update_stress(ids, L, 1e-3, s);
+    for (int k = 0; k < steps; ++k) f.update_stress(ids, L, dt, s);
     const farm::FarmTimes t1 = f.times();
     const double crit = t1.critical_busy - t0.critical_busy;
     const double mean = t1.mean_busy - t0.mean_busy;
+    // The partition's own balance by the RVEs' measured costs of this phase (no timing noise
+    // of single steps): what the partition allows; mean/max busy is what the steps achieved.
+    std::vector<double> phase_cost = f.cost();
+    for (std::size_t k = 0; k < phase_cost.size(); ++k) phase_cost[k] -= cost_before[k];
+    cost_before = f.cost();
     std::printf(
-        "  %-12s mean/max busy = %.4f   (critical %.4f s, mean %.4f s, update_stress wall %.4f "
-        "s)\n",
-        name, mean / crit, crit, mean, t1.step_wall - t0.step_wall);
+        "  %-24s mean/max busy = %.4f, of the partition %.4f   (critical %.4f s, mean %.4f s, "
+        "update_stress wall %.4f s)\n",
+        name, mean / crit, 1.0 / farm::imbalance(f.owner(), phase_cost, size), crit, mean,
+        t1.step_wall - t0.step_wall);
   };
-  std::printf(
-      "balance: ranks %d, %d ElasticMicro RVEs of cost classes 1/2/5/10 x %lld substeps, %d steps "
-      "each\n",
-      size, n, static_cast<long long>(base), steps);
+  std::printf("balance: ranks %d, %s, %d steps each\n", size, what.c_str(), steps);
+  measure(dem ? "METIS, particle counts" : "METIS, cost estimates");
   f.migrate_to(farm::partition_round_robin(static_cast<std::size_t>(n), size));
   measure("round-robin");
-  const std::vector<double> cost = f.cost();  // measured wall seconds per RVE
+  const std::vector<double> cost = f.cost();  // measured wall seconds per RVE so far
   f.migrate_to(farm::partition_metis(farm::cell_graph(grid, x), cost, size));
-  measure("METIS");
+  measure("METIS, measured costs");
   f.stop();
 }
 
