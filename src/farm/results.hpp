@@ -3,6 +3,8 @@
 // Layout: docs/farm.md, "Outputs".
 #pragma once
 
+#include <array>
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -44,13 +46,15 @@ class ResultsWriter {
               const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
               const SampleMeans& means);
   /// Writes the pending rows, flushes results.h5 and rewrites points.xmf and means.csv (atomic
-  /// rename each).
-  void flush();
+  /// rename each). With `indexes` false the two are rewritten only if the time since their last
+  /// rewrite is at least their cost over kIndexShare (progress lines of long runs).
+  void flush(bool indexes = true);
   /// Rows appended so far (written or pending), restart rows included.
   [[nodiscard]] std::int64_t rows() const { return rows_ + pending_; }
 
   static constexpr std::int64_t kRowsPerWrite = 64;
   static constexpr std::size_t kBytesPerWrite = 8u << 20;
+  static constexpr double kIndexShare = 0.005;  ///< wall-time share of index rewrites [-]
 
  private:
   struct Series;
@@ -68,8 +72,11 @@ class ResultsWriter {
   std::int64_t rows_ = 0;           ///< rows written to results.h5
   std::int64_t pending_ = 0;        ///< rows appended, not written yet
   std::size_t pending_bytes_ = 0;
-  std::vector<std::int64_t> steps_;
+  std::vector<std::int64_t> steps_;               ///< of every row (written or pending)
   std::vector<double> times_;
+  std::vector<std::array<double, 4>> means_;      ///< eps_ax, eps_v, p, q of every row
+  std::chrono::steady_clock::time_point index_written_{};  ///< last rewrite of xmf + csv
+  double index_cost_s_ = 0.0;                              ///< its duration [s]
 };
 
 }  // namespace farm
