@@ -2,6 +2,7 @@
 #include "farm/rve_farm.hpp"
 
 #include <omp.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -27,8 +28,16 @@ enum Command : std::int32_t {
 };
 
 /// Per-RVE record gathered to rank 0 (doubles): stress (9, row-major), p, q, e, z, t_p, wall_s,
-/// wave speed, dem_steps, guards, error kind.
-constexpr std::size_t kRecord = 19;
+/// wave speed, dem_steps, guards, error kind, cost (CPU seconds of the thread that stepped it).
+constexpr std::size_t kRecord = 20;
+
+/// CPU time of the calling thread [s]. An RVE's cost for balancing: unlike wall time it leaves
+/// out the time its thread was not running (another rank on the same core, a preemption).
+double thread_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -306,7 +315,9 @@ void RveFarm::exec_step(const Header& h, std::span<common::Mat3> stress) {
     double* r = rec + kRecord * j;
     errors_[j].clear();
     try {
+      const double cpu0 = thread_cpu_s();
       const MicroReport rep = m.step(Lj, dt);
+      r[19] = thread_cpu_s() - cpu0;
       const common::Mat3 s = m.stress();
       if (!s.allFinite())
         throw common::NumericalError("non-finite stress (trace = " + std::to_string(s.trace()) +
@@ -378,8 +389,8 @@ void RveFarm::exec_step(const Header& h, std::span<common::Mat3> stress) {
       wave_[k] = v[15];
       rep.dem_steps = static_cast<std::int64_t>(v[16]);
       rep.guards = static_cast<std::uint32_t>(v[17]);
-      cost_total_[k] += rep.wall_s;
-      cost_window_[k] += rep.wall_s;
+      cost_total_[k] += v[19];
+      cost_window_[k] += v[19];
       v += kRecord;
     }
   }
@@ -483,7 +494,7 @@ bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Ve
   MPMXDEM_CHECK(rank_ == 0, "rebalancing is driven by rank 0");
   cost_avg_.add_window(cost_window_);
   std::fill(cost_window_.begin(), cost_window_.end(), 0.0);
-  if (size_ == 1) return false;
+  if (size_ == 1 || !cost_avg_.settled()) return false;
   RebalancePlan plan = plan_rebalance(cell_graph(grid_, x), owner_, cost_avg_.cost(), size_,
                                       threshold, options_.metis_seed);
   if (!plan.migrate) return false;

@@ -67,7 +67,8 @@ class RveFarm final : public mpm::MaterialModel {
                   const std::string& job_text, const common::StateStore& mpm_state,
                   bool abort_mid_write);
   /// Rank 0 only. Closes a cost window (the RVE step times since the last call) into the per-RVE
-  /// cost average (rebalance.hpp); if the imbalance of that average exceeds `threshold` and a
+  /// cost average (rebalance.hpp); once the average is settled (3 windows), if the imbalance of
+  /// that average exceeds `threshold` and a
   /// METIS partition (graph from `x`, current positions by RVE index) lowers it by more than the
   /// noise margin of plan_rebalance, migrates the RVEs. Returns true if RVEs moved.
   bool rebalance_if_needed(double threshold, const std::vector<common::Vec3>& x);
@@ -90,7 +91,8 @@ class RveFarm final : public mpm::MaterialModel {
   [[nodiscard]] const std::vector<MicroReport>& reports() const { return reports_; }
   /// Rank 0: the stress of every RVE, by index [Pa, tension positive].
   [[nodiscard]] const std::vector<common::Mat3>& stresses() const { return stresses_; }
-  /// Rank 0: measured cost of every RVE (sum of step wall times) [s]; estimates before steps.
+  /// Rank 0: measured cost of every RVE (sum of the CPU times of its steps, on the thread that
+  /// ran each) [s]; estimates before steps.
   [[nodiscard]] const std::vector<double>& cost() const { return cost_total_; }
   /// Rank 0: imbalance max/mean over ranks of the averaged RVE costs [-] (>= 1).
   [[nodiscard]] double imbalance() const;

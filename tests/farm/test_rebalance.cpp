@@ -82,3 +82,21 @@ TEST(Rebalance, BalancedOrSinglePartNeverMigrates) {
   EXPECT_FALSE(farm::plan_rebalance(g, std::vector<int>(8, 0), cost, 1, 1.0, 1).migrate);
   EXPECT_DOUBLE_EQ(farm::imbalance(owner, cost, 2), 1.0);
 }
+
+namespace {
+
+// No decision on the first windows: they hold the start-up's noise alone.
+TEST(Rebalance, AverageSettlesAfterThreeWindows) {
+  farm::CostAverage avg;
+  const std::vector<double> w{1.0, 1.0, 3.0};
+  EXPECT_FALSE(avg.settled());
+  avg.add_window(w);
+  EXPECT_FALSE(avg.settled());
+  avg.add_window(w);
+  EXPECT_FALSE(avg.settled());
+  avg.add_window(w);
+  EXPECT_TRUE(avg.settled());
+  EXPECT_EQ(farm::CostAverage::kSettledWindows, 3);
+}
+
+}  // namespace

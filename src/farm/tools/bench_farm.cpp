@@ -160,7 +160,10 @@ void overhead(const Args& a, MPI_Comm comm) {
     std::printf(
         "  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
         s.wall_s, s.wall_s / static_cast<double>(steps), total);
-    std::printf("  critical RVE busy (max rank) %10.4f s\n", t.critical_busy);
+    std::printf("  critical RVE busy (max rank) %10.4f s  (migrations incl. start-up %lld, %lld RVEs "
+                "moved)\n",
+                t.critical_busy, static_cast<long long>(s.migrations),
+                static_cast<long long>(s.rves_moved));
     std::printf("  mean RVE busy per rank       %10.4f s  -> balance mean/max %.3f\n", t.mean_busy,
                 t.mean_busy / t.critical_busy);
     std::printf("  farm exchange + wait         %10.6f s  (update_stress wall - critical busy)\n",
