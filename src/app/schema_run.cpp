@@ -25,6 +25,10 @@ void add_run_sections(Schema& s) {
       .in(1, std::nullopt).or_default(1.2);
   s.add("farm.rebalance_check_every", Type::Int, "MPM steps between two checks of the load balance.")
       .in(1, std::nullopt).or_default(std::int64_t{20});
+  s.add("farm.wait", Type::String,
+        "How a rank waits for the others: auto (spin where every thread of the node's ranks has a "
+        "core, sleep where they share cores; the log says which), spin, or sleep.")
+      .one_of({"auto", "spin", "sleep"}).or_default(std::string("auto"));
 }
 
 }  // namespace app

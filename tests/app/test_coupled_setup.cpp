@@ -75,6 +75,7 @@ progress_interval = "2 s"
 [farm]
 rebalance_threshold = 1.5
 rebalance_check_every = 11
+wait = "sleep"
 )";
 
 TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
@@ -91,6 +92,7 @@ TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
   EXPECT_EQ(c.checkpoint.keep, 3);
   EXPECT_DOUBLE_EQ(c.balance.threshold, 1.5);
   EXPECT_EQ(c.balance.check_every, 11);
+  EXPECT_EQ(c.farm.wait, farm::WaitMode::sleep);
   EXPECT_EQ(c.job_text, std::string(kJob));
 }
 
