@@ -20,10 +20,11 @@ namespace app {
 namespace {
 
 std::vector<Column> series_columns() {
-  return {{"iter", ""},  {"time", "s"},  {"dt", "s"},    {"eps_a", ""},        {"eps_v", ""},  {"p", "Pa"},
-          {"q", "Pa"},   {"sig_a", "Pa"}, {"sig_r", "Pa"}, {"sxx", "Pa"},        {"syy", "Pa"},  {"szz", "Pa"},
-          {"sxy", "Pa"}, {"sxz", "Pa"},  {"syz", "Pa"},  {"e", ""},            {"Z", ""},      {"Zm", ""},
-          {"nContacts", ""}, {"unbalanced", ""}, {"wall_s", "s"}};
+  return {{"iter", ""},   {"time", "s"}, {"dt", "s"},     {"eps_a", ""},     {"eps_v", ""},
+          {"p", "Pa"},    {"q", "Pa"},   {"sig_a", "Pa"}, {"sig_r", "Pa"},   {"sxx", "Pa"},
+          {"syy", "Pa"},  {"szz", "Pa"}, {"sxy", "Pa"},   {"sxz", "Pa"},     {"syz", "Pa"},
+          {"e", ""},      {"Z", ""},     {"Zm", ""},      {"nContacts", ""}, {"unbalanced", ""},
+          {"wall_s", "s"}};
 }
 
 struct Reference {
@@ -38,18 +39,38 @@ std::vector<double> row(const dem::Simulation& sim, const dem::Measures& m, cons
   const auto& s = m.stress;
   const double eps_a = -std::log(sim.cell().h(2, 2) / ref.lz0);
   const double eps_v = -std::log(sim.cell().volume() / ref.v0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref.start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - ref.start).count();
   const double sig_a = -s(2, 2);
   const double sig_r = -0.5 * (s(0, 0) + s(1, 1));
-  return {static_cast<double>(sim.steps()), sim.time(), sim.dt(), eps_a, eps_v, m.p, sig_a - sig_r, sig_a, sig_r,
-          s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(0, 2), s(1, 2), m.void_ratio, m.z, m.z_mech,
-          static_cast<double>(m.n_contacts), m.unbalanced, wall};
+  return {static_cast<double>(sim.steps()),
+          sim.time(),
+          sim.dt(),
+          eps_a,
+          eps_v,
+          m.p,
+          sig_a - sig_r,
+          sig_a,
+          sig_r,
+          s(0, 0),
+          s(1, 1),
+          s(2, 2),
+          s(0, 1),
+          s(0, 2),
+          s(1, 2),
+          m.void_ratio,
+          m.z,
+          m.z_mech,
+          static_cast<double>(m.n_contacts),
+          m.unbalanced,
+          wall};
 }
 
 void check_finite(const dem::Measures& m, const dem::Simulation& sim) {
   if (!std::isfinite(m.p) || !std::isfinite(m.q)) {
-    throw common::NumericalError(fmt::format("DEM step {} (t = {:.6g} s): stress is not finite (p = {}, q = {})",
-                                             sim.steps(), sim.time(), m.p, m.q));
+    throw common::NumericalError(
+        fmt::format("DEM step {} (t = {:.6g} s): stress is not finite (p = {}, q = {})",
+                    sim.steps(), sim.time(), m.p, m.q));
   }
 }
 
@@ -58,23 +79,26 @@ void check_finite(const dem::Measures& m, const dem::Simulation& sim) {
 int command_dem(const Options& o, const Comm& comm) {
   const Job job = load_job_collective(o.job, comm);
   if (!job.has_section("dem.loading")) {
-    throw common::InputError(fmt::format("{}: `dem` needs a [dem.loading] section (what to do after preparation)",
-                                         job.file()));
+    throw common::InputError(fmt::format(
+        "{}: `dem` needs a [dem.loading] section (what to do after preparation)", job.file()));
   }
   const std::filesystem::path out = open_output(o, job, comm);
   if (comm.size > 1) {
-    spdlog::warn("`dem` runs one sample on rank 0 with OpenMP; ranks 1..{} have nothing to do", comm.size - 1);
+    spdlog::warn("`dem` runs one sample on rank 0 with OpenMP; ranks 1..{} have nothing to do",
+                 comm.size - 1);
   }
   if (comm.rank != 0) return 0;
 
   dem::Simulation sim = prepared_sample(job);
   dem::Packing prepared{sim.cell(), sim.spheres().x, sim.spheres().r};
   prepared.cell.l.setZero();
-  dem::write_packing((out / "prepared_packing.txt").string(), prepared, "prepared by mpmxdem dem " + o.job);
+  dem::write_packing((out / "prepared_packing.txt").string(), prepared,
+                     "prepared by mpmxdem dem " + o.job);
 
   const std::string type = job.text("dem.loading.type");
   const std::int64_t every = job.integer("output.every");
-  const std::int64_t max_steps = o.max_steps >= 0 ? o.max_steps : std::numeric_limits<std::int64_t>::max();
+  const std::int64_t max_steps =
+      o.max_steps >= 0 ? o.max_steps : std::numeric_limits<std::int64_t>::max();
   SeriesWriter series(out, "dem_series", series_columns());
   Reference ref;
   ref.lz0 = sim.cell().h(2, 2);
@@ -90,9 +114,11 @@ int command_dem(const Options& o, const Comm& comm) {
     const double t_ref = d50 * std::sqrt(rho / p0);
     const double rate = job.number("dem.loading.inertial_number") / t_ref;
     const double target = job.number("dem.loading.axial_strain");
-    spdlog::info("triaxial: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} 1/s, "
-                 "to eps_a = {}, lateral stress {:.4g} Pa; about {:.3g} DEM steps",
-                 d50, t_ref, rate, target, p0, target / rate / sim.dt());
+    spdlog::info(
+        "triaxial: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
+        "1/s, "
+        "to eps_a = {}, lateral stress {:.4g} Pa; about {:.3g} DEM steps",
+        d50, t_ref, rate, target, p0, target / rate / sim.dt());
     dem::MixedController controller(dem::triaxial_control(rate, p0, 3.0 * rate));
     Progress progress("triaxial", target);
     double eps_a = 0.0;
@@ -105,8 +131,10 @@ int command_dem(const Options& o, const Comm& comm) {
       const auto r = row(sim, m, ref);
       series.add(r);
       eps_a = r[3];
-      progress.update(eps_a, sim.steps(), fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, r[4], m.void_ratio),
-                      eps_a >= target);
+      progress.update(
+          eps_a, sim.steps(),
+          fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, r[4], m.void_ratio),
+          eps_a >= target);
     }
   } else if (type == "isotropic") {
     dem::EquilibriumTarget t;
@@ -126,23 +154,26 @@ int command_dem(const Options& o, const Comm& comm) {
     const double t0 = sim.time();
     while (sim.time() < t_end && done < max_steps) {
       sim.cell().l = L;
-      const std::int64_t n = std::min({every, max_steps - done,
-                                       std::max<std::int64_t>(1, static_cast<std::int64_t>((t_end - sim.time()) / sim.dt()))});
+      const std::int64_t n = std::min(
+          {every, max_steps - done,
+           std::max<std::int64_t>(1, static_cast<std::int64_t>((t_end - sim.time()) / sim.dt()))});
       dem::advance(sim, nullptr, n);
       done += n;
       const dem::Measures m = dem::measure(sim);
       check_finite(m, sim);
       series.add(row(sim, m, ref));
-      progress.update(sim.time() - t0, sim.steps(), fmt::format("p {:.4g} Pa, q {:.4g} Pa", m.p, m.q),
-                      sim.time() >= t_end);
+      progress.update(sim.time() - t0, sim.steps(),
+                      fmt::format("p {:.4g} Pa, q {:.4g} Pa", m.p, m.q), sim.time() >= t_end);
     }
   }
   if (done >= max_steps) spdlog::warn("stopped after --max-steps {} DEM steps", max_steps);
   series.finish(job.has("title") ? job.text("title") : o.job);
   dem::Packing final_pk{sim.cell(), sim.spheres().x, sim.spheres().r};
   final_pk.cell.l.setZero();
-  dem::write_packing((out / "final_packing.txt").string(), final_pk, "final state of mpmxdem dem " + o.job);
-  spdlog::info("done: {} loading steps; series in {} ({} rows)", done, (out / "dem_series.csv").string(), series.rows());
+  dem::write_packing((out / "final_packing.txt").string(), final_pk,
+                     "final state of mpmxdem dem " + o.job);
+  spdlog::info("done: {} loading steps; series in {} ({} rows)", done,
+               (out / "dem_series.csv").string(), series.rows());
   return 0;
 }
 

@@ -19,20 +19,25 @@ namespace app {
 int command_run(const Options& o, const Comm& comm) {
   const Job job = load_job_collective(o.job, comm);
   if (!job.has_section("mpm")) {
-    throw common::InputError(fmt::format("{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)",
-                                         job.file()));
+    throw common::InputError(fmt::format(
+        "{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)", job.file()));
   }
   // Everything the job implies is checked before the output directory is touched.
-  const farm::CoupledConfig cfg = coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps});
+  const farm::CoupledConfig cfg =
+      coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps});
   if (!o.restart.empty()) {
-    // A damaged checkpoint is refused before anything is written (collective: same error everywhere).
+    // A damaged checkpoint is refused before anything is written (collective: same error
+    // everywhere).
     std::string error;
     if (comm.rank == 0) {
       try {
         const farm::CheckpointInfo info = farm::inspect_checkpoint(o.restart, true);
         if (info.job_text != job.source_text()) {
-          spdlog::warn("{}: the job file differs from the one the checkpoint was written with; its grid, loads, "
-                       "end and outputs are used, the state comes from the checkpoint", o.job);
+          spdlog::warn(
+              "{}: the job file differs from the one the checkpoint was written with; its grid, "
+              "loads, "
+              "end and outputs are used, the state comes from the checkpoint",
+              o.job);
         }
       } catch (const common::InputError& e) {
         error = e.what();
@@ -44,22 +49,27 @@ int command_run(const Options& o, const Comm& comm) {
   const int threads = farm::threads_per_rank(comm.comm);
   if (std::getenv("OMP_NUM_THREADS") == nullptr) {
     omp_set_num_threads(threads);
-    spdlog::info("OpenMP: {} thread(s) per rank ({} rank(s)); set OMP_NUM_THREADS to choose", threads, comm.size);
+    spdlog::info("OpenMP: {} thread(s) per rank ({} rank(s)); set OMP_NUM_THREADS to choose",
+                 threads, comm.size);
   } else {
-    spdlog::info("OpenMP: OMP_NUM_THREADS = {} (this node's cores per rank: {})", std::getenv("OMP_NUM_THREADS"),
-                 threads);
+    spdlog::info("OpenMP: OMP_NUM_THREADS = {} (this node's cores per rank: {})",
+                 std::getenv("OMP_NUM_THREADS"), threads);
   }
-  spdlog::info("coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,
-               cfg.max_steps > 0 ? fmt::format(", at most {} MPM steps in total", cfg.max_steps) : "");
+  spdlog::info(
+      "coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,
+      cfg.max_steps > 0 ? fmt::format(", at most {} MPM steps in total", cfg.max_steps) : "");
   const farm::RunSummary s = o.restart.empty() ? farm::run_coupled(cfg, comm.comm)
                                                : farm::restart_coupled(cfg, o.restart, comm.comm);
   if (comm.rank == 0) {
-    const double busy = s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
-    spdlog::info("done: {} MPM steps, t = {:.6g} s, wall {:.1f} s; RVE time {:.1f} s of the critical rank, "
-                 "balance (mean/max busy) {:.3f}, {} migration(s); {} checkpoint(s) written{}",
-                 s.steps, s.time, s.wall_s, s.times.critical_busy, busy, s.migrations, s.checkpoints.size(),
-                 s.checkpoints.empty() ? "" : ", last " + s.checkpoints.back());
-    spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv", out.string());
+    const double busy =
+        s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
+    spdlog::info(
+        "done: {} MPM steps, t = {:.6g} s, wall {:.1f} s; RVE time {:.1f} s of the critical rank, "
+        "balance (mean/max busy) {:.3f}, {} migration(s); {} checkpoint(s) written{}",
+        s.steps, s.time, s.wall_s, s.times.critical_busy, busy, s.migrations, s.checkpoints.size(),
+        s.checkpoints.empty() ? "" : ", last " + s.checkpoints.back());
+    spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv",
+                 out.string());
   }
   return 0;
 }

@@ -1,4 +1,5 @@
-// check and schema subcommands, and what every command shares (job loading, output directory): see commands.hpp.
+// check and schema subcommands, and what every command shares (job loading, output directory): see
+// commands.hpp.
 #include "app/commands.hpp"
 
 #include <fmt/format.h>
@@ -73,8 +74,8 @@ std::filesystem::path open_output(const Options& o, const Job& job, const Comm& 
     write_file_atomic(out / "job.toml", job.source_text());
     write_file_atomic(out / "job.resolved.toml", job.resolved_toml());
   }
-  spdlog::info("mpmxdem {} `{}` on {} rank(s); job {}; output {}", kVersion, o.command, comm.size, o.job,
-               out.string());
+  spdlog::info("mpmxdem {} `{}` on {} rank(s); job {}; output {}", kVersion, o.command, comm.size,
+               o.job, out.string());
   spdlog::info("resolved job:\n{}", job.resolved_toml());
   return out;
 }

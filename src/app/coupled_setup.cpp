@@ -59,22 +59,26 @@ struct DemPrototype {
       const dem::Packing pk{sim.cell(), sim.spheres().x, sim.spheres().r};
       params.d50 = dem_d50(job, pk);
       rve = std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params));
-      spdlog::info("RVE prototype: {} spheres, d50 = {:.4g} m, I = {:.3g}, p_floor = {:.4g} Pa", rve->num_spheres(),
-                   params.d50, params.inertial_number, params.p_floor);
+      spdlog::info("RVE prototype: {} spheres, d50 = {:.4g} m, I = {:.3g}, p_floor = {:.4g} Pa",
+                   rve->num_spheres(), params.d50, params.inertial_number, params.p_floor);
     }
     return *rve;
   }
 };
 
-farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup, const std::set<std::int64_t>& dem_ids) {
+farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
+                           const std::set<std::int64_t>& dem_ids) {
   std::shared_ptr<DemPrototype> proto;
-  if (setup.has_dem) proto = std::make_shared<DemPrototype>(DemPrototype{job, rve_params(job), nullptr});
+  if (setup.has_dem)
+    proto = std::make_shared<DemPrototype>(DemPrototype{job, rve_params(job), nullptr});
   std::shared_ptr<farm::ElasticMicroParams> elastic;
-  if (setup.has_elastic) elastic = std::make_shared<farm::ElasticMicroParams>(elastic_params(job, setup, dem_ids));
+  if (setup.has_elastic)
+    elastic = std::make_shared<farm::ElasticMicroParams>(elastic_params(job, setup, dem_ids));
   const std::uint32_t fail_guards = farm::DemMicroParams{}.fail_guards;
 
   farm::MicroKind k;
-  k.create = [proto, elastic, dem_ids, fail_guards](std::int64_t id) -> std::unique_ptr<farm::MicroModel> {
+  k.create = [proto, elastic, dem_ids,
+              fail_guards](std::int64_t id) -> std::unique_ptr<farm::MicroModel> {
     if (dem_ids.count(id) != 0) return std::make_unique<farm::DemMicro>(proto->get(), fail_guards);
     return std::make_unique<farm::ElasticMicro>(id, *elastic);
   };

@@ -96,7 +96,8 @@ dem::Simulation prepared_sample(const Job& job) {
   dem::Simulation sim = dem::make_simulation(packing, dem_material(job), dem_numerics(job));
   dem::Preparation prep = dem_preparation(job);
   // Strain-rate bound of the servo from the inertial number: I / t_ref, t_ref = d50 sqrt(rho / p).
-  const double t_ref = dem_d50(job, packing) * std::sqrt(job.number("dem.material.density") / prep.target.pressure);
+  const double t_ref =
+      dem_d50(job, packing) * std::sqrt(job.number("dem.material.density") / prep.target.pressure);
   prep.compaction_rate = job.number("dem.preparation.inertial_number") / t_ref;
   prep.target.max_rate = prep.compaction_rate;
   std::int64_t steps = 0;
@@ -108,24 +109,30 @@ dem::Simulation prepared_sample(const Job& job) {
     const auto now = std::chrono::steady_clock::now();
     if (now - last < std::chrono::seconds(10)) return;
     last = now;
-    spdlog::info("preparation: {} DEM steps, p = {:.4g} of {:.4g} Pa, e = {:.4f}, Z = {:.3f}, unbalanced {:.3g}, "
-                 "elapsed {}",
-                 s.steps(), m.p, prep.target.pressure, m.void_ratio, m.z, m.unbalanced,
-                 Progress::clock(std::chrono::duration<double>(now - start).count()));
+    spdlog::info(
+        "preparation: {} DEM steps, p = {:.4g} of {:.4g} Pa, e = {:.4f}, Z = {:.3f}, unbalanced "
+        "{:.3g}, "
+        "elapsed {}",
+        s.steps(), m.p, prep.target.pressure, m.void_ratio, m.z, m.unbalanced,
+        Progress::clock(std::chrono::duration<double>(now - start).count()));
   };
   if (generated) {
-    spdlog::info("sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
-                 packing.r.size(), job.integer("dem.sample.seed"), prep.target.pressure, prep.friction_comp_deg);
+    spdlog::info(
+        "sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
+        packing.r.size(), job.integer("dem.sample.seed"), prep.target.pressure,
+        prep.friction_comp_deg);
     steps = dem::prepare(sim, prep, observe);
   } else {
-    spdlog::info("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa", packing.r.size(),
-                 job.text("dem.sample.packing"), prep.target.pressure);
+    spdlog::info("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa",
+                 packing.r.size(), job.text("dem.sample.packing"), prep.target.pressure);
     steps = dem::equilibrate(sim, prep.target, observe);
   }
   const dem::Measures m = dem::measure(sim);
-  spdlog::info("prepared in {} DEM steps: p = {:.5g} Pa, q = {:.4g} Pa, e = {:.4f}, Z = {:.3f} (without rattlers {:.3f}), "
-               "unbalanced {:.3g}, dt = {:.4g} s",
-               steps, m.p, m.q, m.void_ratio, m.z, m.z_mech, m.unbalanced, sim.dt());
+  spdlog::info(
+      "prepared in {} DEM steps: p = {:.5g} Pa, q = {:.4g} Pa, e = {:.4f}, Z = {:.3f} (without "
+      "rattlers {:.3f}), "
+      "unbalanced {:.3g}, dt = {:.4g} s",
+      steps, m.p, m.q, m.void_ratio, m.z, m.z_mech, m.unbalanced, sim.dt());
   return sim;
 }
 

@@ -4,12 +4,12 @@
 
 #include <fmt/format.h>
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "common/errors.hpp"
 
@@ -78,7 +78,8 @@ std::string suggestion(std::string_view name, const std::vector<const Key*>& can
   for (const Key* k : candidates) {
     const std::string leaf = leaf_name(k->path);
     std::size_t d = edit_distance(name, leaf);
-    if (leaf.find(name) != std::string::npos || name.find(leaf) != std::string::npos) d = std::min<std::size_t>(d, 1);
+    if (leaf.find(name) != std::string::npos || name.find(leaf) != std::string::npos)
+      d = std::min<std::size_t>(d, 1);
     if (d < best_d) {
       best_d = d;
       best = leaf;
@@ -106,7 +107,8 @@ class Validator {
       }
       if (key->type == Type::Table) {
         if (!node.is_table()) {
-          error(node_line(node), fmt::format("{} = {}: must be a table [{}]", cpath, node_text(node), key->path));
+          error(node_line(node),
+                fmt::format("{} = {}: must be a table [{}]", cpath, node_text(node), key->path));
           continue;
         }
         job_.sections_[cpath] = node_line(node);
@@ -114,8 +116,8 @@ class Validator {
       } else if (key->type == Type::TableList) {
         const toml::array* arr = node.as_array();
         if (arr == nullptr || !arr->is_array_of_tables()) {
-          error(node_line(node), fmt::format("{} = {}: must be an array of tables, written [[{}]]", cpath,
-                                             node_text(node), cpath));
+          error(node_line(node), fmt::format("{} = {}: must be an array of tables, written [[{}]]",
+                                             cpath, node_text(node), cpath));
           job_.counts_[cpath] = 0;  // present, though wrong: no second "missing" error
           continue;
         }
@@ -133,7 +135,8 @@ class Validator {
   }
 
   void error(int line, const std::string& msg) {
-    errors_.push_back(line > 0 ? fmt::format("{}:{}: {}", job_.file_, line, msg) : fmt::format("{}: {}", job_.file_, msg));
+    errors_.push_back(line > 0 ? fmt::format("{}:{}: {}", job_.file_, line, msg)
+                               : fmt::format("{}: {}", job_.file_, msg));
   }
   [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
 
@@ -146,14 +149,16 @@ class Validator {
       const std::string cpath = join_path(cprefix, leaf);
       if (child->type == Type::TableList) {
         if (present && child->required && job_.counts_.count(cpath) == 0) {
-          error(section_line(cprefix), fmt::format("{}: at least one [[{}]] is required ({})", cpath, cpath, child->doc));
+          error(section_line(cprefix),
+                fmt::format("{}: at least one [[{}]] is required ({})", cpath, cpath, child->doc));
         }
         continue;
       }
       if (child->type == Type::Table) {
         if (job_.sections_.count(cpath) != 0) continue;  // walked already
         if (present && child->required) {
-          error(section_line(cprefix), fmt::format("[{}] is missing: required section ({})", cpath, child->doc));
+          error(section_line(cprefix),
+                fmt::format("[{}] is missing: required section ({})", cpath, child->doc));
         }
         // An absent section with required keys is physics or a feature switched off: no
         // defaults. An absent section of knobs only (output, numerics) takes its defaults.
@@ -164,14 +169,16 @@ class Validator {
       if (child->fallback) {
         job_.entries_[cpath] = Entry{*child->fallback, 0, true, child, ""};
       } else if (present && child->required) {
-        error(section_line(cprefix), fmt::format("{} is missing: required ({})", cpath, describe(*child)));
+        error(section_line(cprefix),
+              fmt::format("{} is missing: required ({})", cpath, describe(*child)));
       }
     }
   }
 
   bool has_required_descendant(const std::string& spath) const {
     for (const Key* k : schema_.children(spath)) {
-      if (k->required || ((k->type == Type::Table || k->type == Type::TableList) && has_required_descendant(k->path)))
+      if (k->required || ((k->type == Type::Table || k->type == Type::TableList) &&
+                          has_required_descendant(k->path)))
         return true;
     }
     return false;
@@ -182,7 +189,8 @@ class Validator {
     return it == job_.sections_.end() ? 0 : it->second;
   }
 
-  void unknown(const std::string& name, int line, const std::string& cpath, const std::string& sprefix) {
+  void unknown(const std::string& name, int line, const std::string& cpath,
+               const std::string& sprefix) {
     const auto siblings = schema_.children(sprefix);
     std::string msg = fmt::format("{}: unknown key", cpath);
     const std::string best = suggestion(name, siblings);
@@ -195,7 +203,8 @@ class Validator {
   }
 
   // Reads one number (int, float, or "<number> <unit>" string) into the canonical unit.
-  std::optional<double> read_number(const Key& key, const toml::node& node, std::string& why) const {
+  std::optional<double> read_number(const Key& key, const toml::node& node,
+                                    std::string& why) const {
     if (const auto* i = node.as_integer()) return static_cast<double>(i->get());
     if (const auto* f = node.as_floating_point()) {
       if (!std::isfinite(f->get())) {
@@ -207,8 +216,8 @@ class Validator {
     if (const auto* s = node.as_string()) return parse_quantity(s->get(), key.quantity, why);
     why = key.quantity == Quantity::Dimensionless
               ? "must be a number"
-              : fmt::format("must be a number (in {}) or a string with a unit ({})", canonical_unit(key.quantity),
-                            accepted_units(key.quantity));
+              : fmt::format("must be a number (in {}) or a string with a unit ({})",
+                            canonical_unit(key.quantity), accepted_units(key.quantity));
     return std::nullopt;
   }
 
@@ -275,7 +284,8 @@ class Validator {
         if (arr->size() < key.min_len || arr->size() > key.max_len) {
           return fail(key.min_len == key.max_len
                           ? fmt::format("must have {} entries, not {}", key.min_len, arr->size())
-                          : fmt::format("must have {} to {} entries, not {}", key.min_len, key.max_len, arr->size()));
+                          : fmt::format("must have {} to {} entries, not {}", key.min_len,
+                                        key.max_len, arr->size()));
         }
         std::vector<double> fv;
         std::vector<std::int64_t> iv;
@@ -291,7 +301,8 @@ class Validator {
             std::string why;
             const auto v = read_number(key, el, why);
             if (!v) return fail(fmt::format("entry {} {}", i + 1, why));
-            if (!in_range(key, *v)) return fail(fmt::format("entry {}: {}", i + 1, range_rule(key)));
+            if (!in_range(key, *v))
+              return fail(fmt::format("entry {}: {}", i + 1, range_rule(key)));
             fv.push_back(*v);
           }
         }
@@ -323,12 +334,15 @@ Job Job::parse(std::string_view text, std::string file, const Schema& schema) {
   try {
     root = toml::parse(text, job.file_);
   } catch (const toml::parse_error& e) {
-    throw common::InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", job.file_, e.source().begin.line,
-                                         e.source().begin.column, e.description()));
+    throw common::InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", job.file_,
+                                         e.source().begin.line, e.source().begin.column,
+                                         e.description()));
   }
   if (root.empty()) {
-    throw common::InputError(fmt::format("{}: the job file is empty: it needs at least the required sections "
-                                         "(see docs/jobs.md or `mpmxdem schema`)", job.file_));
+    throw common::InputError(
+        fmt::format("{}: the job file is empty: it needs at least the required sections "
+                    "(see docs/jobs.md or `mpmxdem schema`)",
+                    job.file_));
   }
   Validator v(job, schema);
   v.walk(root, "", "");
@@ -346,7 +360,8 @@ Job Job::load(const std::string& path) {
     throw common::InputError(fmt::format("{}: cannot open the job file: it is a directory", path));
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw common::InputError(fmt::format("{}: cannot open the job file: permission denied?", path));
+  if (!in)
+    throw common::InputError(fmt::format("{}: cannot open the job file: permission denied?", path));
   std::ostringstream ss;
   ss << in.rdbuf();
   return parse(ss.str(), path);
@@ -375,9 +390,13 @@ const T& get_as(const Entry& e, const std::string& path) {
 }  // namespace
 
 double Job::number(const std::string& path) const { return get_as<double>(entry(path), path); }
-std::int64_t Job::integer(const std::string& path) const { return get_as<std::int64_t>(entry(path), path); }
+std::int64_t Job::integer(const std::string& path) const {
+  return get_as<std::int64_t>(entry(path), path);
+}
 bool Job::flag(const std::string& path) const { return get_as<bool>(entry(path), path); }
-const std::string& Job::text(const std::string& path) const { return get_as<std::string>(entry(path), path); }
+const std::string& Job::text(const std::string& path) const {
+  return get_as<std::string>(entry(path), path);
+}
 const std::vector<double>& Job::numbers(const std::string& path) const {
   return get_as<std::vector<double>>(entry(path), path);
 }
@@ -402,9 +421,7 @@ std::string Job::missing_message(const std::string& path, const std::string& rul
   return fmt::format("{}: {} is missing: {}", where, path, rule);
 }
 
-std::string Job::directory() const {
-  return std::filesystem::path(file_).parent_path().string();
-}
+std::string Job::directory() const { return std::filesystem::path(file_).parent_path().string(); }
 
 namespace {
 std::string toml_value(const Value& v) {

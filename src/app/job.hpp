@@ -13,10 +13,10 @@ namespace app {
 
 struct Entry {
   Value value;
-  int line = 0;          ///< 0: not from the file (a default)
+  int line = 0;  ///< 0: not from the file (a default)
   bool defaulted = false;
   const Key* key = nullptr;
-  std::string raw;       ///< the value as written in the file
+  std::string raw;  ///< the value as written in the file
 };
 
 class Job {
@@ -50,7 +50,8 @@ class Job {
 
   [[nodiscard]] const std::string& file() const { return file_; }
   [[nodiscard]] const std::string& source_text() const { return text_; }
-  /// Directory of the job file ("" for the current one): relative paths in the job are relative to it.
+  /// Directory of the job file ("" for the current one): relative paths in the job are relative to
+  /// it.
   [[nodiscard]] std::string directory() const;
   [[nodiscard]] const std::map<std::string, Entry>& entries() const { return entries_; }
 

@@ -19,7 +19,9 @@ class Rules {
   void require(const std::string& path, const std::string& why) {
     if (!job_.has(path)) errors_.push_back(job_.missing_message(path, "required " + why));
   }
-  void fail(const std::string& path, const std::string& rule) { errors_.push_back(job_.message(path, rule)); }
+  void fail(const std::string& path, const std::string& rule) {
+    errors_.push_back(job_.message(path, rule));
+  }
   void fail_missing(const std::string& path, const std::string& rule) {
     errors_.push_back(job_.missing_message(path, rule));
   }
@@ -33,14 +35,16 @@ class Rules {
 void sample_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.sample")) return;
   if (job.has("dem.sample.packing")) {
-    for (const char* k : {"dem.sample.spheres", "dem.sample.psd_diameters", "dem.sample.psd_passing"}) {
+    for (const char* k :
+         {"dem.sample.spheres", "dem.sample.psd_diameters", "dem.sample.psd_passing"}) {
       if (job.has(k)) r.fail(k, "not used when dem.sample.packing is given: remove one of them");
     }
     std::filesystem::path p(job.text("dem.sample.packing"));
     if (p.is_relative()) p = std::filesystem::path(job.directory()) / p;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(p, ec)) {
-      r.fail("dem.sample.packing", fmt::format("no such file '{}' (paths are relative to the job file)", p.string()));
+      r.fail("dem.sample.packing",
+             fmt::format("no such file '{}' (paths are relative to the job file)", p.string()));
     }
     return;
   }
@@ -53,14 +57,17 @@ void sample_rules(const Job& job, Rules& r) {
   const auto& f = job.numbers("dem.sample.psd_passing");
   if (d.size() != f.size()) {
     r.fail("dem.sample.psd_passing",
-           fmt::format("must have as many entries as dem.sample.psd_diameters ({}), not {}", d.size(), f.size()));
+           fmt::format("must have as many entries as dem.sample.psd_diameters ({}), not {}",
+                       d.size(), f.size()));
     return;
   }
   for (std::size_t i = 1; i < d.size(); ++i) {
-    if (!(d[i] > d[i - 1])) return r.fail("dem.sample.psd_diameters", "must be strictly increasing");
+    if (!(d[i] > d[i - 1]))
+      return r.fail("dem.sample.psd_diameters", "must be strictly increasing");
     if (f[i] < f[i - 1]) return r.fail("dem.sample.psd_passing", "must be non-decreasing");
   }
-  if (f.front() != 0.0 || f.back() != 1.0) r.fail("dem.sample.psd_passing", "must start at 0 and end at 1");
+  if (f.front() != 0.0 || f.back() != 1.0)
+    r.fail("dem.sample.psd_passing", "must start at 0 and end at 1");
 }
 
 void loading_rules(const Job& job, Rules& r) {
@@ -68,12 +75,15 @@ void loading_rules(const Job& job, Rules& r) {
   const std::string& type = job.text("dem.loading.type");
   const std::string why = fmt::format("for dem.loading.type = \"{}\"", type);
   if (type == "triaxial") {
-    for (const char* k : {"dem.loading.inertial_number", "dem.loading.axial_strain", "dem.loading.confining_pressure"})
+    for (const char* k : {"dem.loading.inertial_number", "dem.loading.axial_strain",
+                          "dem.loading.confining_pressure"})
       r.require(k, why);
   } else if (type == "isotropic") {
-    for (const char* k : {"dem.loading.inertial_number", "dem.loading.confining_pressure"}) r.require(k, why);
+    for (const char* k : {"dem.loading.inertial_number", "dem.loading.confining_pressure"})
+      r.require(k, why);
   } else {
-    for (const char* k : {"dem.loading.velocity_gradient", "dem.loading.duration"}) r.require(k, why);
+    for (const char* k : {"dem.loading.velocity_gradient", "dem.loading.duration"})
+      r.require(k, why);
   }
 }
 
@@ -90,18 +100,21 @@ void mpm_rules(const Job& job, Rules& r) {
     const auto& hi = job.numbers(base + "max");
     for (int a = 0; a < 3; ++a) {
       if (!(hi[a] > lo[a])) {
-        r.fail(base + "max", fmt::format("must be greater than min on every axis (axis {})", "xyz"[a]));
+        r.fail(base + "max",
+               fmt::format("must be greater than min on every axis (axis {})", "xyz"[a]));
         break;
       }
       const double top = origin[a] + h[a] * static_cast<double>(n[a]);
       if (lo[a] < origin[a] || hi[a] > top) {
-        r.fail(base + "max", fmt::format("the box must lie inside the grid [{}, {}] on axis {}", origin[a], top, "xyz"[a]));
+        r.fail(base + "max", fmt::format("the box must lie inside the grid [{}, {}] on axis {}",
+                                         origin[a], top, "xyz"[a]));
         break;
       }
     }
     const std::string& m = job.text(base + "material");
     if (m == "dem" && job.has(base + "initial_stress")) {
-      r.fail(base + "initial_stress", "not used with material = \"dem\": the initial stress is the RVEs' own");
+      r.fail(base + "initial_stress",
+             "not used with material = \"dem\": the initial stress is the RVEs' own");
     }
     any_dem = any_dem || m == "dem";
     any_elastic = any_elastic || m == "elastic";
@@ -112,7 +125,8 @@ void mpm_rules(const Job& job, Rules& r) {
   if (any_dem && !job.has_section("dem.coupling")) {
     r.fail_missing("dem.coupling", "required section when a body has material = \"dem\"");
   }
-  if (any_dem && !job.has_section("dem")) r.fail_missing("dem", "required section when a body has material = \"dem\"");
+  if (any_dem && !job.has_section("dem"))
+    r.fail_missing("dem", "required section when a body has material = \"dem\"");
   for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
     const std::string base = fmt::format("mpm.velocity[{}].", i);
     const bool face = job.has(base + "face");
@@ -121,17 +135,20 @@ void mpm_rules(const Job& job, Rules& r) {
     const int given = static_cast<int>(face) + static_cast<int>(node) + static_cast<int>(box);
     if (given != 1) {
       if (given > 1) {
-        r.fail(base + (node ? "node" : "max"), "give one of face, node or a box (min and max), not several");
+        r.fail(base + (node ? "node" : "max"),
+               "give one of face, node or a box (min and max), not several");
       } else {
         r.fail_missing(base + "face",
-                       "required: give face (a grid face), node (a grid node position) or a box (min and max)");
+                       "required: give face (a grid face), node (a grid node position) or a box "
+                       "(min and max)");
       }
       continue;
     }
     const std::string where = base + (face ? "face" : node ? "node" : "max");
     if (box) {
       if (!job.has(base + "min") || !job.has(base + "max")) {
-        r.fail_missing(base + (job.has(base + "min") ? "max" : "min"), "required: a box needs both min and max");
+        r.fail_missing(base + (job.has(base + "min") ? "max" : "min"),
+                       "required: a box needs both min and max");
         continue;
       }
       const auto& lo = job.numbers(base + "min");
@@ -159,9 +176,9 @@ void mpm_rules(const Job& job, Rules& r) {
     for (int a = 0; a < 3; ++a) {
       const double k = (x[a] - origin[a]) / h[a];
       if (std::abs(k - std::round(k)) > 1e-9 || k < -1e-9 || k > static_cast<double>(n[a]) + 1e-9) {
-        r.fail(base + "node",
-               fmt::format("({}, {}, {}) is not a node of the grid (origin + i spacing, i in 0..cells) on axis {}", x[0],
-                           x[1], x[2], "xyz"[a]));
+        r.fail(base + "node", fmt::format("({}, {}, {}) is not a node of the grid (origin + i "
+                                          "spacing, i in 0..cells) on axis {}",
+                                          x[0], x[1], x[2], "xyz"[a]));
         break;
       }
     }

@@ -26,7 +26,7 @@ void setup_logging(int rank, int verbosity) {
   auto logger = std::make_shared<spdlog::logger>("mpmxdem", sink);
   if (rank == 0) {
     logger->set_pattern("[%H:%M:%S] %^%l%$: %v");
-    logger->set_level(verbosity >= 2 ? spdlog::level::trace
+    logger->set_level(verbosity >= 2   ? spdlog::level::trace
                       : verbosity == 1 ? spdlog::level::debug
                                        : spdlog::level::info);
   } else {

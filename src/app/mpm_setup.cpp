@@ -28,14 +28,17 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.grid.origin = vec3(job.numbers("mpm.grid.origin"));
   cfg.grid.spacing = vec3(job.numbers("mpm.grid.spacing"));
   const auto& cells = job.integers("mpm.grid.cells");
-  cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]), static_cast<int>(cells[2]));
+  cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]),
+                                 static_cast<int>(cells[2]));
   cfg.shape = mpm::shape_kind_from_string(job.text("mpm.shape_function"));
-  cfg.stress_update = job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
+  cfg.stress_update =
+      job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
   cfg.pic_fraction = 1.0 - job.number("mpm.flip");
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
   cfg.damping = job.number("mpm.damping");
-  cfg.damping_mode = job.text("mpm.damping_mode") == "component" ? mpm::DampingMode::cundall_component
-                                                                   : mpm::DampingMode::cundall_vector;
+  cfg.damping_mode = job.text("mpm.damping_mode") == "component"
+                         ? mpm::DampingMode::cundall_component
+                         : mpm::DampingMode::cundall_vector;
   cfg.dt = job.has("mpm.dt") ? job.number("mpm.dt") : 0.0;
   cfg.cfl = job.number("mpm.cfl");
   cfg.mass_threshold = job.number("mpm.mass_threshold");
@@ -49,14 +52,16 @@ MpmSetup mpm_setup(const Job& job) {
     const std::size_t first = setup.points.size();
     std::size_t added = 0;
     try {
-      added = mpm::fill_box(setup.points, cfg.grid, vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")),
-                            static_cast<int>(job.integer(base + "points_per_cell")), job.number(base + "density"),
-                            material);
+      added = mpm::fill_box(setup.points, cfg.grid, vec3(job.numbers(base + "min")),
+                            vec3(job.numbers(base + "max")),
+                            static_cast<int>(job.integer(base + "points_per_cell")),
+                            job.number(base + "density"), material);
     } catch (const common::InputError& e) {
       throw common::InputError(job.message(base + "max", e.what()));  // name the file, line and key
     }
     if (added == 0) {
-      throw common::InputError(job.message(base + "max", "the box holds no material point (it covers no whole cell)"));
+      throw common::InputError(
+          job.message(base + "max", "the box holds no material point (it covers no whole cell)"));
     }
     if (job.has(base + "initial_stress")) {
       const common::Mat3 s0 = voigt_stress(job.numbers(base + "initial_stress"));
@@ -84,9 +89,11 @@ MpmSetup mpm_setup(const Job& job) {
       face_axis_side(job.text(base + "face"), axis, side);
       setup.constraints.push_back(mpm::face_constraint(cfg.grid, axis, side, fixed, v));
     } else if (job.has(base + "node")) {
-      setup.constraints.push_back(mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v));
+      setup.constraints.push_back(
+          mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v));
     } else {
-      setup.constraints.push_back({vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")), fixed, v, {}});
+      setup.constraints.push_back(
+          {vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")), fixed, v, {}});
     }
   }
   for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {

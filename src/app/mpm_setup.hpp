@@ -24,7 +24,7 @@ struct MpmSetup {
   bool has_elastic = false;
   bool has_dem = false;
   common::Mat3 elastic_initial_stress = common::Mat3::Zero();  ///< [Pa], of the elastic bodies
-  double end_time = 0.0;  ///< [s]
+  double end_time = 0.0;                                       ///< [s]
 };
 
 /// Throws common::InputError (naming the job key) when the job is inconsistent with the grid.

@@ -15,11 +15,13 @@ void check_output_dir(const fs::path& dir, bool force, bool restart) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) return;
   if (!fs::is_directory(dir, ec)) {
-    throw common::InputError(fmt::format("output directory '{}' exists and is not a directory", dir.string()));
+    throw common::InputError(
+        fmt::format("output directory '{}' exists and is not a directory", dir.string()));
   }
   if (fs::is_empty(dir, ec) || force || restart) return;
   throw common::InputError(fmt::format(
-      "output directory '{}' is not empty: refusing to overwrite earlier results; choose another with "
+      "output directory '{}' is not empty: refusing to overwrite earlier results; choose another "
+      "with "
       "--out DIR, continue a run with --restart CKPT, or pass --force to write into it anyway",
       dir.string()));
 }
@@ -28,7 +30,8 @@ void create_output_dir(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) {
-    throw common::InputError(fmt::format("cannot create output directory '{}': {}", dir.string(), ec.message()));
+    throw common::InputError(
+        fmt::format("cannot create output directory '{}': {}", dir.string(), ec.message()));
   }
 }
 
@@ -43,7 +46,9 @@ void write_file_atomic(const fs::path& path, const std::string& content) {
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
-  if (ec) throw common::InputError(fmt::format("cannot rename '{}' to '{}': {}", tmp.string(), path.string(), ec.message()));
+  if (ec)
+    throw common::InputError(
+        fmt::format("cannot rename '{}' to '{}': {}", tmp.string(), path.string(), ec.message()));
 }
 
 fs::path default_output_dir(const std::string& job_path) {

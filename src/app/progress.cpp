@@ -10,7 +10,11 @@
 namespace app {
 
 Progress::Progress(std::string what, double total, double interval_seconds)
-    : what_(std::move(what)), total_(total), interval_(interval_seconds), start_(Clock::now()), last_(start_) {}
+    : what_(std::move(what)),
+      total_(total),
+      interval_(interval_seconds),
+      start_(Clock::now()),
+      last_(start_) {}
 
 std::string Progress::clock(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
@@ -28,8 +32,9 @@ void Progress::update(double done, long long steps, const std::string& detail, b
   const double fraction = total_ > 0 ? std::clamp(done / total_, 0.0, 1.0) : 1.0;
   const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : -1.0;
   const double rate = elapsed > 0 ? static_cast<double>(steps - start_steps_) / elapsed : 0.0;
-  spdlog::info("{} {:.1f} % ({:.4g} of {:.4g}), {:.0f} steps/s, elapsed {}, ETA {}{}{}", what_, 100.0 * fraction,
-               done, total_, rate, clock(elapsed), clock(eta), detail.empty() ? "" : "; ", detail);
+  spdlog::info("{} {:.1f} % ({:.4g} of {:.4g}), {:.0f} steps/s, elapsed {}, ETA {}{}{}", what_,
+               100.0 * fraction, done, total_, rate, clock(elapsed), clock(eta),
+               detail.empty() ? "" : "; ", detail);
 }
 
 }  // namespace app

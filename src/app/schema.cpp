@@ -48,8 +48,8 @@ std::string range_rule(const Key& key) {
   const std::string unit(canonical_unit(key.quantity));
   const std::string u = unit.empty() ? "" : " " + unit;
   if (key.min && key.max) {
-    return fmt::format("must be in {}{}, {}{}{}", key.min_open ? "(" : "[", num(*key.min), num(*key.max),
-                       key.max_open ? ")" : "]", u);
+    return fmt::format("must be in {}{}, {}{}{}", key.min_open ? "(" : "[", num(*key.min),
+                       num(*key.max), key.max_open ? ")" : "]", u);
   }
   if (key.min) return fmt::format("must be {} {}{}", key.min_open ? ">" : ">=", num(*key.min), u);
   if (key.max) return fmt::format("must be {} {}{}", key.max_open ? "<" : "<=", num(*key.max), u);
@@ -62,14 +62,22 @@ std::string type_name(const Key& key) {
     return fmt::format("a list of {}", what);
   };
   switch (key.type) {
-    case Type::Float: return "a number";
-    case Type::Int: return "an integer";
-    case Type::Bool: return "true or false";
-    case Type::String: return "a string";
-    case Type::FloatList: return count("numbers");
-    case Type::IntList: return count("integers");
-    case Type::Table: return "a table";
-    case Type::TableList: return "an array of tables";
+    case Type::Float:
+      return "a number";
+    case Type::Int:
+      return "an integer";
+    case Type::Bool:
+      return "true or false";
+    case Type::String:
+      return "a string";
+    case Type::FloatList:
+      return count("numbers");
+    case Type::IntList:
+      return count("integers");
+    case Type::Table:
+      return "a table";
+    case Type::TableList:
+      return "an array of tables";
   }
   return {};
 }
@@ -97,20 +105,27 @@ std::string value_text(const Value& v) {
 std::string schema_markdown(const Schema& s) {
   std::ostringstream out;
   out << "# Job file reference\n\n"
-         "Generated from the schema by `mpmxdem schema` (a test checks that this file matches it).\n"
-         "A job file is TOML. Every key below is checked: unknown keys, wrong types and values out of\n"
-         "range are errors that name the file, line, key, value and rule. Physical parameters have no\n"
-         "defaults. A number with a unit may be written as a bare number in the unit shown, or as a\n"
+         "Generated from the schema by `mpmxdem schema` (a test checks that this file matches "
+         "it).\n"
+         "A job file is TOML. Every key below is checked: unknown keys, wrong types and values out "
+         "of\n"
+         "range are errors that name the file, line, key, value and rule. Physical parameters have "
+         "no\n"
+         "defaults. A number with a unit may be written as a bare number in the unit shown, or as "
+         "a\n"
          "string with a unit: `pressure = \"100 kPa\"`, `friction_angle = \"0.5 rad\"`.\n";
   bool in_table = false;
-  const char* table_head = "| key | type | unit | rule | default | meaning |\n|---|---|---|---|---|---|\n";
+  const char* table_head =
+      "| key | type | unit | rule | default | meaning |\n|---|---|---|---|---|---|\n";
   for (const auto& k : s.keys) {
     if (k.type == Type::Table || k.type == Type::TableList) {
       in_table = true;
       std::string header = k.path;
       if (header.ends_with("[]")) header.resize(header.size() - 2);
-      for (std::size_t pos = 0; (pos = header.find("[]", pos)) != std::string::npos;) header.erase(pos, 2);
-      out << "\n## " << (k.type == Type::TableList ? "[[" + header + "]]" : "[" + header + "]") << "\n\n"
+      for (std::size_t pos = 0; (pos = header.find("[]", pos)) != std::string::npos;)
+        header.erase(pos, 2);
+      out << "\n## " << (k.type == Type::TableList ? "[[" + header + "]]" : "[" + header + "]")
+          << "\n\n"
           << k.doc << (k.required ? " Required." : " Optional.") << "\n\n"
           << table_head;
       continue;
@@ -121,12 +136,14 @@ std::string schema_markdown(const Schema& s) {
     }
     std::string rule = range_rule(k);
     if (!k.choices.empty()) rule = fmt::format("one of {}", fmt::join(k.choices, ", "));
-    if (k.min_len > 0 && k.max_len != k.min_len && k.max_len != std::numeric_limits<std::size_t>::max()) {
+    if (k.min_len > 0 && k.max_len != k.min_len &&
+        k.max_len != std::numeric_limits<std::size_t>::max()) {
       rule += fmt::format("{}{} to {} entries", rule.empty() ? "" : "; ", k.min_len, k.max_len);
     }
-    const std::string dflt = k.required ? "required" : (k.fallback ? value_text(*k.fallback) : "optional");
-    out << "| `" << leaf_name(k.path) << "` | " << type_name(k) << " | " << canonical_unit(k.quantity) << " | "
-        << rule << " | " << dflt << " | " << k.doc << " |\n";
+    const std::string dflt =
+        k.required ? "required" : (k.fallback ? value_text(*k.fallback) : "optional");
+    out << "| `" << leaf_name(k.path) << "` | " << type_name(k) << " | "
+        << canonical_unit(k.quantity) << " | " << rule << " | " << dflt << " | " << k.doc << " |\n";
   }
   return out.str();
 }

@@ -35,15 +35,35 @@ struct Key {
   std::string doc;                   ///< what the key means
 
   // Fluent builders keep the schema tables readable.
-  Key& in(std::optional<double> lo, std::optional<double> hi, bool lo_open = false, bool hi_open = false) {
-    min = lo; max = hi; min_open = lo_open; max_open = hi_open;
+  Key& in(std::optional<double> lo, std::optional<double> hi, bool lo_open = false,
+          bool hi_open = false) {
+    min = lo;
+    max = hi;
+    min_open = lo_open;
+    max_open = hi_open;
     return *this;
   }
-  Key& len(std::size_t lo, std::size_t hi) { min_len = lo; max_len = hi; return *this; }
-  Key& need() { required = true; return *this; }
-  Key& or_default(Value v) { fallback = std::move(v); return *this; }
-  Key& one_of(std::vector<std::string> c) { choices = std::move(c); return *this; }
-  Key& unit(Quantity q) { quantity = q; return *this; }
+  Key& len(std::size_t lo, std::size_t hi) {
+    min_len = lo;
+    max_len = hi;
+    return *this;
+  }
+  Key& need() {
+    required = true;
+    return *this;
+  }
+  Key& or_default(Value v) {
+    fallback = std::move(v);
+    return *this;
+  }
+  Key& one_of(std::vector<std::string> c) {
+    choices = std::move(c);
+    return *this;
+  }
+  Key& unit(Quantity q) {
+    quantity = q;
+    return *this;
+  }
 };
 
 /// The whole schema, in documentation order. Sections are Table/TableList keys.

@@ -7,49 +7,101 @@ namespace app {
 void add_mpm_sections(Schema& s) {
   using Q = Quantity;
   s.add("mpm", Type::Table, "The material point method at the scale of the structure (`run`).");
-  s.add("mpm.shape_function", Type::String, "Shape functions: linear (the paper's), uGIMP or quadratic B-spline.")
-      .one_of({"linear", "ugimp", "bspline2"}).or_default(std::string("linear"));
-  s.add("mpm.update", Type::String, "Stress update: Update Stress First (the paper's) or Modified USL.")
-      .one_of({"usf", "musl"}).or_default(std::string("usf"));
-  s.add("mpm.flip", Type::Float, "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP.")
-      .in(0, 1).or_default(1.0);
+  s.add("mpm.shape_function", Type::String,
+        "Shape functions: linear (the paper's), uGIMP or quadratic B-spline.")
+      .one_of({"linear", "ugimp", "bspline2"})
+      .or_default(std::string("linear"));
+  s.add("mpm.update", Type::String,
+        "Stress update: Update Stress First (the paper's) or Modified USL.")
+      .one_of({"usf", "musl"})
+      .or_default(std::string("usf"));
+  s.add("mpm.flip", Type::Float,
+        "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP.")
+      .in(0, 1)
+      .or_default(1.0);
   s.add("mpm.move_points", Type::Bool,
-        "false: points keep their initial positions (eq. 10 skipped): only for element tests whose cell is the "
+        "false: points keep their initial positions (eq. 10 skipped): only for element tests whose "
+        "cell is the "
         "sample, e.g. the paper's single-cell triaxial (see docs/mpm.md, Fixed points).")
       .or_default(true);
-  s.add("mpm.damping", Type::Float, "Cundall damping D of the nodal accelerations (eq. 8).").in(0, 1, false, true).or_default(0.0);
+  s.add("mpm.damping", Type::Float, "Cundall damping D of the nodal accelerations (eq. 8).")
+      .in(0, 1, false, true)
+      .or_default(0.0);
   s.add("mpm.damping_mode", Type::String,
         "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
-      .one_of({"vector", "component"}).or_default(std::string("vector"));
-  s.add("mpm.dt", Type::Float, "Fixed MPM time step; absent: from the CFL condition.").unit(Q::Time).in(0, std::nullopt, true);
-  s.add("mpm.cfl", Type::Float, "CFL number when dt is not given.").in(0, 1, true, false).or_default(0.5);
-  s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.").unit(Q::Time).in(0, std::nullopt, true).need();
-  s.add("mpm.gravity", Type::FloatList, "Gravity vector; absent: no gravity.").unit(Q::Acceleration).len(3, 3);
-  s.add("mpm.mass_threshold", Type::Float, "Nodes lighter than this fraction of the typical nodal mass are inactive.")
-      .in(0, 1, true, true).or_default(1e-6);
+      .one_of({"vector", "component"})
+      .or_default(std::string("vector"));
+  s.add("mpm.dt", Type::Float, "Fixed MPM time step; absent: from the CFL condition.")
+      .unit(Q::Time)
+      .in(0, std::nullopt, true);
+  s.add("mpm.cfl", Type::Float, "CFL number when dt is not given.")
+      .in(0, 1, true, false)
+      .or_default(0.5);
+  s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.")
+      .unit(Q::Time)
+      .in(0, std::nullopt, true)
+      .need();
+  s.add("mpm.gravity", Type::FloatList, "Gravity vector; absent: no gravity.")
+      .unit(Q::Acceleration)
+      .len(3, 3);
+  s.add("mpm.mass_threshold", Type::Float,
+        "Nodes lighter than this fraction of the typical nodal mass are inactive.")
+      .in(0, 1, true, true)
+      .or_default(1e-6);
 
   s.add("mpm.grid", Type::Table, "Structured grid of hexahedral cells.").need();
-  s.add("mpm.grid.origin", Type::FloatList, "Corner of the grid with the smallest coordinates.").unit(Q::Length).len(3, 3).need();
-  s.add("mpm.grid.spacing", Type::FloatList, "Cell size along x, y, z.").unit(Q::Length).in(0, std::nullopt, true).len(3, 3).need();
-  s.add("mpm.grid.cells", Type::IntList, "Number of cells along x, y, z.").in(1, std::nullopt).len(3, 3).need();
+  s.add("mpm.grid.origin", Type::FloatList, "Corner of the grid with the smallest coordinates.")
+      .unit(Q::Length)
+      .len(3, 3)
+      .need();
+  s.add("mpm.grid.spacing", Type::FloatList, "Cell size along x, y, z.")
+      .unit(Q::Length)
+      .in(0, std::nullopt, true)
+      .len(3, 3)
+      .need();
+  s.add("mpm.grid.cells", Type::IntList, "Number of cells along x, y, z.")
+      .in(1, std::nullopt)
+      .len(3, 3)
+      .need();
 
-  s.add("mpm.body[]", Type::TableList, "A box of material points, regularly spaced in each cell it covers.").need();
-  s.add("mpm.body[].min", Type::FloatList, "Lower corner of the box.").unit(Q::Length).len(3, 3).need();
-  s.add("mpm.body[].max", Type::FloatList, "Upper corner of the box.").unit(Q::Length).len(3, 3).need();
+  s.add("mpm.body[]", Type::TableList,
+        "A box of material points, regularly spaced in each cell it covers.")
+      .need();
+  s.add("mpm.body[].min", Type::FloatList, "Lower corner of the box.")
+      .unit(Q::Length)
+      .len(3, 3)
+      .need();
+  s.add("mpm.body[].max", Type::FloatList, "Upper corner of the box.")
+      .unit(Q::Length)
+      .len(3, 3)
+      .need();
   s.add("mpm.body[].points_per_cell", Type::Int,
-        "Material points per cell along each axis, at the regular positions (k + 1/2) / n of the cell.")
-      .in(1, 8).need();
+        "Material points per cell along each axis, at the regular positions (k + 1/2) / n of the "
+        "cell.")
+      .in(1, 8)
+      .need();
   s.add("mpm.body[].density", Type::Float, "Bulk density of the material (mass per unit volume).")
-      .unit(Q::Density).in(0, std::nullopt, true).need();
-  s.add("mpm.body[].material", Type::String, "Material of the points: a DEM RVE each, or linear elastic.")
-      .one_of({"dem", "elastic"}).need();
+      .unit(Q::Density)
+      .in(0, std::nullopt, true)
+      .need();
+  s.add("mpm.body[].material", Type::String,
+        "Material of the points: a DEM RVE each, or linear elastic.")
+      .one_of({"dem", "elastic"})
+      .need();
   s.add("mpm.body[].initial_stress", Type::FloatList,
         "Initial Cauchy stress xx, yy, zz, yz, xz, xy (tension positive); dem: from the RVEs.")
-      .unit(Q::Pressure).len(6, 6);
+      .unit(Q::Pressure)
+      .len(6, 6);
 
-  s.add("mpm.elastic", Type::Table, "Linear elastic material (verification), for bodies with material = \"elastic\".");
-  s.add("mpm.elastic.young_modulus", Type::Float, "Young's modulus.").unit(Q::Pressure).in(0, std::nullopt, true).need();
-  s.add("mpm.elastic.poisson_ratio", Type::Float, "Poisson's ratio.").in(-1, 0.5, true, true).need();
+  s.add("mpm.elastic", Type::Table,
+        "Linear elastic material (verification), for bodies with material = \"elastic\".");
+  s.add("mpm.elastic.young_modulus", Type::Float, "Young's modulus.")
+      .unit(Q::Pressure)
+      .in(0, std::nullopt, true)
+      .need();
+  s.add("mpm.elastic.poisson_ratio", Type::Float, "Poisson's ratio.")
+      .in(-1, 0.5, true, true)
+      .need();
 
   s.add("mpm.velocity[]", Type::TableList,
         "Imposed velocity components on grid nodes: a grid face, one node, or the nodes in a box.");
@@ -59,17 +111,23 @@ void add_mpm_sections(Schema& s) {
         "Position of one grid node, e.g. to pin rigid motions (docs/mpm.md).")
       .unit(Q::Length);
   s.add("mpm.velocity[].min", Type::FloatList,
-        "Lower corner of a box: every node inside it, boundary included (e.g. a padded grid's platen).")
+        "Lower corner of a box: every node inside it, boundary included (e.g. a padded grid's "
+        "platen).")
       .unit(Q::Length);
   s.add("mpm.velocity[].max", Type::FloatList, "Upper corner of the box of min.").unit(Q::Length);
   s.add("mpm.velocity[].x", Type::Float, "Imposed x velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].y", Type::Float, "Imposed y velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].z", Type::Float, "Imposed z velocity; absent: free.").unit(Q::Velocity);
 
-  s.add("mpm.traction[]", Type::TableList, "A pressure on a face of the material, applied on its current area.");
-  s.add("mpm.traction[].face", Type::String, "Face of the material.").one_of({"x-", "x+", "y-", "y+", "z-", "z+"}).need();
+  s.add("mpm.traction[]", Type::TableList,
+        "A pressure on a face of the material, applied on its current area.");
+  s.add("mpm.traction[].face", Type::String, "Face of the material.")
+      .one_of({"x-", "x+", "y-", "y+", "z-", "z+"})
+      .need();
   s.add("mpm.traction[].pressure", Type::Float, "Pressure (compression positive) on the face.")
-      .unit(Q::Pressure).in(0, std::nullopt).need();
+      .unit(Q::Pressure)
+      .in(0, std::nullopt)
+      .need();
 }
 
 }  // namespace app

@@ -8,7 +8,8 @@
 
 namespace app {
 
-SeriesWriter::SeriesWriter(const std::filesystem::path& dir, const std::string& stem, std::vector<Column> columns)
+SeriesWriter::SeriesWriter(const std::filesystem::path& dir, const std::string& stem,
+                           std::vector<Column> columns)
     : dir_(dir), stem_(stem), columns_(std::move(columns)), data_(columns_.size()) {
   const auto path = dir_ / (stem_ + ".csv");
   csv_.open(path, std::ios::trunc);
@@ -48,9 +49,10 @@ void SeriesWriter::finish(const std::string& title) {
   for (std::size_t c = 0; c < columns_.size(); ++c) {
     const hsize_t n = data_[c].size();
     const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t ds = H5Dcreate2(file, columns_[c].name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT,
-                                H5P_DEFAULT, H5P_DEFAULT);
-    ok = ok && ds >= 0 && H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data_[c].data()) >= 0;
+    const hid_t ds = H5Dcreate2(file, columns_[c].name.c_str(), H5T_NATIVE_DOUBLE, space,
+                                H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ok = ok && ds >= 0 &&
+         H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data_[c].data()) >= 0;
     if (ds >= 0) {
       put_string_attr(ds, "unit", columns_[c].unit);
       H5Dclose(ds);
@@ -61,7 +63,8 @@ void SeriesWriter::finish(const std::string& title) {
   if (!ok) throw common::InputError(fmt::format("writing '{}' failed", tmp.string()));
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec) throw common::InputError(fmt::format("cannot rename '{}': {}", tmp.string(), ec.message()));
+  if (ec)
+    throw common::InputError(fmt::format("cannot rename '{}': {}", tmp.string(), ec.message()));
 }
 
 }  // namespace app

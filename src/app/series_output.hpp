@@ -17,7 +17,8 @@ struct Column {
 class SeriesWriter {
  public:
   /// Creates `<dir>/<stem>.csv` at once (header line); the HDF5 file is written by finish().
-  SeriesWriter(const std::filesystem::path& dir, const std::string& stem, std::vector<Column> columns);
+  SeriesWriter(const std::filesystem::path& dir, const std::string& stem,
+               std::vector<Column> columns);
   /// Appends one row (one value per column) and flushes it to the CSV file.
   void add(const std::vector<double>& row);
   /// Writes `<dir>/<stem>.h5` (through a temporary file and a rename).

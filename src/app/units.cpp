@@ -16,17 +16,28 @@ struct UnitDef {
 };
 
 constexpr std::array kUnits{
-    UnitDef{Quantity::Length, "m", 1.0},         UnitDef{Quantity::Length, "cm", 1e-2},
-    UnitDef{Quantity::Length, "mm", 1e-3},       UnitDef{Quantity::Length, "um", 1e-6},
-    UnitDef{Quantity::Pressure, "Pa", 1.0},      UnitDef{Quantity::Pressure, "kPa", 1e3},
-    UnitDef{Quantity::Pressure, "MPa", 1e6},     UnitDef{Quantity::Pressure, "GPa", 1e9},
-    UnitDef{Quantity::Angle, "deg", 1.0},        UnitDef{Quantity::Angle, "rad", 180.0 / std::numbers::pi},
-    UnitDef{Quantity::Time, "s", 1.0},           UnitDef{Quantity::Time, "ms", 1e-3},
-    UnitDef{Quantity::Time, "us", 1e-6},         UnitDef{Quantity::Time, "min", 60.0},
-    UnitDef{Quantity::Time, "h", 3600.0},        UnitDef{Quantity::Density, "kg/m^3", 1.0},
-    UnitDef{Quantity::Density, "kg/m3", 1.0},    UnitDef{Quantity::Density, "g/cm^3", 1e3},
-    UnitDef{Quantity::Velocity, "m/s", 1.0},     UnitDef{Quantity::Velocity, "mm/s", 1e-3},
-    UnitDef{Quantity::Acceleration, "m/s^2", 1.0}, UnitDef{Quantity::Acceleration, "m/s2", 1.0},
+    UnitDef{Quantity::Length, "m", 1.0},
+    UnitDef{Quantity::Length, "cm", 1e-2},
+    UnitDef{Quantity::Length, "mm", 1e-3},
+    UnitDef{Quantity::Length, "um", 1e-6},
+    UnitDef{Quantity::Pressure, "Pa", 1.0},
+    UnitDef{Quantity::Pressure, "kPa", 1e3},
+    UnitDef{Quantity::Pressure, "MPa", 1e6},
+    UnitDef{Quantity::Pressure, "GPa", 1e9},
+    UnitDef{Quantity::Angle, "deg", 1.0},
+    UnitDef{Quantity::Angle, "rad", 180.0 / std::numbers::pi},
+    UnitDef{Quantity::Time, "s", 1.0},
+    UnitDef{Quantity::Time, "ms", 1e-3},
+    UnitDef{Quantity::Time, "us", 1e-6},
+    UnitDef{Quantity::Time, "min", 60.0},
+    UnitDef{Quantity::Time, "h", 3600.0},
+    UnitDef{Quantity::Density, "kg/m^3", 1.0},
+    UnitDef{Quantity::Density, "kg/m3", 1.0},
+    UnitDef{Quantity::Density, "g/cm^3", 1e3},
+    UnitDef{Quantity::Velocity, "m/s", 1.0},
+    UnitDef{Quantity::Velocity, "mm/s", 1e-3},
+    UnitDef{Quantity::Acceleration, "m/s^2", 1.0},
+    UnitDef{Quantity::Acceleration, "m/s2", 1.0},
     UnitDef{Quantity::Rate, "1/s", 1.0},
 };
 
@@ -39,30 +50,48 @@ std::string_view trim(std::string_view s) {
 
 std::string_view canonical_unit(Quantity q) {
   switch (q) {
-    case Quantity::Dimensionless: return "";
-    case Quantity::Length: return "m";
-    case Quantity::Pressure: return "Pa";
-    case Quantity::Angle: return "deg";
-    case Quantity::Time: return "s";
-    case Quantity::Density: return "kg/m^3";
-    case Quantity::Velocity: return "m/s";
-    case Quantity::Acceleration: return "m/s^2";
-    case Quantity::Rate: return "1/s";
+    case Quantity::Dimensionless:
+      return "";
+    case Quantity::Length:
+      return "m";
+    case Quantity::Pressure:
+      return "Pa";
+    case Quantity::Angle:
+      return "deg";
+    case Quantity::Time:
+      return "s";
+    case Quantity::Density:
+      return "kg/m^3";
+    case Quantity::Velocity:
+      return "m/s";
+    case Quantity::Acceleration:
+      return "m/s^2";
+    case Quantity::Rate:
+      return "1/s";
   }
   return "";
 }
 
 std::string_view quantity_name(Quantity q) {
   switch (q) {
-    case Quantity::Dimensionless: return "a dimensionless number";
-    case Quantity::Length: return "a length";
-    case Quantity::Pressure: return "a pressure";
-    case Quantity::Angle: return "an angle";
-    case Quantity::Time: return "a time";
-    case Quantity::Density: return "a density";
-    case Quantity::Velocity: return "a velocity";
-    case Quantity::Acceleration: return "an acceleration";
-    case Quantity::Rate: return "a rate";
+    case Quantity::Dimensionless:
+      return "a dimensionless number";
+    case Quantity::Length:
+      return "a length";
+    case Quantity::Pressure:
+      return "a pressure";
+    case Quantity::Angle:
+      return "an angle";
+    case Quantity::Time:
+      return "a time";
+    case Quantity::Density:
+      return "a density";
+    case Quantity::Velocity:
+      return "a velocity";
+    case Quantity::Acceleration:
+      return "an acceleration";
+    case Quantity::Rate:
+      return "a rate";
   }
   return "";
 }
@@ -89,7 +118,8 @@ std::optional<double> parse_quantity(std::string_view text, Quantity q, std::str
     why = "must be finite";
     return std::nullopt;
   }
-  const std::string_view unit = trim(std::string_view(end, static_cast<std::size_t>(s.data() + s.size() - end)));
+  const std::string_view unit =
+      trim(std::string_view(end, static_cast<std::size_t>(s.data() + s.size() - end)));
   if (q == Quantity::Dimensionless) {
     why = "is dimensionless: write a plain number, without a unit";
     return std::nullopt;
@@ -101,8 +131,8 @@ std::optional<double> parse_quantity(std::string_view text, Quantity q, std::str
   for (const auto& u : kUnits) {
     if (u.name == unit) {
       if (u.q != q) {
-        why = "unit '" + std::string(unit) + "' is not " + std::string(quantity_name(q)) + "; use " +
-              accepted_units(q);
+        why = "unit '" + std::string(unit) + "' is not " + std::string(quantity_name(q)) +
+              "; use " + accepted_units(q);
         return std::nullopt;
       }
       return number * u.factor;

@@ -29,6 +29,7 @@ enum class Quantity {
 
 /// Parses "<number> <unit>" into the canonical unit of q. On failure returns nullopt and sets
 /// `why` to the rule that was broken.
-[[nodiscard]] std::optional<double> parse_quantity(std::string_view text, Quantity q, std::string& why);
+[[nodiscard]] std::optional<double> parse_quantity(std::string_view text, Quantity q,
+                                                   std::string& why);
 
 }  // namespace app

@@ -27,13 +27,14 @@ class InternalError : public std::logic_error {
   using std::logic_error::logic_error;
 };
 
-[[noreturn]] void throw_internal(const char* expr, const char* file, int line, const std::string& msg);
+[[noreturn]] void throw_internal(const char* expr, const char* file, int line,
+                                 const std::string& msg);
 
 }  // namespace common
 
 /// Always-on check of an internal invariant; throws common::InternalError with the location.
-#define MPMXDEM_CHECK(cond, msg)                                         \
-  do {                                                                   \
+#define MPMXDEM_CHECK(cond, msg)                                           \
+  do {                                                                     \
     if (!(cond)) ::common::throw_internal(#cond, __FILE__, __LINE__, msg); \
   } while (0)
 

@@ -41,11 +41,15 @@ T take_pod(std::span<const char> bytes, std::size_t& pos) {
 }
 }  // namespace
 
-void StateStore::write(std::string_view name, std::span<const double> data) { put(fields_, name, data); }
+void StateStore::write(std::string_view name, std::span<const double> data) {
+  put(fields_, name, data);
+}
 void StateStore::write(std::string_view name, std::span<const std::int64_t> data) {
   put(fields_, name, data);
 }
-std::vector<double> StateStore::read_f64(std::string_view name) const { return get<double>(fields_, name); }
+std::vector<double> StateStore::read_f64(std::string_view name) const {
+  return get<double>(fields_, name);
+}
 std::vector<std::int64_t> StateStore::read_i64(std::string_view name) const {
   return get<std::int64_t>(fields_, name);
 }

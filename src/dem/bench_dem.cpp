@@ -16,8 +16,9 @@ int main(int argc, char** argv) {
     cfg.steps = argc > 4 ? std::atoll(argv[4]) : 3000;
     const dem::Material mat{2650.0, 3e8, 0.5, 30.0, 2.0, 0.3, 0.0, -1.0};
     const auto r = dem::run_benchmark(dem::read_packing(path), mat, dem::Numerics{}, cfg);
-    std::printf("spheres %lld threads %d steps %lld wall %.3f s\n", static_cast<long long>(r.spheres),
-                r.threads, static_cast<long long>(r.steps), r.wall_s);
+    std::printf("spheres %lld threads %d steps %lld wall %.3f s\n",
+                static_cast<long long>(r.spheres), r.threads, static_cast<long long>(r.steps),
+                r.wall_s);
     std::printf("ms/step %.4f  us/particle-step %.4f  contacts/sphere %.3f  pairs/sphere %.3f\n",
                 r.ms_per_step, r.us_per_particle_step, r.contacts_per_sphere, r.pairs_per_sphere);
     std::printf("dt %.4g s  bytes/sphere %.0f  rebuilds %lld\n", r.dt, r.bytes_per_sphere,

@@ -50,8 +50,8 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   r.dt = sim.dt();
   r.rebuilds = sim.verlet().builds - builds0;
   const Spheres& s = sim.spheres();
-  double b = bytes(s.x) + bytes(s.u) + bytes(s.w) + bytes(s.force) + bytes(s.torque) +
-             bytes(s.r) + bytes(s.m) + bytes(s.inertia) + bytes(s.fixed);
+  double b = bytes(s.x) + bytes(s.u) + bytes(s.w) + bytes(s.force) + bytes(s.torque) + bytes(s.r) +
+             bytes(s.m) + bytes(s.inertia) + bytes(s.fixed);
   b += bytes(c.i) + bytes(c.j) + bytes(c.k) + bytes(c.active) + bytes(c.props) + bytes(c.hist) +
        bytes(c.force) + bytes(c.torque_i) + bytes(c.torque_j) + bytes(c.branch) + bytes(c.fn) +
        bytes(c.sphere_offset) + bytes(c.sphere_pairs) + bytes(sim.verlet().x_ref);

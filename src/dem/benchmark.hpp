@@ -10,26 +10,26 @@
 namespace dem {
 
 struct BenchmarkConfig {
-  int tiles = 1;                  ///< n of the n x n x n tiling [-]
-  int threads = 1;                ///< OpenMP threads [-]
+  int tiles = 1;                    ///< n of the n x n x n tiling [-]
+  int threads = 1;                  ///< OpenMP threads [-]
   std::int64_t warmup_steps = 500;  ///< untimed steps first [-]
-  std::int64_t steps = 3000;      ///< timed steps [-]
+  std::int64_t steps = 3000;        ///< timed steps [-]
   double inertial_number = 2.5e-4;  ///< I [-]
-  double confining = 1e5;         ///< lateral stress [Pa]
+  double confining = 1e5;           ///< lateral stress [Pa]
 };
 
 struct BenchmarkResult {
   std::int64_t spheres = 0;
   int threads = 0;
-  std::int64_t steps = 0;              ///< timed steps
-  double wall_s = 0.0;                 ///< timed wall seconds [s]
-  double ms_per_step = 0.0;            ///< [ms]
-  double us_per_particle_step = 0.0;   ///< [us]
-  double contacts_per_sphere = 0.0;    ///< active contacts / N at the end [-]
-  double pairs_per_sphere = 0.0;       ///< Verlet pairs / N at the end [-]
-  double dt = 0.0;                     ///< DEM time step [s]
-  double bytes_per_sphere = 0.0;       ///< heap bytes of spheres + pairs + Verlet state / N [B]
-  std::int64_t rebuilds = 0;           ///< neighbour rebuilds during the run
+  std::int64_t steps = 0;             ///< timed steps
+  double wall_s = 0.0;                ///< timed wall seconds [s]
+  double ms_per_step = 0.0;           ///< [ms]
+  double us_per_particle_step = 0.0;  ///< [us]
+  double contacts_per_sphere = 0.0;   ///< active contacts / N at the end [-]
+  double pairs_per_sphere = 0.0;      ///< Verlet pairs / N at the end [-]
+  double dt = 0.0;                    ///< DEM time step [s]
+  double bytes_per_sphere = 0.0;      ///< heap bytes of spheres + pairs + Verlet state / N [B]
+  std::int64_t rebuilds = 0;          ///< neighbour rebuilds during the run
 };
 
 /// Run the benchmark. Deterministic results, wall time of course not.

@@ -7,7 +7,6 @@
 
 namespace dem {
 
-
 CohFrictLaw::CohFrictLaw(const Material& mat) : mat_(mat) { set_friction_deg(mat.friction_deg); }
 
 void CohFrictLaw::set_friction_deg(double phi_deg) {

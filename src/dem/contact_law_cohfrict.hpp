@@ -1,6 +1,6 @@
 // Linear elastic-frictional contact with elastic-plastic rolling and twisting resistance, as YADE's
-// Law2_ScGeom6D_CohFrictPhys_CohesionMoment (incremental form, no cohesion). Aboul Hosn et al. 2017,
-// Granular Matter 19(1); see docs/dem.md and the reference README sections 1-3.
+// Law2_ScGeom6D_CohFrictPhys_CohesionMoment (incremental form, no cohesion). Aboul Hosn et al.
+// 2017, Granular Matter 19(1); see docs/dem.md and the reference README sections 1-3.
 #pragma once
 
 #include <Eigen/Dense>
@@ -13,13 +13,13 @@ namespace dem {
 
 /// Constant properties of one contact, fixed when it is created.
 struct CohFrictProps {
-  double kn = 0.0;         ///< normal stiffness [N/m]
-  double ks = 0.0;         ///< shear stiffness [N/m]
-  double kr = 0.0;         ///< rolling stiffness [N m/rad]
-  double kt = 0.0;         ///< twisting stiffness [N m/rad]
-  double tan_phi = 0.0;    ///< Coulomb coefficient [-]
-  double roll_cap = -1.0;  ///< eta_r min(R1, R2) [m]; < 0: no cap
-  double twist_cap = -1.0; ///< eta_t min(R1, R2) [m]; < 0: no cap
+  double kn = 0.0;          ///< normal stiffness [N/m]
+  double ks = 0.0;          ///< shear stiffness [N/m]
+  double kr = 0.0;          ///< rolling stiffness [N m/rad]
+  double kt = 0.0;          ///< twisting stiffness [N m/rad]
+  double tan_phi = 0.0;     ///< Coulomb coefficient [-]
+  double roll_cap = -1.0;   ///< eta_r min(R1, R2) [m]; < 0: no cap
+  double twist_cap = -1.0;  ///< eta_t min(R1, R2) [m]; < 0: no cap
 };
 
 /// History of one contact, carried from step to step.
@@ -40,10 +40,10 @@ struct ContactKinematics {
 
 /// What the law gives back: force on sphere 2 at the contact point and the torques.
 struct ContactResult {
-  common::Vec3 force;     ///< total force on sphere 2 (sphere 1 gets the opposite) [N]
-  common::Vec3 torque1;   ///< torque on sphere 1 [N m]
-  common::Vec3 torque2;   ///< torque on sphere 2 [N m]
-  double fn = 0.0;        ///< normal force magnitude [N]
+  common::Vec3 force;    ///< total force on sphere 2 (sphere 1 gets the opposite) [N]
+  common::Vec3 torque1;  ///< torque on sphere 1 [N m]
+  common::Vec3 torque2;  ///< torque on sphere 2 [N m]
+  double fn = 0.0;       ///< normal force magnitude [N]
 };
 
 /// The contact law functor. Stateless apart from the material; all history lives in the contact.
@@ -80,8 +80,9 @@ inline void radial_return(common::Vec3& v, double cap) {
 }
 }  // namespace detail
 
-inline void CohFrictLaw::apply(const CohFrictProps& p, CohFrictHistory& h, const ContactKinematics& k,
-                        bool is_new, double dt, ContactResult& out) const {
+inline void CohFrictLaw::apply(const CohFrictProps& p, CohFrictHistory& h,
+                               const ContactKinematics& k, bool is_new, double dt,
+                               ContactResult& out) const {
   const double l = k.d.norm();
   const common::Vec3 n = k.d / l;
   const double delta = k.r1 + k.r2 - l;

@@ -12,17 +12,17 @@ namespace dem {
 
 struct Contacts {
   // Pair identity (from the neighbour search).
-  std::vector<std::int32_t> i, j;    ///< sphere ids, i < j
-  std::vector<common::Vec3i> k;      ///< image: branch = x_j + H k - x_i
+  std::vector<std::int32_t> i, j;  ///< sphere ids, i < j
+  std::vector<common::Vec3i> k;    ///< image: branch = x_j + H k - x_i
   // Contact state.
-  std::vector<std::uint8_t> active;  ///< 1 while in overlap
-  std::vector<CohFrictProps> props;  ///< fixed at creation
-  std::vector<CohFrictHistory> hist; ///< normal, shear force, rolling and twisting moments
+  std::vector<std::uint8_t> active;   ///< 1 while in overlap
+  std::vector<CohFrictProps> props;   ///< fixed at creation
+  std::vector<CohFrictHistory> hist;  ///< normal, shear force, rolling and twisting moments
   // Output of the last force computation (zero for inactive pairs).
-  std::vector<common::Vec3> force;   ///< force on j [N]
+  std::vector<common::Vec3> force;               ///< force on j [N]
   std::vector<common::Vec3> torque_i, torque_j;  ///< [N m]
-  std::vector<common::Vec3> branch;  ///< branch vector of the last step [m]
-  std::vector<double> fn;            ///< normal force magnitude [N]
+  std::vector<common::Vec3> branch;              ///< branch vector of the last step [m]
+  std::vector<double> fn;                        ///< normal force magnitude [N]
 
   // Per-sphere list of pairs (CSR), in pair order: sphere s touches pairs
   // sphere_pairs[sphere_offset[s] .. sphere_offset[s+1]); a negative entry -p-1 means s == j of p.

@@ -99,7 +99,8 @@ Simulation make_simulation(const Packing& pk, const Material& mat, const Numeric
   return sim;
 }
 
-std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t, const CheckObserver& observe) {
+std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t,
+                         const CheckObserver& observe) {
   MixedControl mc;
   mc.stress_axis = {true, true, true};
   mc.target = Vec3::Constant(-t.pressure);
@@ -138,7 +139,8 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
       throw common::InputError("dem: PSD diameters must increase and passing must not decrease");
     }
   }
-  if (!(solid > 0.0 && solid < 0.5)) throw common::InputError("dem: cloud solid fraction in (0, 0.5)");
+  if (!(solid > 0.0 && solid < 0.5))
+    throw common::InputError("dem: cloud solid fraction in (0, 0.5)");
   // Number weights of fine sub-intervals: mass fraction / d^3.
   constexpr int kSub = 64;
   std::vector<double> d_lo;
@@ -149,7 +151,8 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
     const double dm = psd.passing[a] - psd.passing[a - 1];
     for (int s = 0; s < kSub; ++s) {
       const double lo = psd.diameter[a - 1] + (psd.diameter[a] - psd.diameter[a - 1]) * s / kSub;
-      const double hi = psd.diameter[a - 1] + (psd.diameter[a] - psd.diameter[a - 1]) * (s + 1) / kSub;
+      const double hi =
+          psd.diameter[a - 1] + (psd.diameter[a] - psd.diameter[a - 1]) * (s + 1) / kSub;
       const double dmid = 0.5 * (lo + hi);
       total += dm / kSub / (dmid * dmid * dmid);
       d_lo.push_back(lo);
@@ -162,7 +165,8 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
   double vs = 0.0;
   for (auto& ri : r) {
     const double u = uniform01(gen) * total;
-    const std::size_t b = static_cast<std::size_t>(std::lower_bound(cum.begin(), cum.end(), u) - cum.begin());
+    const std::size_t b =
+        static_cast<std::size_t>(std::lower_bound(cum.begin(), cum.end(), u) - cum.begin());
     const std::size_t bb = std::min(b, cum.size() - 1);
     ri = 0.5 * (d_lo[bb] + (d_hi[bb] - d_lo[bb]) * uniform01(gen));
     vs += 4.0 / 3.0 * std::numbers::pi * ri * ri * ri;

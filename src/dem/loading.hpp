@@ -18,11 +18,11 @@ namespace dem {
 /// Mixed control: diagonal components in `stress_axis` follow a target stress, every other
 /// component of L follows `l_imposed`.
 struct MixedControl {
-  common::Mat3 l_imposed = common::Mat3::Zero();  ///< imposed velocity gradient [1/s]
+  common::Mat3 l_imposed = common::Mat3::Zero();         ///< imposed velocity gradient [1/s]
   std::array<bool, 3> stress_axis{false, false, false};  ///< sigma_aa controlled
-  common::Vec3 target = common::Vec3::Zero();  ///< target sigma_aa, tension positive [Pa]
-  double max_rate = 1.0;      ///< bound on |L_aa| of stress-controlled axes [1/s]
-  double tau_steps = 200.0;   ///< servo time constant, in DEM steps [-]
+  common::Vec3 target = common::Vec3::Zero();            ///< target sigma_aa, tension positive [Pa]
+  double max_rate = 1.0;     ///< bound on |L_aa| of stress-controlled axes [1/s]
+  double tau_steps = 200.0;  ///< servo time constant, in DEM steps [-]
 };
 
 /// PI servo on the cell's diagonal strain rates. The stress error is turned into a strain error
@@ -57,10 +57,10 @@ void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
 
 /// Re-equilibration under isotropic stress control.
 struct EquilibriumTarget {
-  double pressure = 1e5;        ///< target p, compression positive [Pa]
-  double stress_tol = 0.01;     ///< |sigma_aa - target| / p <= this on every axis [-]
-  double unbalanced_tol = 0.01; ///< unbalanced force ratio below this [-]
-  double max_rate = 1.0;        ///< servo strain-rate bound [1/s]
+  double pressure = 1e5;         ///< target p, compression positive [Pa]
+  double stress_tol = 0.01;      ///< |sigma_aa - target| / p <= this on every axis [-]
+  double unbalanced_tol = 0.01;  ///< unbalanced force ratio below this [-]
+  double max_rate = 1.0;         ///< servo strain-rate bound [1/s]
   std::int64_t check_every = 200;
   std::int64_t max_steps = 2000000;
 };

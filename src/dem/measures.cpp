@@ -81,10 +81,10 @@ Measures measure(const Simulation& sim) {
     sum_fs += s.force[q].norm();
     m.kinetic += 0.5 * (s.m[q] * s.u[q].squaredNorm() + s.inertia[q] * s.w[q].squaredNorm());
   }
-  m.unbalanced = (m.n_contacts > 0 && sum_fc > 0.0)
-                     ? (sum_fs / static_cast<double>(n)) /
-                           (sum_fc / static_cast<double>(m.n_contacts))
-                     : 0.0;
+  m.unbalanced =
+      (m.n_contacts > 0 && sum_fc > 0.0)
+          ? (sum_fs / static_cast<double>(n)) / (sum_fc / static_cast<double>(m.n_contacts))
+          : 0.0;
   return m;
 }
 

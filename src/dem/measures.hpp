@@ -15,14 +15,14 @@ namespace dem {
 
 struct Measures {
   common::Mat3 stress = common::Mat3::Zero();  ///< Love-Weber, tension positive [Pa]
-  double p = 0.0;            ///< -tr(sigma)/3 [Pa]
-  double q = 0.0;            ///< sqrt(3/2 s:s) [Pa]
+  double p = 0.0;                              ///< -tr(sigma)/3 [Pa]
+  double q = 0.0;                              ///< sqrt(3/2 s:s) [Pa]
   common::Mat3 fabric = common::Mat3::Zero();  ///< <n (x) n> over contacts [-]
-  double z = 0.0;            ///< 2 Nc / N [-]
-  double z_mech = 0.0;       ///< 2 Nc' / N' without rattlers (spheres with < 2 contacts, iterated) [-]
-  double void_ratio = 0.0;   ///< V / V_solid - 1 [-]
-  double unbalanced = 0.0;   ///< mean |f_sphere| / mean |f_contact| [-]
-  double kinetic = 0.0;      ///< fluctuating kinetic energy 1/2 (m u^2 + I w^2) [J]
+  double z = 0.0;                              ///< 2 Nc / N [-]
+  double z_mech = 0.0;  ///< 2 Nc' / N' without rattlers (spheres with < 2 contacts, iterated) [-]
+  double void_ratio = 0.0;  ///< V / V_solid - 1 [-]
+  double unbalanced = 0.0;  ///< mean |f_sphere| / mean |f_contact| [-]
+  double kinetic = 0.0;     ///< fluctuating kinetic energy 1/2 (m u^2 + I w^2) [J]
   std::int64_t n_contacts = 0;
 };
 

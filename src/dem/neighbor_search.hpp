@@ -14,11 +14,11 @@ namespace dem {
 
 /// Reference state of the last build, for the rebuild criterion.
 struct VerletState {
-  std::vector<common::Vec3> x_ref;   ///< positions at the last build [m]
+  std::vector<common::Vec3> x_ref;                    ///< positions at the last build [m]
   common::Mat3 h_ref_inv = common::Mat3::Identity();  ///< inverse cell matrix at the last build
-  double skin = 0.0;                 ///< skin distance [m]
-  double r_max = 0.0;                ///< largest radius [m]
-  std::int64_t builds = 0;           ///< number of builds so far
+  double skin = 0.0;                                  ///< skin distance [m]
+  double r_max = 0.0;                                 ///< largest radius [m]
+  std::int64_t builds = 0;                            ///< number of builds so far
 };
 
 /// Re-map the cell to a less skewed cell of the same lattice when some |c_b . c_a| / |c_a|^2

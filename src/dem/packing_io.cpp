@@ -31,8 +31,8 @@ std::vector<double> numbers(const std::string& path, long line, const std::strin
     v.push_back(d);
   }
   if (v.size() != expected) {
-    fail(path, line, "expected " + std::to_string(expected) + " numbers, found " +
-                         std::to_string(v.size()));
+    fail(path, line,
+         "expected " + std::to_string(expected) + " numbers, found " + std::to_string(v.size()));
   }
   return v;
 }

@@ -20,7 +20,8 @@ void require(bool ok, const char* key, double value, const char* rule) {
 }  // namespace
 
 void Material::validate() const {
-  require(density > 0.0 && std::isfinite(density), "dem.material.density", density, "must be > 0 [kg/m^3]");
+  require(density > 0.0 && std::isfinite(density), "dem.material.density", density,
+          "must be > 0 [kg/m^3]");
   require(young > 0.0 && std::isfinite(young), "dem.material.young", young, "must be > 0 [Pa]");
   require(ks_over_kn >= 0.0, "dem.material.ks_over_kn", ks_over_kn, "must be >= 0");
   require(friction_deg >= 0.0 && friction_deg < 90.0, "dem.material.friction_deg", friction_deg,

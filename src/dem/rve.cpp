@@ -27,9 +27,12 @@ void RveParams::validate() const {
   if (!(inertial_number > 0.0)) bad("dem.rve.inertial_number", inertial_number, "must be > 0");
   if (!(d50 >= 0.0)) bad("dem.rve.d50", d50, "must be >= 0 (0: from the spheres) [m]");
   if (!(p_floor > 0.0)) bad("dem.rve.p_floor", p_floor, "must be > 0 [Pa]");
-  if (!(max_strain_per_step > 0.0)) bad("dem.rve.max_strain_per_step", max_strain_per_step, "must be > 0");
-  if (max_steps_per_call < 1) bad("dem.rve.max_steps_per_call", static_cast<double>(max_steps_per_call), "must be >= 1");
-  if (!(initial_pressure >= 0.0)) bad("dem.rve.initial_pressure", initial_pressure, "must be >= 0 [Pa]");
+  if (!(max_strain_per_step > 0.0))
+    bad("dem.rve.max_strain_per_step", max_strain_per_step, "must be > 0");
+  if (max_steps_per_call < 1)
+    bad("dem.rve.max_steps_per_call", static_cast<double>(max_steps_per_call), "must be >= 1");
+  if (!(initial_pressure >= 0.0))
+    bad("dem.rve.initial_pressure", initial_pressure, "must be >= 0 [Pa]");
 }
 
 double mass_median_diameter(const std::vector<double>& radii) {
@@ -75,8 +78,8 @@ Rve::Rve(Simulation sim, const RveParams& params, double d50)
 StepReport Rve::step(const Mat3& l, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!(dt >= 0.0) || !l.allFinite()) {
-    throw common::NumericalError("dem::Rve::step: non-finite L or negative dt (dt = " +
-                                 std::to_string(dt) + " s)");
+    throw common::NumericalError(
+        "dem::Rve::step: non-finite L or negative dt (dt = " + std::to_string(dt) + " s)");
   }
   StepReport rep;
   const Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
@@ -141,17 +144,21 @@ StepReport Rve::measure() const {
   rep.void_ratio = void_ratio(sim_);
   std::int64_t nc = 0;
   for (auto a : sim_.contacts().active) nc += a;
-  rep.z = 2.0 * static_cast<double>(nc) / static_cast<double>(std::max<std::size_t>(1, num_spheres()));
+  rep.z =
+      2.0 * static_cast<double>(nc) / static_cast<double>(std::max<std::size_t>(1, num_spheres()));
   if (nc == 0) rep.guards |= kGuardNoContacts;
   return rep;
 }
 
 void Rve::save(common::StateWriter& w) const {
   save_simulation(sim_, w, "");
-  const std::vector<double> rp{params_.inertial_number, params_.d50, params_.p_floor,
+  const std::vector<double> rp{params_.inertial_number,
+                               params_.d50,
+                               params_.p_floor,
                                params_.max_strain_per_step,
                                static_cast<double>(params_.max_steps_per_call),
-                               params_.initial_pressure, d50_};
+                               params_.initial_pressure,
+                               d50_};
   w.write("rve/params", rp);
 }
 

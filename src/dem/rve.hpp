@@ -18,12 +18,12 @@ namespace dem {
 struct RveParams {
   Material material;
   Numerics numerics;
-  double inertial_number = 2.5e-4;      ///< I of eq. (11) [-], > 0
-  double d50 = 0.0;                     ///< d50 of eq. (11) [m]; 0: mass median of the spheres
-  double p_floor = 1e3;                 ///< floor on p in eq. (11) [Pa], > 0
-  double max_strain_per_step = 1e-4;    ///< bound on max|L dt_DEM| per DEM step [-]
+  double inertial_number = 2.5e-4;    ///< I of eq. (11) [-], > 0
+  double d50 = 0.0;                   ///< d50 of eq. (11) [m]; 0: mass median of the spheres
+  double p_floor = 1e3;               ///< floor on p in eq. (11) [Pa], > 0
+  double max_strain_per_step = 1e-4;  ///< bound on max|L dt_DEM| per DEM step [-]
   std::int64_t max_steps_per_call = 2'000'000;  ///< cap on DEM steps per step() [-]
-  double initial_pressure = 0.0;        ///< > 0: equilibrate isotropically at construction [Pa]
+  double initial_pressure = 0.0;  ///< > 0: equilibrate isotropically at construction [Pa]
 
   void validate() const;
 };

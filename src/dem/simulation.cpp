@@ -16,7 +16,7 @@ using common::Mat3;
 using common::Vec3;
 
 namespace {
-constexpr std::int64_t kStressBlock = 512;  // fixed reduction blocks, independent of threads
+constexpr std::int64_t kStressBlock = 512;      // fixed reduction blocks, independent of threads
 constexpr std::int64_t kParallelSpheres = 512;  // fewer spheres: one thread (fork costs more)
 
 inline double sgn(double v) { return (v > 0.0) - (v < 0.0); }
@@ -141,7 +141,8 @@ inline void Simulation::sum_sphere(std::int64_t q) {
   spheres_.torque[q] = t;
 }
 
-// Leap-frog with Cundall damping of the fluctuating velocity and the spin (YADE's NewtonIntegrator).
+// Leap-frog with Cundall damping of the fluctuating velocity and the spin (YADE's
+// NewtonIntegrator).
 inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& l) {
   Spheres& s = spheres_;
   const double lambda = num_.damping;

@@ -61,9 +61,12 @@ class Simulation {
   [[nodiscard]] const CohFrictLaw& law() const { return law_; }
   [[nodiscard]] const Numerics& numerics() const { return num_; }
 
-  [[nodiscard]] double time() const { return time_; }            ///< [s]
-  [[nodiscard]] std::int64_t steps() const { return steps_; }    ///< steps done
-  void set_counters(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
+  [[nodiscard]] double time() const { return time_; }          ///< [s]
+  [[nodiscard]] std::int64_t steps() const { return steps_; }  ///< steps done
+  void set_counters(double time, std::int64_t steps) {
+    time_ = time;
+    steps_ = steps;
+  }
   /// Force a neighbour rebuild at the next compute_forces().
   void invalidate_neighbors() { force_rebuild_ = true; }
   /// Whether a rebuild is pending (state restore needs it).

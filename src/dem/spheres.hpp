@@ -17,11 +17,11 @@ struct Spheres {
   std::vector<common::Vec3> u;      ///< fluctuating velocity v - L x [m/s]
   std::vector<common::Vec3> w;      ///< spin [rad/s]
   std::vector<common::Vec3> force;  ///< total contact force of the last step [N]
-  std::vector<common::Vec3> torque; ///< total contact torque of the last step [N m]
-  std::vector<double> r;            ///< radius [m]
-  std::vector<double> m;            ///< mass [kg]
-  std::vector<double> inertia;      ///< moment of inertia 2/5 m r^2 [kg m^2]
-  std::vector<std::uint8_t> fixed;  ///< 1: velocity and spin prescribed, not integrated
+  std::vector<common::Vec3> torque;  ///< total contact torque of the last step [N m]
+  std::vector<double> r;             ///< radius [m]
+  std::vector<double> m;             ///< mass [kg]
+  std::vector<double> inertia;       ///< moment of inertia 2/5 m r^2 [kg m^2]
+  std::vector<std::uint8_t> fixed;   ///< 1: velocity and spin prescribed, not integrated
 
   [[nodiscard]] std::size_t size() const { return r.size(); }
 

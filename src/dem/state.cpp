@@ -74,8 +74,8 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   const Numerics& num = sim.numerics();
   const std::vector<std::int64_t> version{kVersion};
   w.write(pre + "dem/version", version);
-  const std::vector<double> pm{mat.density, mat.young,   mat.ks_over_kn, mat.friction_deg,
-                               mat.alpha_r, mat.eta_r,   mat.alpha_t,    mat.eta_t};
+  const std::vector<double> pm{mat.density, mat.young, mat.ks_over_kn, mat.friction_deg,
+                               mat.alpha_r, mat.eta_r, mat.alpha_t,    mat.eta_t};
   w.write(pre + "params/material", pm);
   const std::vector<double> pn{num.damping, num.dt_safety, num.skin_factor,
                                static_cast<double>(num.dt_refresh), num.max_skew};
@@ -188,14 +188,15 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
     c.j[p] = static_cast<std::int32_t>(pair[2 * p + 1]);
     if (c.i[p] < 0 || c.j[p] < 0 || static_cast<std::size_t>(c.i[p]) >= n ||
         static_cast<std::size_t>(c.j[p]) >= n) {
-      throw common::InputError("dem state: field '" + pre + "contacts/pair' names a sphere out of range");
+      throw common::InputError("dem state: field '" + pre +
+                               "contacts/pair' names a sphere out of range");
     }
     c.k[p] = common::Vec3i(static_cast<int>(image[3 * p]), static_cast<int>(image[3 * p + 1]),
                            static_cast<int>(image[3 * p + 2]));
     c.active[p] = static_cast<std::uint8_t>(active[p]);
-    c.props[p] = CohFrictProps{props[7 * p],     props[7 * p + 1], props[7 * p + 2],
-                               props[7 * p + 3], props[7 * p + 4], props[7 * p + 5],
-                               props[7 * p + 6]};
+    c.props[p] =
+        CohFrictProps{props[7 * p],     props[7 * p + 1], props[7 * p + 2], props[7 * p + 3],
+                      props[7 * p + 4], props[7 * p + 5], props[7 * p + 6]};
     c.hist[p] = CohFrictHistory{normal[p], shear[p], roll[p], twist[p]};
   }
   c.force = rd.vec3("contacts/force", np);

@@ -13,6 +13,7 @@ namespace dem {
 void save_simulation(const Simulation& sim, common::StateWriter& w, const std::string& prefix = "");
 /// Rebuild a simulation from fields written by save_simulation. Throws common::InputError
 /// naming the field when one is missing or has the wrong size.
-[[nodiscard]] Simulation load_simulation(const common::StateReader& r, const std::string& prefix = "");
+[[nodiscard]] Simulation load_simulation(const common::StateReader& r,
+                                         const std::string& prefix = "");
 
 }  // namespace dem

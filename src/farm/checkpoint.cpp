@@ -407,8 +407,8 @@ std::vector<std::string> list_checkpoints(const std::string& dir) {
       continue;
     }
     const std::string digits = name.substr(head.size(), name.size() - head.size() - tail.size());
-    if (digits.size() > 18 ||
-        !std::all_of(digits.begin(), digits.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
+    if (digits.size() > 18 || !std::all_of(digits.begin(), digits.end(),
+                                           [](char ch) { return ch >= '0' && ch <= '9'; })) {
       continue;
     }
     found.emplace_back(std::stoll(digits), e.path().string());

@@ -75,7 +75,7 @@ struct RunSummary {
   FarmTimes times;                       ///< farm timing (rank 0)
   std::int64_t migrations = 0;           ///< repartitions that moved RVEs (start-up one included)
   std::int64_t rves_moved = 0;
-  WaitMode wait = WaitMode::automatic;   ///< the wait mode the farm used (resolved)
+  WaitMode wait = WaitMode::automatic;  ///< the wait mode the farm used (resolved)
 };
 
 /// Collective over `comm`: a fresh coupled run. Errors: common::InputError (config, exit 2),

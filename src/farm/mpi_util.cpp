@@ -141,7 +141,8 @@ WaitMode resolve_wait_mode(MPI_Comm comm, WaitMode mode) {
   CPU_ZERO(&set);
   if (sched_getaffinity(0, sizeof set, &set) == 0) {
     for (int c = 0; c < CPU_SETSIZE; ++c) {
-      if (CPU_ISSET(c, &set)) mask[static_cast<std::size_t>(c / 64)] |= std::uint64_t{1} << (c % 64);
+      if (CPU_ISSET(c, &set))
+        mask[static_cast<std::size_t>(c / 64)] |= std::uint64_t{1} << (c % 64);
     }
   } else {
     for (int c = 0; c < std::min(omp_get_num_procs(), CPU_SETSIZE); ++c)

@@ -251,9 +251,9 @@ void ResultsWriter::write_pending() {
     start[0] = first;
     std::vector<hsize_t> count = dims;
     count[0] = count0;
-    check(H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
-                              nullptr),
-          "select " + name);
+    check(
+        H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select " + name);
     Handle ms(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
     check(H5Dwrite(s.dset.get(), s.type, ms.get(), fs.get(), H5P_DEFAULT, s.pending.data()),
           "write " + name);
@@ -330,8 +330,8 @@ void ResultsWriter::flush(bool indexes) {
   // points.xmf and means.csv are rewritten whole (atomic rename): O(rows), 0.4 s at 13,000 rows
   // on these machines. Unless asked for, at most 1 / kIndexShare times their last cost apart.
   const auto now = std::chrono::steady_clock::now();
-  if (!indexes && std::chrono::duration<double>(now - index_written_).count() * kIndexShare <
-                      index_cost_s_) {
+  if (!indexes &&
+      std::chrono::duration<double>(now - index_written_).count() * kIndexShare < index_cost_s_) {
     return;
   }
   write_xdmf();
@@ -357,9 +357,10 @@ void ResultsWriter::write_xdmf() const {
         "<DataItem Dimensions=\"3 {}\" Format=\"XML\">",
         dims, per > 1 ? 3 : 2);
     s.tail = (per > 1 ? fmt::format(" 0 0 1 1 1 1 {} {}", m, per) : fmt::format(" 0 1 1 1 {}", m)) +
-             fmt::format("</DataItem><DataItem Dimensions=\"{} {}\" NumberType=\"Float\" "
-                         "Precision=\"8\" Format=\"HDF\">results.h5:/{}</DataItem></DataItem>",
-                         nt, dims, ds);
+             fmt::format(
+                 "</DataItem><DataItem Dimensions=\"{} {}\" NumberType=\"Float\" "
+                 "Precision=\"8\" Format=\"HDF\">results.h5:/{}</DataItem></DataItem>",
+                 nt, dims, ds);
     return s;
   };
   const Slab x = slab("points/x", 3);
@@ -374,8 +375,9 @@ void ResultsWriter::write_xdmf() const {
       m);
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
-  fmt::format_to(it, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
-                     "<Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  fmt::format_to(it,
+                 "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+                 "<Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
   for (std::int64_t t = 0; t < nt; ++t) {
     const auto tu = static_cast<std::size_t>(t);
     fmt::format_to(it,

@@ -69,12 +69,12 @@ class ResultsWriter {
   std::vector<std::size_t> rve_of_point_;  ///< RVE index of every point slot
   h5::Handle file_;
   std::map<std::string, std::unique_ptr<Series>> series_;
-  std::int64_t rows_ = 0;           ///< rows written to results.h5
-  std::int64_t pending_ = 0;        ///< rows appended, not written yet
+  std::int64_t rows_ = 0;     ///< rows written to results.h5
+  std::int64_t pending_ = 0;  ///< rows appended, not written yet
   std::size_t pending_bytes_ = 0;
-  std::vector<std::int64_t> steps_;               ///< of every row (written or pending)
+  std::vector<std::int64_t> steps_;  ///< of every row (written or pending)
   std::vector<double> times_;
-  std::vector<std::array<double, 4>> means_;      ///< eps_ax, eps_v, p, q of every row
+  std::vector<std::array<double, 4>> means_;               ///< eps_ax, eps_v, p, q of every row
   std::chrono::steady_clock::time_point index_written_{};  ///< last rewrite of xmf + csv
   double index_cost_s_ = 0.0;                              ///< its duration [s]
 };

@@ -348,8 +348,7 @@ void RveFarm::exec_step(const Header& h, std::span<common::Mat3> stress) {
   // 3. Gather [loop wall][records] to rank 0: one collective of sizes known to every rank.
   MPI_Request req = MPI_REQUEST_NULL;
   MPI_Igatherv(rec_.data(), rec_counts_[static_cast<std::size_t>(rank_)], MPI_DOUBLE,
-               rec_all_.data(), rec_counts_.data(), rec_displs_.data(), MPI_DOUBLE, 0, comm_,
-               &req);
+               rec_all_.data(), rec_counts_.data(), rec_displs_.data(), MPI_DOUBLE, 0, comm_, &req);
   wait_for(req, options_.wait);
   if (rank_ != 0) return;
 

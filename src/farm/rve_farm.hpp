@@ -137,21 +137,21 @@ class RveFarm final : public mpm::MaterialModel {
   std::vector<std::int64_t> local_;                  ///< my RVE indices, ascending
   std::vector<std::unique_ptr<MicroModel>> models_;  ///< by index; null if not mine
   // Per-step exchange, laid out once per partition by rebuild_local() (no allocation per step).
-  std::vector<std::vector<std::size_t>> members_;    ///< RVE indices of every rank, ascending
-  std::vector<int> cmd_counts_, cmd_displs_;         ///< bytes of every rank's command message
-  std::vector<char> cmd_send_;                       ///< rank 0: [header][L] of every rank
-  std::vector<char> cmd_recv_;                       ///< my [header][L block]
-  std::vector<int> rec_counts_, rec_displs_;         ///< doubles of every rank's records
-  std::vector<double> rec_;                          ///< my [loop wall][records]
-  std::vector<double> rec_all_;                      ///< rank 0: every rank's, by rank
-  std::vector<std::string> errors_;                  ///< my failures of the last step, by j
-  std::vector<std::int64_t> slot_of_;                ///< rank 0: RVE index -> point slot
-  std::vector<MicroReport> reports_;                 ///< rank 0, by index
-  std::vector<common::Mat3> stresses_;               ///< rank 0, by index
-  std::vector<double> cost_total_;                   ///< rank 0, by index
-  std::vector<double> cost_window_;                  ///< rank 0, since the last check
-  CostAverage cost_avg_;                             ///< rank 0, over check windows
-  std::vector<double> wave_;                         ///< rank 0, by index
+  std::vector<std::vector<std::size_t>> members_;  ///< RVE indices of every rank, ascending
+  std::vector<int> cmd_counts_, cmd_displs_;       ///< bytes of every rank's command message
+  std::vector<char> cmd_send_;                     ///< rank 0: [header][L] of every rank
+  std::vector<char> cmd_recv_;                     ///< my [header][L block]
+  std::vector<int> rec_counts_, rec_displs_;       ///< doubles of every rank's records
+  std::vector<double> rec_;                        ///< my [loop wall][records]
+  std::vector<double> rec_all_;                    ///< rank 0: every rank's, by rank
+  std::vector<std::string> errors_;                ///< my failures of the last step, by j
+  std::vector<std::int64_t> slot_of_;              ///< rank 0: RVE index -> point slot
+  std::vector<MicroReport> reports_;               ///< rank 0, by index
+  std::vector<common::Mat3> stresses_;             ///< rank 0, by index
+  std::vector<double> cost_total_;                 ///< rank 0, by index
+  std::vector<double> cost_window_;                ///< rank 0, since the last check
+  CostAverage cost_avg_;                           ///< rank 0, over check windows
+  std::vector<double> wave_;                       ///< rank 0, by index
   double wave_speed_ = 0.0;
   std::int64_t step_ = 0;
   std::int64_t migrations_ = 0;

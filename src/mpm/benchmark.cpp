@@ -32,10 +32,14 @@ BenchmarkResult run_benchmark(std::int64_t num_points, int threads, int steps,
   const double density = 2000.0;
   LinearElastic material(1e7, 0.3, density);
   MaterialPoints points;
-  fill_box(points, cfg.grid, common::Vec3::Zero(), common::Vec3(side, side, height) * 0.1, 2, density, 0);
+  fill_box(points, cfg.grid, common::Vec3::Zero(), common::Vec3(side, side, height) * 0.1, 2,
+           density, 0);
   Solver solver(cfg, std::move(points), {&material});
-  solver.add_constraint({common::Vec3::Constant(-1.0), common::Vec3(10.0 * side, 10.0 * side, 0.0),
-                         {true, true, true}, common::Vec3::Zero(), {}});
+  solver.add_constraint({common::Vec3::Constant(-1.0),
+                         common::Vec3(10.0 * side, 10.0 * side, 0.0),
+                         {true, true, true},
+                         common::Vec3::Zero(),
+                         {}});
 
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
@@ -61,7 +65,8 @@ BenchmarkResult run_benchmark(std::int64_t num_points, int threads, int steps,
 
 std::string to_string(const BenchmarkResult& r) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "shape=%s points=%lld threads=%d steps=%lld seconds=%.3f updates/s=%.4g",
+  std::snprintf(buf, sizeof buf,
+                "shape=%s points=%lld threads=%d steps=%lld seconds=%.3f updates/s=%.4g",
                 r.shape.c_str(), static_cast<long long>(r.points), r.threads,
                 static_cast<long long>(r.steps), r.seconds, r.updates_per_second);
   return buf;

@@ -9,12 +9,12 @@ namespace mpm {
 
 /// One measurement.
 struct BenchmarkResult {
-  std::int64_t points = 0;         ///< material points in the run
-  int threads = 0;                 ///< OpenMP threads used
-  std::int64_t steps = 0;          ///< timed steps (after 2 warm-up steps)
-  double seconds = 0.0;            ///< wall time of the timed steps [s]
-  double updates_per_second = 0.0; ///< points * steps / seconds [1/s]
-  std::string shape;               ///< shape function name
+  std::int64_t points = 0;          ///< material points in the run
+  int threads = 0;                  ///< OpenMP threads used
+  std::int64_t steps = 0;           ///< timed steps (after 2 warm-up steps)
+  double seconds = 0.0;             ///< wall time of the timed steps [s]
+  double updates_per_second = 0.0;  ///< points * steps / seconds [1/s]
+  std::string shape;                ///< shape function name
 };
 
 /// Times `steps` USF steps of an elastic block under gravity (2 points per cell and direction,

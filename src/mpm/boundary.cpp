@@ -30,8 +30,8 @@ VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::ar
   return c;
 }
 
-VelocityConstraint node_constraint(const Grid& grid, const common::Vec3& node, std::array<bool, 3> fixed,
-                                   const common::Vec3& velocity) {
+VelocityConstraint node_constraint(const Grid& grid, const common::Vec3& node,
+                                   std::array<bool, 3> fixed, const common::Vec3& velocity) {
   VelocityConstraint c;
   // A box of a quarter spacing around the node selects it and no neighbour.
   c.lo = node - 0.25 * grid.spacing;
@@ -45,13 +45,16 @@ ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c) {
   ResolvedConstraint r{c, {}, {}};
   const common::Vec3 tol = 1e-9 * grid.spacing;
   const int m = c.mirror_axis;
-  if (m > 2) throw common::InputError("mpm constraint: mirror_axis = " + std::to_string(m) + ": must be -1 or 0..2");
+  if (m > 2)
+    throw common::InputError("mpm constraint: mirror_axis = " + std::to_string(m) +
+                             ": must be -1 or 0..2");
   double plane_index = 0.0;
   if (m >= 0) {
     plane_index = (c.mirror_plane - grid.origin[m]) / grid.spacing[m];
     if (std::abs(plane_index - std::round(plane_index)) > 1e-9) {
       throw common::InputError("mpm constraint: mirror_plane = " + std::to_string(c.mirror_plane) +
-                               ": must be a node plane of the grid along axis " + std::to_string(m));
+                               ": must be a node plane of the grid along axis " +
+                               std::to_string(m));
     }
     plane_index = std::round(plane_index);
   }
@@ -79,7 +82,8 @@ ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c) {
 }
 
 namespace {
-common::Vec3 prescribed(const Grid& grid, const VelocityConstraint& c, std::int64_t node, double t) {
+common::Vec3 prescribed(const Grid& grid, const VelocityConstraint& c, std::int64_t node,
+                        double t) {
   return c.field ? c.field(grid.node_position(node), t) : c.velocity;
 }
 }  // namespace
@@ -114,7 +118,9 @@ void apply_acceleration_constraints(const Grid& grid, const std::vector<Resolved
       const auto u = static_cast<std::size_t>(i);
       if (!fields.is_active[u]) continue;
       common::Vec3 a = common::Vec3::Zero();
-      if (c.spec.field) a = (c.spec.field(grid.node_position(i), t + dt) - c.spec.field(grid.node_position(i), t)) / dt;
+      if (c.spec.field)
+        a = (c.spec.field(grid.node_position(i), t + dt) - c.spec.field(grid.node_position(i), t)) /
+            dt;
       if (!c.mirror.empty() && c.mirror[k] >= 0) {
         const auto mi = static_cast<std::size_t>(c.mirror[k]);
         a = 2.0 * a - (fields.is_active[mi] ? fields.acceleration[mi] : a);
@@ -174,7 +180,8 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
   // A Gauss point is clipped (in cell units) to where its stencil lies in the grid.
   const double margin = std::is_same_v<Shape, BSpline2Shape> ? 0.5 : 0.0;
   std::array<double, 3> s_hi{};
-  for (int d = 0; d < 3; ++d) s_hi[static_cast<std::size_t>(d)] = std::nextafter(grid.cells[d] - margin, 0.0);
+  for (int d = 0; d < 3; ++d)
+    s_hi[static_cast<std::size_t>(d)] = std::nextafter(grid.cells[d] - margin, 0.0);
   std::array<std::int64_t, ns * ns * ns> node_k{};
   std::array<double, ns * ns * ns> S_k{};
   double area = 0.0;
@@ -199,7 +206,8 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
           const auto du = static_cast<std::size_t>(d);
           const double sd = std::clamp((x[d] - grid.origin[d]) / grid.spacing[d], margin, s_hi[du]);
           base[du] = Shape::stencil_base(sd, 0.0);
-          for (int i = 0; i < ns; ++i) w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
+          for (int i = 0; i < ns; ++i)
+            w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
         }
         // The active nodes of the stencil with their weights, and the weights' sum.
         int m = 0;
@@ -208,7 +216,8 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
           for (int j = 0; j < ns; ++j) {
             for (int i = 0; i < ns; ++i) {
               const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
-              const double S = w[0][static_cast<std::size_t>(i)] * w[1][static_cast<std::size_t>(j)] *
+              const double S = w[0][static_cast<std::size_t>(i)] *
+                               w[1][static_cast<std::size_t>(j)] *
                                w[2][static_cast<std::size_t>(k)];
               if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
               sum += S;
@@ -221,7 +230,8 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
         if (!(sum > 0.0)) {
           throw common::NumericalError("mpm traction load on axis " + std::to_string(n) + " side " +
                                        std::to_string(load.side) + ": the facet of point id " +
-                                       std::to_string(points.id[p]) + " touches no node holding material");
+                                       std::to_string(points.id[p]) +
+                                       " touches no node holding material");
         }
         for (int c = 0; c < m; ++c) {
           const auto cu = static_cast<std::size_t>(c);
@@ -239,8 +249,9 @@ double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load
                       const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
                       GridFields& fields) {
   if (load.axis < 0 || load.axis > 2 || (load.side != -1 && load.side != 1)) {
-    throw common::InputError("mpm traction load: axis = " + std::to_string(load.axis) + ", side = " +
-                             std::to_string(load.side) + ": axis must be 0..2 and side -1 or +1");
+    throw common::InputError("mpm traction load: axis = " + std::to_string(load.axis) +
+                             ", side = " + std::to_string(load.side) +
+                             ": axis must be 0..2 and side -1 or +1");
   }
   // Facets use the grid basis: the linear hat (uGIMP's too) or the quadratic B-spline.
   if (face_basis(kind) == ShapeKind::bspline2) {

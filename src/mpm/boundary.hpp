@@ -19,9 +19,9 @@ namespace mpm {
 /// and to the nodal acceleration before G2P (a = (V(t + dt) - V(t)) / dt, zero for a constant
 /// velocity), so the points next to these nodes follow them.
 struct VelocityConstraint {
-  common::Vec3 lo;                        ///< box lower corner [m]
-  common::Vec3 hi;                        ///< box upper corner [m]
-  std::array<bool, 3> fixed{};            ///< which components are prescribed
+  common::Vec3 lo;                               ///< box lower corner [m]
+  common::Vec3 hi;                               ///< box upper corner [m]
+  std::array<bool, 3> fixed{};                   ///< which components are prescribed
   common::Vec3 velocity = common::Vec3::Zero();  ///< prescribed velocity [m/s]
   /// Optional: velocity as a function of the node position [m] and time [s]; replaces
   /// `velocity` when set (e.g. a rigid rotation field for verification).
@@ -40,7 +40,8 @@ struct VelocityConstraint {
 VelocityConstraint face_constraint(const Grid& grid, int axis, int side, std::array<bool, 3> fixed,
                                    const common::Vec3& velocity = common::Vec3::Zero());
 /// One grid node at `node` [m] (a box of +/- spacing / 4 around it).
-VelocityConstraint node_constraint(const Grid& grid, const common::Vec3& node, std::array<bool, 3> fixed,
+VelocityConstraint node_constraint(const Grid& grid, const common::Vec3& node,
+                                   std::array<bool, 3> fixed,
                                    const common::Vec3& velocity = common::Vec3::Zero());
 
 /// A constraint with its node list resolved (sorted), built once by the solver.
@@ -65,9 +66,9 @@ void apply_acceleration_constraints(const Grid& grid, const std::vector<Resolved
 /// with it (Nanson: a_p = J_p F_p^-T N A0_p), so a pressure stays a pressure on the deformed
 /// face, whatever the points' drift inside the grid (docs/mpm.md, "Tractions").
 struct TractionLoad {
-  int axis = 0;            ///< normal axis of the face, 0..2
-  int side = -1;           ///< -1: the face at the material's lowest coordinate, +1 the highest
-  double pressure = 0.0;   ///< [Pa], positive pushes into the material (force -p a)
+  int axis = 0;           ///< normal axis of the face, 0..2
+  int side = -1;          ///< -1: the face at the material's lowest coordinate, +1 the highest
+  double pressure = 0.0;  ///< [Pa], positive pushes into the material (force -p a)
   common::Vec3 traction = common::Vec3::Zero();  ///< additional traction vector [Pa] (times |a|)
 };
 

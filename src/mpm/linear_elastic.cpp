@@ -88,7 +88,8 @@ void LinearElastic::read_state(const common::StateReader& reader, std::string_vi
   stress_.resize(flat.size() / 9);
   for (std::size_t p = 0; p < stress_.size(); ++p) {
     for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) stress_[p](i, j) = flat[p * 9 + static_cast<std::size_t>(i * 3 + j)];
+      for (int j = 0; j < 3; ++j)
+        stress_[p](i, j) = flat[p * 9 + static_cast<std::size_t>(i * 3 + j)];
     }
   }
 }

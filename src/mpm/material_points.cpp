@@ -84,7 +84,8 @@ std::size_t fill_box(MaterialPoints& points, const Grid& grid, const common::Vec
   }
   const common::Vec3 step = grid.spacing / points_per_cell;
   const double vol = step.prod();
-  std::int64_t next = points.id.empty() ? 0 : *std::max_element(points.id.begin(), points.id.end()) + 1;
+  std::int64_t next =
+      points.id.empty() ? 0 : *std::max_element(points.id.begin(), points.id.end()) + 1;
   std::size_t added = 0;
   for (int k = 0; k < n[2]; ++k) {
     for (int j = 0; j < n[1]; ++j) {

@@ -13,17 +13,17 @@ namespace mpm {
 /// All material points of a run. Every vector has size() entries; index p is the point's slot,
 /// id[p] its stable id (what the material model sees).
 struct MaterialPoints {
-  std::vector<std::int64_t> id;            ///< stable point id (unique)
-  std::vector<common::Vec3> x;             ///< position [m]
-  std::vector<common::Vec3> v;             ///< velocity [m/s]
-  std::vector<double> mass;                ///< m_p [kg]
-  std::vector<double> volume;              ///< current volume V_p [m^3]
-  std::vector<double> volume0;             ///< initial volume [m^3]
-  std::vector<common::Vec3> half_width0;   ///< initial half-widths of the point's domain [m]
-  std::vector<common::Mat3> stress;        ///< Cauchy stress, tension positive [Pa]
-  std::vector<common::Mat3> F;             ///< deformation gradient [-]
-  std::vector<common::Mat3> L;             ///< velocity gradient dv/dx of the last step [1/s]
-  std::vector<std::int32_t> material;      ///< index into the solver's material list
+  std::vector<std::int64_t> id;           ///< stable point id (unique)
+  std::vector<common::Vec3> x;            ///< position [m]
+  std::vector<common::Vec3> v;            ///< velocity [m/s]
+  std::vector<double> mass;               ///< m_p [kg]
+  std::vector<double> volume;             ///< current volume V_p [m^3]
+  std::vector<double> volume0;            ///< initial volume [m^3]
+  std::vector<common::Vec3> half_width0;  ///< initial half-widths of the point's domain [m]
+  std::vector<common::Mat3> stress;       ///< Cauchy stress, tension positive [Pa]
+  std::vector<common::Mat3> F;            ///< deformation gradient [-]
+  std::vector<common::Mat3> L;            ///< velocity gradient dv/dx of the last step [1/s]
+  std::vector<std::int32_t> material;     ///< index into the solver's material list
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   /// Appends one point at rest with F = I, zero stress and L.

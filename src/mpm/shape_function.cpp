@@ -9,9 +9,12 @@ namespace mpm {
 
 std::string_view to_string(ShapeKind kind) {
   switch (kind) {
-    case ShapeKind::linear: return "linear";
-    case ShapeKind::ugimp: return "ugimp";
-    case ShapeKind::bspline2: return "bspline2";
+    case ShapeKind::linear:
+      return "linear";
+    case ShapeKind::ugimp:
+      return "ugimp";
+    case ShapeKind::bspline2:
+      return "bspline2";
   }
   return "?";
 }
@@ -26,18 +29,24 @@ ShapeKind shape_kind_from_string(std::string_view name) {
 
 int stencil_width(ShapeKind kind) {
   switch (kind) {
-    case ShapeKind::linear: return LinearShape::support;
-    case ShapeKind::ugimp: return UgimpShape::support;
-    case ShapeKind::bspline2: return BSpline2Shape::support;
+    case ShapeKind::linear:
+      return LinearShape::support;
+    case ShapeKind::ugimp:
+      return UgimpShape::support;
+    case ShapeKind::bspline2:
+      return BSpline2Shape::support;
   }
   return 0;
 }
 
 Weights1D weights_1d(ShapeKind kind, double s, double lp, double h) {
   switch (kind) {
-    case ShapeKind::linear: return weights_1d<LinearShape>(s, lp, h);
-    case ShapeKind::ugimp: return weights_1d<UgimpShape>(s, lp, h);
-    case ShapeKind::bspline2: return weights_1d<BSpline2Shape>(s, lp, h);
+    case ShapeKind::linear:
+      return weights_1d<LinearShape>(s, lp, h);
+    case ShapeKind::ugimp:
+      return weights_1d<UgimpShape>(s, lp, h);
+    case ShapeKind::bspline2:
+      return weights_1d<BSpline2Shape>(s, lp, h);
   }
   return {};
 }

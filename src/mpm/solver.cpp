@@ -46,7 +46,8 @@ void SolverConfig::validate() const {
     config_error("cfl", cfl, "must be in (0, 1] when dt = 0");
   }
   if (!(mass_threshold >= 0.0 && mass_threshold < 1.0)) {
-    config_error("mass_threshold", mass_threshold, "must be in [0, 1) (relative to the mean nodal mass)");
+    config_error("mass_threshold", mass_threshold,
+                 "must be in [0, 1) (relative to the mean nodal mass)");
   }
   if (!gravity.allFinite()) throw common::InputError("mpm config: gravity is not finite");
 }
@@ -64,8 +65,9 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
   for (std::size_t p = 0; p < points_.size(); ++p) {
     if (static_cast<std::size_t>(points_.material[p]) >= materials_.size()) {
       throw common::InputError("mpm solver: point id " + std::to_string(points_.id[p]) +
-                               " has material " + std::to_string(points_.material[p]) + " but only " +
-                               std::to_string(materials_.size()) + " material model(s) were given");
+                               " has material " + std::to_string(points_.material[p]) +
+                               " but only " + std::to_string(materials_.size()) +
+                               " material model(s) were given");
     }
   }
   if (config_.shape == ShapeKind::ugimp) {
@@ -160,7 +162,8 @@ void Solver::update_stress(double dt) {
     materials_[k]->update_stress(gather_ids_, gather_L_, dt, gather_stress_);
     std::size_t j = 0;
     for (std::size_t p = 0; p < points_.size(); ++p) {
-      if (static_cast<std::size_t>(points_.material[p]) == k) points_.stress[p] = gather_stress_[j++];
+      if (static_cast<std::size_t>(points_.material[p]) == k)
+        points_.stress[p] = gather_stress_[j++];
     }
   }
 }
@@ -169,16 +172,16 @@ void Solver::check_points(double t_end) const {
   for (std::size_t p = 0; p < points_.size(); ++p) {
     const double vol = points_.volume[p];
     if (!(vol > 0.0) || !std::isfinite(vol)) {
-      throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " +
-                                   num_str(t_end) + " s): point id " + std::to_string(points_.id[p]) +
-                                   " at x = " + vec_str(points_.x[p]) + " m: volume = " +
-                                   num_str(vol) + " m^3 (must be positive and finite)");
+      throw common::NumericalError(
+          "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
+          std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
+          " m: volume = " + num_str(vol) + " m^3 (must be positive and finite)");
     }
     if (!points_.stress[p].allFinite()) {
-      throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " +
-                                   num_str(t_end) + " s): point id " + std::to_string(points_.id[p]) +
-                                   ": stress is not finite (trace = " +
-                                   num_str(points_.stress[p].trace()) + " Pa)");
+      throw common::NumericalError(
+          "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
+          std::to_string(points_.id[p]) +
+          ": stress is not finite (trace = " + num_str(points_.stress[p].trace()) + " Pa)");
     }
   }
 }
@@ -259,7 +262,8 @@ std::vector<double> read_sized(const common::StateReader& r, const std::string& 
 }
 
 void unflatten(const std::vector<double>& d, std::vector<common::Vec3>& v) {
-  for (std::size_t p = 0; p < v.size(); ++p) v[p] = common::Vec3(d[3 * p], d[3 * p + 1], d[3 * p + 2]);
+  for (std::size_t p = 0; p < v.size(); ++p)
+    v[p] = common::Vec3(d[3 * p], d[3 * p + 1], d[3 * p + 2]);
 }
 
 void unflatten(const std::vector<double>& d, std::vector<common::Mat3>& v) {
@@ -313,7 +317,8 @@ void Solver::load(const common::StateReader& r) {
   unflatten(read_sized(r, "points/F", 9 * n), pts.F);
   unflatten(read_sized(r, "points/L", 9 * n), pts.L);
   const std::vector<std::int64_t> mat = r.read_i64("points/material");
-  if (mat.size() != n) throw common::InputError("mpm checkpoint: points/material has the wrong size");
+  if (mat.size() != n)
+    throw common::InputError("mpm checkpoint: points/material has the wrong size");
   for (std::size_t p = 0; p < n; ++p) {
     if (mat[p] < 0 || static_cast<std::size_t>(mat[p]) >= materials_.size()) {
       throw common::InputError("mpm checkpoint: points/material of point id " +

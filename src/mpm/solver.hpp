@@ -24,15 +24,15 @@ enum class StressUpdate {
 
 /// Plain run configuration (the app maps the job file onto it). Units in each comment.
 struct SolverConfig {
-  Grid grid;                                     ///< background grid [m]
-  ShapeKind shape = ShapeKind::linear;           ///< shape function (the paper: linear)
+  Grid grid;                            ///< background grid [m]
+  ShapeKind shape = ShapeKind::linear;  ///< shape function (the paper: linear)
   StressUpdate stress_update = StressUpdate::usf;
-  double pic_fraction = 0.0;                     ///< PIC share in [0, 1]; 0 = pure NFLIP (eq. 9)
-  common::Vec3 gravity = common::Vec3::Zero();   ///< g of eq. 6 [m/s^2]; zero = no gravity
-  double damping = 0.0;                          ///< D of eq. 8, in [0, 1) [-]
+  double pic_fraction = 0.0;                    ///< PIC share in [0, 1]; 0 = pure NFLIP (eq. 9)
+  common::Vec3 gravity = common::Vec3::Zero();  ///< g of eq. 6 [m/s^2]; zero = no gravity
+  double damping = 0.0;                         ///< D of eq. 8, in [0, 1) [-]
   DampingMode damping_mode = DampingMode::cundall_vector;
-  double dt = 0.0;                               ///< fixed time step [s]; 0 = use cfl
-  double cfl = 0.0;                              ///< CFL number in (0, 1] when dt == 0 [-]
+  double dt = 0.0;   ///< fixed time step [s]; 0 = use cfl
+  double cfl = 0.0;  ///< CFL number in (0, 1] when dt == 0 [-]
   /// Nodes with m_v < mass_threshold * (mean active nodal mass) get zero velocity and
   /// acceleration [-]; in [0, 1).
   double mass_threshold = 1e-6;
@@ -73,7 +73,7 @@ class Solver {
   [[nodiscard]] MaterialPoints& points() { return points_; }
   [[nodiscard]] const GridFields& grid_fields() const { return fields_; }
   [[nodiscard]] const SolverConfig& config() const { return config_; }
-  [[nodiscard]] double time() const { return time_; }            ///< [s]
+  [[nodiscard]] double time() const { return time_; }  ///< [s]
   [[nodiscard]] std::int64_t step_count() const { return step_; }
   /// Loaded area of each traction load in the last step [m^2], in add_traction order.
   [[nodiscard]] const std::vector<double>& traction_areas() const { return traction_areas_; }

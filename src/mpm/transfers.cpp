@@ -244,7 +244,8 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
       });
     }
     const common::Vec3 v_flip = points.v[p] + dt * a_p;
-    points.v[p] = pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
+    points.v[p] =
+        pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
     if (move_points) points.x[p] += dt * points.v[p];
   });
 }

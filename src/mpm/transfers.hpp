@@ -16,20 +16,20 @@ namespace mpm {
 
 /// Per-step cache of each point's 1D weights (positions do not change between P2G and G2P).
 struct StencilCache {
-  int width = 2;                            ///< nodes per axis
-  std::vector<std::array<int, 3>> base;     ///< stencil base node (i, j, k) per point
-  std::vector<double> w;                    ///< S, [(p * 3 + axis) * 3 + a] [-]
-  std::vector<double> dw;                   ///< dS/dx, same layout [1/m]
+  int width = 2;                         ///< nodes per axis
+  std::vector<std::array<int, 3>> base;  ///< stencil base node (i, j, k) per point
+  std::vector<double> w;                 ///< S, [(p * 3 + axis) * 3 + a] [-]
+  std::vector<double> dw;                ///< dS/dx, same layout [1/m]
 };
 
 /// Points sorted by stencil base node (stable: ties keep slot order), grouped into bins, bins
 /// grouped into width^3 colours. Two bins of one colour touch disjoint nodes.
 struct PointBins {
-  std::vector<std::int64_t> order;                    ///< point slots, sorted by bin
-  std::vector<std::int64_t> offset;                   ///< bin b: order[offset[b] .. offset[b+1])
-  std::vector<std::int64_t> key;                      ///< base node index of bin b (ascending)
-  std::vector<std::vector<std::int64_t>> by_colour;   ///< bins of each colour, ascending
-  std::vector<std::int64_t> scratch;                  ///< dense per-node counter, kept all -1
+  std::vector<std::int64_t> order;                   ///< point slots, sorted by bin
+  std::vector<std::int64_t> offset;                  ///< bin b: order[offset[b] .. offset[b+1])
+  std::vector<std::int64_t> key;                     ///< base node index of bin b (ascending)
+  std::vector<std::vector<std::int64_t>> by_colour;  ///< bins of each colour, ascending
+  std::vector<std::int64_t> scratch;                 ///< dense per-node counter, kept all -1
 };
 
 /// Fills `cache` for every point. Returns the smallest slot whose stencil leaves the grid or

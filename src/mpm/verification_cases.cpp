@@ -30,11 +30,14 @@ BarResult run_elastic_bar(ShapeKind shape, int cells, double periods, double cfl
   fill_box(pts, fill, Vec3::Zero(), Vec3(length, 1, 1), 2, rho, 0);
   // One point per cell laterally would do; 2 x 2 keeps fill_box uniform (lateral motion is off).
   const double beta = std::numbers::pi / (2 * length);
-  for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = Vec3(v0 * std::sin(beta * pts.x[p][0]), 0, 0);
+  for (std::size_t p = 0; p < pts.size(); ++p)
+    pts.v[p] = Vec3(v0 * std::sin(beta * pts.x[p][0]), 0, 0);
   Solver solver(cfg, pts, {&material});
-  solver.add_constraint({Vec3::Constant(-10), Vec3::Constant(100), {false, true, true}, Vec3::Zero(), {}});
+  solver.add_constraint(
+      {Vec3::Constant(-10), Vec3::Constant(100), {false, true, true}, Vec3::Zero(), {}});
   // Fixed end: every node at x <= 0 (plain node fixing; see docs/mpm.md on B-splines).
-  solver.add_constraint({Vec3::Constant(-10), Vec3(0, 100, 100), {true, false, false}, Vec3::Zero(), {}});
+  solver.add_constraint(
+      {Vec3::Constant(-10), Vec3(0, 100, 100), {true, false, false}, Vec3::Zero(), {}});
 
   BarResult r;
   r.period_analytic = 4 * length / std::sqrt(E / rho);
@@ -42,7 +45,8 @@ BarResult run_elastic_bar(ShapeKind shape, int cells, double periods, double cfl
     double e = 0;
     const MaterialPoints& q = solver.points();
     for (std::size_t p = 0; p < q.size(); ++p) {
-      e += 0.5 * q.mass[p] * q.v[p].squaredNorm() + q.volume[p] * q.stress[p].squaredNorm() / (2 * E);
+      e += 0.5 * q.mass[p] * q.v[p].squaredNorm() +
+           q.volume[p] * q.stress[p].squaredNorm() / (2 * E);
     }
     return e;
   };
@@ -64,10 +68,12 @@ BarResult run_elastic_bar(ShapeKind shape, int cells, double periods, double cfl
     if ((prev_v > 0) != (v > 0)) crossings.push_back(prev_t + (t - prev_t) * prev_v / (prev_v - v));
     prev_v = v;
     prev_t = t;
-    r.energy_drift = std::max(r.energy_drift, std::abs(energy() - r.energy_initial) / r.energy_initial);
+    r.energy_drift =
+        std::max(r.energy_drift, std::abs(energy() - r.energy_initial) / r.energy_initial);
   }
   if (crossings.size() >= 2) {
-    r.period = 2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+    r.period =
+        2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   }
   r.steps = solver.step_count();
   return r;
@@ -87,8 +93,10 @@ ColumnResult run_self_weight_column(ShapeKind shape, int cells, double transits)
   fill_box(pts, cfg.grid, Vec3::Zero(), Vec3(h, h, H), 2, rho, 0);
   const std::vector<Vec3> X0 = pts.x;
   Solver solver(cfg, pts, {&material});
-  solver.add_constraint({Vec3::Constant(-10), Vec3::Constant(10), {true, true, false}, Vec3::Zero(), {}});
-  solver.add_constraint({Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
+  solver.add_constraint(
+      {Vec3::Constant(-10), Vec3::Constant(10), {true, true, false}, Vec3::Zero(), {}});
+  solver.add_constraint(
+      {Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
   const double c = material.wave_speed();
   const double t_end = transits * H / c;
   while (solver.time() < t_end) solver.step();
@@ -130,8 +138,10 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
   }
   Solver solver(cfg, pts, {&material});
   const double v_top = -tc.inertial_number * std::sqrt(tc.pressure / tc.density);
-  solver.add_constraint({Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
-  solver.add_constraint({Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
+  solver.add_constraint(
+      {Vec3::Constant(-10), Vec3(10, 10, 0), {false, false, true}, Vec3::Zero(), {}});
+  solver.add_constraint(
+      {Vec3(-10, -10, 1), Vec3::Constant(10), {false, false, true}, Vec3(0, 0, v_top), {}});
   for (int axis : {0, 1}) {
     for (int side : {-1, 1}) solver.add_traction({axis, side, tc.pressure, Vec3::Zero()});
   }
@@ -173,7 +183,8 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
   const MaterialPoints& end = solver.points();
   for (std::size_t p = 0; p < end.size(); ++p) {
     for (std::size_t q = 0; q < pts.size(); ++q) {
-      if (pts.id[q] == end.id[p]) r.max_displacement = std::max(r.max_displacement, (end.x[p] - pts.x[q]).norm());
+      if (pts.id[q] == end.id[p])
+        r.max_displacement = std::max(r.max_displacement, (end.x[p] - pts.x[q]).norm());
     }
   }
   return r;

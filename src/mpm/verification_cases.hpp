@@ -15,10 +15,10 @@ namespace mpm {
 /// nu = 0, fixed at x = 0, free at x = 25, v(X, 0) = 0.1 sin(pi X / 50) m/s; transverse
 /// velocities constrained to zero. Analytic period 4 L / c = 10 s.
 struct BarResult {
-  double period = 0.0;           ///< measured from the centre-of-mass velocity zero crossings [s]
-  double period_analytic = 10.0; ///< [s]
-  double energy_initial = 0.0;   ///< [J]
-  double energy_drift = 0.0;     ///< max over the run of |E(t) - E(0)| / E(0) [-]
+  double period = 0.0;            ///< measured from the centre-of-mass velocity zero crossings [s]
+  double period_analytic = 10.0;  ///< [s]
+  double energy_initial = 0.0;    ///< [J]
+  double energy_drift = 0.0;      ///< max over the run of |E(t) - E(0)| / E(0) [-]
   std::int64_t steps = 0;
 };
 BarResult run_elastic_bar(ShapeKind shape, int cells = 25, double periods = 2.0, double cfl = 0.1,
@@ -28,10 +28,10 @@ BarResult run_elastic_bar(ShapeKind shape, int cells = 25, double periods = 2.0,
 /// -z, E = 1e7 Pa, nu = 0), lateral velocities constrained, bottom fixed, brought to rest with
 /// Cundall damping. Exact: sigma_zz(Z) = -rho g (H - Z) (Z: initial height of the point).
 struct ColumnResult {
-  int cells = 0;                 ///< cells over the height
-  double rms_error = 0.0;        ///< RMS over points of |sigma_zz - exact| / (rho g H) [-]
-  double max_error = 0.0;        ///< max over points of the same [-]
-  double kinetic_ratio = 0.0;    ///< final kinetic energy / potential energy scale (rest check)
+  int cells = 0;               ///< cells over the height
+  double rms_error = 0.0;      ///< RMS over points of |sigma_zz - exact| / (rho g H) [-]
+  double max_error = 0.0;      ///< max over points of the same [-]
+  double kinetic_ratio = 0.0;  ///< final kinetic energy / potential energy scale (rest check)
   std::int64_t steps = 0;
 };
 ColumnResult run_self_weight_column(ShapeKind shape, int cells, double transits = 60.0);
@@ -43,14 +43,14 @@ ColumnResult run_self_weight_column(ShapeKind shape, int cells, double transits 
 /// side; the constraints then hold every node plane at or below z = 0 / at or above z = 1.
 struct TriaxialConfig {
   ShapeKind shape = ShapeKind::linear;
-  double youngs_modulus = 50e6;   ///< [Pa]
-  double poisson_ratio = 0.25;    ///< [-]
-  double density = 1600.0;        ///< [kg/m^3]
-  double pressure = 100e3;        ///< confining pressure p [Pa]
-  double inertial_number = 2.5e-4;///< I_n of eq. 13 [-]
-  double axial_strain = 0.03;     ///< compressive axial strain to reach [-]
-  double damping = 0.2;           ///< D of eq. 8 [-]
-  double cfl = 0.5;               ///< [-]
+  double youngs_modulus = 50e6;     ///< [Pa]
+  double poisson_ratio = 0.25;      ///< [-]
+  double density = 1600.0;          ///< [kg/m^3]
+  double pressure = 100e3;          ///< confining pressure p [Pa]
+  double inertial_number = 2.5e-4;  ///< I_n of eq. 13 [-]
+  double axial_strain = 0.03;       ///< compressive axial strain to reach [-]
+  double damping = 0.2;             ///< D of eq. 8 [-]
+  double cfl = 0.5;                 ///< [-]
   /// Offsets of the 8 points from their regular positions [m] (empty: none), in fill_box order
   /// (x fastest, then y, then z).
   std::vector<common::Vec3> offsets;
@@ -62,12 +62,12 @@ struct TriaxialConfig {
   bool pin_rigid_modes = false;
 };
 struct TriaxialResult {
-  double lateral_error = 0.0;     ///< max over points and steps of |sigma_xx or yy / (-p) - 1|
-  double lateral_error_end = 0.0; ///< the same at the end only
-  double axial_error = 0.0;       ///< max |sigma_zz - (-p + E eps)| / (E eps) at the end [-]
-  double axial_strain = 0.0;      ///< eps = sum dt mean(L_zz) reached (negative) [-]
-  double mean_lateral = 0.0;      ///< mean sigma_xx, sigma_yy at the end [Pa]
-  double mean_axial = 0.0;        ///< mean sigma_zz at the end [Pa]
+  double lateral_error = 0.0;      ///< max over points and steps of |sigma_xx or yy / (-p) - 1|
+  double lateral_error_end = 0.0;  ///< the same at the end only
+  double axial_error = 0.0;        ///< max |sigma_zz - (-p + E eps)| / (E eps) at the end [-]
+  double axial_strain = 0.0;       ///< eps = sum dt mean(L_zz) reached (negative) [-]
+  double mean_lateral = 0.0;       ///< mean sigma_xx, sigma_yy at the end [Pa]
+  double mean_axial = 0.0;         ///< mean sigma_zz at the end [Pa]
   std::int64_t steps = 0;
   double max_displacement = 0.0;  ///< largest distance of a point from its start at the end [m]
 };

@@ -46,7 +46,8 @@ std::string replace(std::string s, const std::string& a, const std::string& b) {
 TEST(Job, ResolvesValuesInCanonicalUnitsAndFillsDefaults) {
   const auto job = app::Job::parse(kDemJob, "job.toml");
   EXPECT_DOUBLE_EQ(job.number("dem.material.density"), 2650.0);
-  EXPECT_DOUBLE_EQ(job.number("dem.material.friction_angle"), 30.0);  // an int where a number is asked
+  EXPECT_DOUBLE_EQ(job.number("dem.material.friction_angle"),
+                   30.0);  // an int where a number is asked
   EXPECT_DOUBLE_EQ(job.numbers("dem.sample.psd_diameters")[1], 270e-6);
   EXPECT_EQ(job.integer("dem.sample.spheres"), 100);
   EXPECT_DOUBLE_EQ(job.number("dem.numerics.damping"), 0.2);  // default of an absent section
@@ -73,31 +74,39 @@ TEST(Job, ReportsEveryErrorWithFileLineKeyValueAndRule) {
                      "[Inter-particle friction angle phi. [deg]]"),
             std::string::npos)
       << err;
-  EXPECT_NE(err.find("job.toml:11: dem.sample.spheres = 1.5: must be an integer"), std::string::npos) << err;
+  EXPECT_NE(err.find("job.toml:11: dem.sample.spheres = 1.5: must be an integer"),
+            std::string::npos)
+      << err;
 }
 
 TEST(Job, UnknownKeySuggestsTheClosestOne) {
   const std::string err = error_of(replace(kDemJob, "rolling_strength", "roling_strength"));
-  EXPECT_NE(err.find("job.toml:8: dem.material.roling_strength: unknown key; did you mean 'rolling_strength'?"),
+  EXPECT_NE(err.find("job.toml:8: dem.material.roling_strength: unknown key; did you mean "
+                     "'rolling_strength'?"),
             std::string::npos)
       << err;
 }
 
 TEST(Job, CrossKeyRulesNameBothKeys) {
-  const std::string err = error_of(replace(kDemJob, "psd_passing = [0.0, 1.0]", "psd_passing = [0.2, 1.0]"));
-  EXPECT_NE(err.find("job.toml:13: dem.sample.psd_passing = [0.2, 1.0]: must start at 0 and end at 1"),
-            std::string::npos)
+  const std::string err =
+      error_of(replace(kDemJob, "psd_passing = [0.0, 1.0]", "psd_passing = [0.2, 1.0]"));
+  EXPECT_NE(
+      err.find("job.toml:13: dem.sample.psd_passing = [0.2, 1.0]: must start at 0 and end at 1"),
+      std::string::npos)
       << err;
   const std::string err2 = error_of(replace(kDemJob, "spheres = 100\n", ""));
-  EXPECT_NE(err2.find("job.toml:10: dem.sample.spheres is missing: required when no packing file is given"),
-            std::string::npos)
+  EXPECT_NE(
+      err2.find(
+          "job.toml:10: dem.sample.spheres is missing: required when no packing file is given"),
+      std::string::npos)
       << err2;
 }
 
 TEST(Job, OptionalPhysicsNeedsAllItsParametersOnceSwitchedOn) {
   const std::string text = std::string(kDemJob) + "\n[dem.material.twisting]\nstiffness = 0.5\n";
   const std::string err = error_of(text);
-  EXPECT_NE(err.find("dem.material.twisting.strength is missing: required"), std::string::npos) << err;
+  EXPECT_NE(err.find("dem.material.twisting.strength is missing: required"), std::string::npos)
+      << err;
 }
 
 TEST(Job, MissingFileIsAnInputError) {

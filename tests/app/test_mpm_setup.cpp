@@ -76,8 +76,9 @@ TEST(MpmSetup, PaperSingleCellSetUp) {
 TEST(MpmSetup, MappedSetUpHoldsTheConfiningPressure) {
   const auto job = app::Job::parse(kJob, "job.toml");
   auto setup = app::mpm_setup(job);
-  mpm::LinearElastic elastic(job.number("mpm.elastic.young_modulus"), job.number("mpm.elastic.poisson_ratio"),
-                             1696.0, setup.elastic_initial_stress);
+  mpm::LinearElastic elastic(job.number("mpm.elastic.young_modulus"),
+                             job.number("mpm.elastic.poisson_ratio"), 1696.0,
+                             setup.elastic_initial_stress);
   mpm::Solver solver(setup.config, setup.points, {&elastic});
   for (const auto& c : setup.constraints) solver.add_constraint(c);
   for (const auto& t : setup.tractions) solver.add_traction(t);

@@ -23,10 +23,17 @@ TEST(Schema, KeysAreUniqueAndDefaultsHaveTheirKeysType) {
     EXPECT_FALSE(k.required && k.fallback) << k.path << " is required and has a default";
     if (!k.fallback) continue;
     switch (k.type) {
-      case app::Type::Float: EXPECT_TRUE(std::holds_alternative<double>(*k.fallback)) << k.path; break;
-      case app::Type::Int: EXPECT_TRUE(std::holds_alternative<std::int64_t>(*k.fallback)) << k.path; break;
-      case app::Type::String: EXPECT_TRUE(std::holds_alternative<std::string>(*k.fallback)) << k.path; break;
-      default: break;
+      case app::Type::Float:
+        EXPECT_TRUE(std::holds_alternative<double>(*k.fallback)) << k.path;
+        break;
+      case app::Type::Int:
+        EXPECT_TRUE(std::holds_alternative<std::int64_t>(*k.fallback)) << k.path;
+        break;
+      case app::Type::String:
+        EXPECT_TRUE(std::holds_alternative<std::string>(*k.fallback)) << k.path;
+        break;
+      default:
+        break;
     }
   }
 }

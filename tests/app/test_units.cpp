@@ -15,7 +15,8 @@ TEST(Units, ConvertsToTheCanonicalUnit) {
   EXPECT_DOUBLE_EQ(*parse_quantity("130 um", Quantity::Length, why), 130e-6);
   EXPECT_DOUBLE_EQ(*parse_quantity("1.5 mm/s", Quantity::Velocity, why), 1.5e-3);
   EXPECT_DOUBLE_EQ(*parse_quantity("30 min", Quantity::Time, why), 1800.0);
-  EXPECT_NEAR(*parse_quantity("0.5 rad", Quantity::Angle, why), 0.5 * 180.0 / std::numbers::pi, 1e-12);
+  EXPECT_NEAR(*parse_quantity("0.5 rad", Quantity::Angle, why), 0.5 * 180.0 / std::numbers::pi,
+              1e-12);
   EXPECT_DOUBLE_EQ(*parse_quantity("2.65 g/cm^3", Quantity::Density, why), 2650.0);
 }
 

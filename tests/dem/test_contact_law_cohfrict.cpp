@@ -68,8 +68,8 @@ TEST(ContactLaw, CoulombAndRollingCaps) {
   const dem::CohFrictLaw law(reference_material());
   const auto props = law.create(1e-4, 1e-4);
   dem::CohFrictHistory h{Vec3::UnitX(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  const dem::ContactKinematics kin{Vec3(1.99e-4, 0, 0), Vec3(0, 10.0, 0), Vec3::Zero(),
-                                   Vec3(0, 0, 1e4), 1e-4, 1e-4};
+  const dem::ContactKinematics kin{
+      Vec3(1.99e-4, 0, 0), Vec3(0, 10.0, 0), Vec3::Zero(), Vec3(0, 0, 1e4), 1e-4, 1e-4};
   dem::ContactResult res;
   law.apply(props, h, kin, true, 1e-6, res);
   EXPECT_NEAR(res.fn, props.kn * 1e-6, 1e-15);
@@ -111,14 +111,15 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
 
   // Columns compared: name, index in Row::v; errors relative to the phase's max |value|.
   const std::vector<std::pair<std::string, int>> cols{
-      {"x2", 0},  {"y2", 1},  {"theta1z", 2}, {"theta2z", 3}, {"delta", 4}, {"Fn", 5},
-      {"Fs_y", 6}, {"|Fs|", 7}, {"Mb_z", 8},   {"|Mb|", 9},    {"|Mt|", 10}, {"kn", 11},
-      {"ks", 12}, {"kr", 13}, {"cap", 14}};
+      {"x2", 0},    {"y2", 1},   {"theta1z", 2}, {"theta2z", 3}, {"delta", 4},
+      {"Fn", 5},    {"Fs_y", 6}, {"|Fs|", 7},    {"Mb_z", 8},    {"|Mb|", 9},
+      {"|Mt|", 10}, {"kn", 11},  {"ks", 12},     {"kr", 13},     {"cap", 14}};
   std::map<std::string, std::vector<double>> phase_max;
   for (const Row& r : rows) {
     auto& mx = phase_max[r.phase];
     mx.resize(cols.size(), 0.0);
-    for (std::size_t c = 0; c < cols.size(); ++c) mx[c] = std::max(mx[c], std::abs(r.v[cols[c].second]));
+    for (std::size_t c = 0; c < cols.size(); ++c)
+      mx[c] = std::max(mx[c], std::abs(r.v[cols[c].second]));
   }
 
   double theta1 = 0.0;
@@ -166,12 +167,13 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
       const double scale = mx[k] > 0.0 ? mx[k] : 1.0;
       const double err = std::abs(got[cols[k].second] - ref) / scale;
       worst[k] = std::max(worst[k], err);
-      ASSERT_LT(err, 1e-8) << "step " << step << " phase " << r.phase << " column "
-                           << cols[k].first << ": got " << got[cols[k].second] << " yade " << ref;
+      ASSERT_LT(err, 1e-8) << "step " << step << " phase " << r.phase << " column " << cols[k].first
+                           << ": got " << got[cols[k].second] << " yade " << ref;
     }
   }
   for (std::size_t k = 0; k < cols.size(); ++k) {
-    std::cout << "  max relative error (of phase max) " << cols[k].first << ": " << worst[k] << "\n";
+    std::cout << "  max relative error (of phase max) " << cols[k].first << ": " << worst[k]
+              << "\n";
   }
 }
 

@@ -5,9 +5,9 @@
 #include <fstream>
 
 #include "common/errors.hpp"
-#include "dem/packing_io.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
+#include "dem/packing_io.hpp"
 #include "dem_test_util.hpp"
 
 namespace {

@@ -27,7 +27,7 @@ TEST(Rve, StepAppliesExactIncrementAndReturnsCompressiveStress) {
   EXPECT_NEAR(rve.d50(), 2e-4, 0.05e-4);
   const Mat3 h0 = rve.simulation().cell().h;
   Mat3 l = Mat3::Zero();
-  l(2, 2) = -1.0;  // 1/s
+  l(2, 2) = -1.0;          // 1/s
   const double dt = 1e-5;  // increment 1e-5
   const dem::StepReport rep = rve.step(l, dt);
   // T_p = 1e-5 / 2.5e-4 * sqrt(2650 * d50^2 / p) with p ~ 1e5.

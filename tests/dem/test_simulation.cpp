@@ -199,9 +199,9 @@ TEST(Simulation, CriticalTimeStepOfReferencePacking) {
   // README section 4: 8.5e-8 s on this packing (YADE's CSV: 8.4775e-8 with its shear history).
   EXPECT_NEAR(sim.dt(), 8.5e-8, 0.01 * 8.5e-8);
   const auto m = dem::measure(sim);
-  EXPECT_NEAR(m.p, 1e5, 0.01e5);       // the packing's header: p = 1e5 Pa
+  EXPECT_NEAR(m.p, 1e5, 0.01e5);  // the packing's header: p = 1e5 Pa
   EXPECT_NEAR(m.void_ratio, 0.561758, 1e-6);
-  EXPECT_NEAR(m.z, 5.694, 1e-9);       // 2847 contacts, as the header
+  EXPECT_NEAR(m.z, 5.694, 1e-9);  // 2847 contacts, as the header
 }
 
 }  // namespace

@@ -50,7 +50,8 @@ double interp(const std::vector<YadeRow>& rows, double eps, double YadeRow::*fie
 // forces, so the sample is first re-equilibrated at 100 kPa: the start differs from YADE's in the
 // contact history, which bounds how close the curves can be. Tolerances: |q/p - YADE| <= 0.03
 // (1.5 % of the peak 2.04), |eps_v - YADE| <= 2e-4 (8 % of its maximum 2.4e-3 in this range),
-// lateral stress within 1 % of 100 kPa after 0.1 % axial strain. Measured: see the printed maxima (docs/dem.md).
+// lateral stress within 1 % of 100 kPa after 0.1 % axial strain. Measured: see the printed maxima
+// (docs/dem.md).
 TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
   const auto yade = read_yade();
   dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
@@ -85,8 +86,8 @@ TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
     if (eps_a > 0.001) worst_sr = std::max(worst_sr, std::abs(sr - 1e5) / 1e5);
   }
   std::cout << "  to eps_a = " << eps_a << ": max |q/p - yade| = " << worst_qp
-            << ", max |eps_v - yade| = " << worst_ev << ", max |sigma_r - 100 kPa| / 100 kPa = "
-            << worst_sr << "\n";
+            << ", max |eps_v - yade| = " << worst_ev
+            << ", max |sigma_r - 100 kPa| / 100 kPa = " << worst_sr << "\n";
   EXPECT_LT(worst_qp, 0.03);
   EXPECT_LT(worst_ev, 2e-4);
   EXPECT_LT(worst_sr, 0.01);
@@ -101,7 +102,8 @@ TEST(Verification, CompactionReachesTargetPressure) {
   psd.passing = {0.0, 1.0};
   const dem::Packing cloud = dem::make_cloud(psd, 200, 0.3, 42);
   EXPECT_EQ(cloud.r.size(), 200u);
-  dem::Simulation sim = dem::make_simulation(cloud, dem_test::reference_material(), dem::Numerics{});
+  dem::Simulation sim =
+      dem::make_simulation(cloud, dem_test::reference_material(), dem::Numerics{});
   dem::Preparation prep;
   prep.friction_comp_deg = 1.0;
   prep.target.pressure = 1e5;

@@ -31,7 +31,8 @@ CellSetup single_cell(mpm::ShapeKind kind, int pad) {
 
 TEST(Boundary, FaceConstraintSelectsTheNodePlane) {
   mpm::Grid g{Vec3::Zero(), Vec3(1, 0.5, 2), common::Vec3i(2, 3, 4)};
-  const mpm::ResolvedConstraint r = mpm::resolve(g, mpm::face_constraint(g, 2, +1, {false, false, true}));
+  const mpm::ResolvedConstraint r =
+      mpm::resolve(g, mpm::face_constraint(g, 2, +1, {false, false, true}));
   EXPECT_EQ(r.nodes.size(), 3u * 4u);
   for (auto i : r.nodes) EXPECT_EQ(g.node_ijk(i)[2], 4);
   EXPECT_THROW(mpm::face_constraint(g, 3, 1, {}), common::InputError);
@@ -65,7 +66,8 @@ TEST(Boundary, TractionFollowsTheDeformedAreaNanson) {
     for (auto& F : s.pts.F) F = Vec3(1.02, 0.97, 1.05).asDiagonal();
     const mpm::MaterialExtent e = mpm::material_extent(s.pts);
     EXPECT_NEAR(e.hi[1] - e.lo[1], 0.5 + 0.5 * 0.97, 1e-15);  // 0.5 + 2 * 0.25 * F_yy
-    const double A = mpm::apply_traction(s.g, kind, {1, +1, 1e5, Vec3(0, 0, 2e3)}, s.pts, facets, s.f);
+    const double A =
+        mpm::apply_traction(s.g, kind, {1, +1, 1e5, Vec3(0, 0, 2e3)}, s.pts, facets, s.f);
     // Deformed area of the y face: J / F_yy * A0 = F_xx F_zz (Nanson), exact to round-off.
     EXPECT_NEAR(A, 1.02 * 1.05, 1e-14);
     Vec3 sum = Vec3::Zero();
@@ -91,7 +93,8 @@ TEST(Boundary, PressureOnARotatedFaceStaysNormalToIt) {
 
 TEST(Boundary, MirrorConstraintMakesGhostNodesAntisymmetric) {
   mpm::Grid g{Vec3(-1, -1, -1), Vec3::Ones(), common::Vec3i(4, 2, 2)};
-  mpm::VelocityConstraint c{Vec3::Constant(-10), Vec3(0, 10, 10), {true, false, false}, Vec3::Zero(), {}, 0, 0.0};
+  mpm::VelocityConstraint c{
+      Vec3::Constant(-10), Vec3(0, 10, 10), {true, false, false}, Vec3::Zero(), {}, 0, 0.0};
   const mpm::ResolvedConstraint r = mpm::resolve(g, c);
   mpm::GridFields f;
   f.resize(g);

@@ -68,7 +68,10 @@ TEST_P(RigidMotion, RotationKeepsPrestressObjective) {
     pts.stress[p] = s0;
   }
   mpm::Solver s(cfg, pts, {&mat});
-  mpm::VelocityConstraint rot{cfg.grid.origin, cfg.grid.upper(), {true, true, true}, Vec3::Zero(),
+  mpm::VelocityConstraint rot{cfg.grid.origin,
+                              cfg.grid.upper(),
+                              {true, true, true},
+                              Vec3::Zero(),
                               [&](const Vec3& x, double) { return Vec3(w * axis.cross(x)); }};
   s.add_constraint(rot);
   const int n = 1571;  // w t ~ pi / 2
@@ -87,6 +90,8 @@ TEST_P(RigidMotion, RotationKeepsPrestressObjective) {
 INSTANTIATE_TEST_SUITE_P(AllKinds, RigidMotion,
                          ::testing::Values(mpm::ShapeKind::linear, mpm::ShapeKind::ugimp,
                                            mpm::ShapeKind::bspline2),
-                         [](const auto& param_info) { return std::string(mpm::to_string(param_info.param)); });
+                         [](const auto& param_info) {
+                           return std::string(mpm::to_string(param_info.param));
+                         });
 
 }  // namespace

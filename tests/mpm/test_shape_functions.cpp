@@ -37,8 +37,8 @@ TEST_P(ShapeFunctions, PartitionOfUnityCompletenessAndGradients) {
     }
     EXPECT_NEAR(sum, 1.0, kTol) << "s = " << s;
     EXPECT_NEAR(first, s * h, kTol * 10) << "s = " << s;  // sum S_i x_i = x
-    EXPECT_NEAR(dsum, 0.0, kTol / h) << "s = " << s;        // sum grad S_i = 0
-    EXPECT_NEAR(dfirst, 1.0, kTol * 10) << "s = " << s;     // sum grad S_i x_i = 1
+    EXPECT_NEAR(dsum, 0.0, kTol / h) << "s = " << s;      // sum grad S_i = 0
+    EXPECT_NEAR(dfirst, 1.0, kTol * 10) << "s = " << s;   // sum grad S_i x_i = 1
   }
 }
 
@@ -53,9 +53,18 @@ TEST_P(ShapeFunctions, GradientIsTheDerivativeOfTheValue) {
       const double r = s - (w.base + a);
       double vp = 0.0, vm = 0.0;
       switch (c.kind) {
-        case ShapeKind::linear: vp = mpm::LinearShape::value(r + eps, c.lp); vm = mpm::LinearShape::value(r - eps, c.lp); break;
-        case ShapeKind::ugimp: vp = mpm::UgimpShape::value(r + eps, c.lp); vm = mpm::UgimpShape::value(r - eps, c.lp); break;
-        case ShapeKind::bspline2: vp = mpm::BSpline2Shape::value(r + eps, c.lp); vm = mpm::BSpline2Shape::value(r - eps, c.lp); break;
+        case ShapeKind::linear:
+          vp = mpm::LinearShape::value(r + eps, c.lp);
+          vm = mpm::LinearShape::value(r - eps, c.lp);
+          break;
+        case ShapeKind::ugimp:
+          vp = mpm::UgimpShape::value(r + eps, c.lp);
+          vm = mpm::UgimpShape::value(r - eps, c.lp);
+          break;
+        case ShapeKind::bspline2:
+          vp = mpm::BSpline2Shape::value(r + eps, c.lp);
+          vm = mpm::BSpline2Shape::value(r - eps, c.lp);
+          break;
       }
       // Central difference: exact for the piecewise polynomials away from kinks (1e-6 accounts
       // for cancellation); the sampled s avoid kinks by more than eps.
@@ -65,7 +74,8 @@ TEST_P(ShapeFunctions, GradientIsTheDerivativeOfTheValue) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, ShapeFunctions,
-                         ::testing::Values(Case{ShapeKind::linear, 0.0}, Case{ShapeKind::ugimp, 0.25},
+                         ::testing::Values(Case{ShapeKind::linear, 0.0},
+                                           Case{ShapeKind::ugimp, 0.25},
                                            Case{ShapeKind::ugimp, 0.5}, Case{ShapeKind::ugimp, 0.1},
                                            Case{ShapeKind::bspline2, 0.0}),
                          [](const auto& param_info) {

@@ -18,10 +18,11 @@ namespace {
 TEST(SingleCellTriaxial, LinearPaperSetupHoldsConfinementAndElasticAxialStress) {
   mpm::TriaxialConfig tc;
   const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
-  std::printf("triaxial linear: lateral error max %.3e end %.3e, axial error %.3e, eps %.4f, "
-              "mean sigma_lat %.1f Pa, sigma_zz %.1f Pa, %lld steps\n",
-              r.lateral_error, r.lateral_error_end, r.axial_error, r.axial_strain, r.mean_lateral,
-              r.mean_axial, static_cast<long long>(r.steps));
+  std::printf(
+      "triaxial linear: lateral error max %.3e end %.3e, axial error %.3e, eps %.4f, "
+      "mean sigma_lat %.1f Pa, sigma_zz %.1f Pa, %lld steps\n",
+      r.lateral_error, r.lateral_error_end, r.axial_error, r.axial_strain, r.mean_lateral,
+      r.mean_axial, static_cast<long long>(r.steps));
   EXPECT_LT(r.lateral_error, 0.01);
   EXPECT_LT(r.axial_error, 0.01);
   EXPECT_NEAR(r.axial_strain, -0.03, 1e-4);
@@ -54,8 +55,9 @@ TEST(SingleCellTriaxial, ShearSeedWithFixedPointsStaysStable) {
   tc.initial_stress_seed(0, 2) = tc.initial_stress_seed(2, 0) = 1.4e3;
   tc.move_points = false;
   const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
-  std::printf("shear seed, fixed points: lateral error max %.3e end %.3e, axial error %.3e, %lld steps\n",
-              r.lateral_error, r.lateral_error_end, r.axial_error, static_cast<long long>(r.steps));
+  std::printf(
+      "shear seed, fixed points: lateral error max %.3e end %.3e, axial error %.3e, %lld steps\n",
+      r.lateral_error, r.lateral_error_end, r.axial_error, static_cast<long long>(r.steps));
   // The first steps see the 1.4 kPa seed as an out-of-balance shear: 1.4 % of p at most.
   EXPECT_LT(r.lateral_error, 0.02);
   EXPECT_LT(r.lateral_error_end, 0.01);
@@ -84,10 +86,12 @@ TEST(SingleCellTriaxial, ShearSeedWithMovingPointsIsStableOnceRigidModesArePinne
   mpm::TriaxialConfig tc = unstable_case();
   tc.pin_rigid_modes = true;
   const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
-  std::printf("shear seed, moving points, pinned rigid modes: lateral error max %.3e end %.3e, axial error %.3e, "
-              "max displacement %.3e m, %lld steps\n",
-              r.lateral_error, r.lateral_error_end, r.axial_error, r.max_displacement,
-              static_cast<long long>(r.steps));
+  std::printf(
+      "shear seed, moving points, pinned rigid modes: lateral error max %.3e end %.3e, axial error "
+      "%.3e, "
+      "max displacement %.3e m, %lld steps\n",
+      r.lateral_error, r.lateral_error_end, r.axial_error, r.max_displacement,
+      static_cast<long long>(r.steps));
   EXPECT_LT(r.lateral_error, 0.02);
   EXPECT_LT(r.lateral_error_end, 0.01);
   EXPECT_LT(r.axial_error, 0.01);
@@ -101,8 +105,10 @@ TEST(SingleCellTriaxial, ShearSeedWithMovingPointsIsStableOnceRigidModesArePinne
 TEST(SingleCellTriaxial, ShearSeedWithMovingPointsAndFreeRigidModesGoesUnstable) {
   const mpm::TriaxialConfig tc = unstable_case();
   const mpm::TriaxialResult r = mpm::run_single_cell_triaxial(tc);
-  std::printf("shear seed, moving points, free rigid modes: lateral error max %.3e, max displacement %.3e m\n",
-              r.lateral_error, r.max_displacement);
+  std::printf(
+      "shear seed, moving points, free rigid modes: lateral error max %.3e, max displacement %.3e "
+      "m\n",
+      r.lateral_error, r.max_displacement);
   EXPECT_GT(r.lateral_error, 0.05);
 }
 

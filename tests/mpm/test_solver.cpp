@@ -101,8 +101,7 @@ TEST(Solver, PointLeavingTheGridNamesIdStepAndPosition) {
   mpm::MaterialPoints pts = small_block(cfg.grid);
   pts.v[5] = Vec3(100.0, 0, 0);  // leaves the 1.5 m grid within two steps
   mpm::Solver s(cfg, pts, {&mat});
-  expect_message([&] { s.run(5); },
-                 {"point id 5", "mpm step", "left the grid", "x = ("});
+  expect_message([&] { s.run(5); }, {"point id 5", "mpm step", "left the grid", "x = ("});
   EXPECT_EQ(s.points().size(), pts.size());  // nothing deleted
 }
 
@@ -121,7 +120,8 @@ TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
   mpm::LinearElastic mat(1e5, 0.3, 1800.0);
   mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
   cfg.damping = 1.5;
-  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"damping = 1.5", "[0, 1)"});
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"damping = 1.5", "[0, 1)"});
   cfg = small_config(mpm::ShapeKind::linear);
   cfg.cfl = 0.0;
   expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"cfl = 0", "dt = 0"});

@@ -107,7 +107,9 @@ TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
 INSTANTIATE_TEST_SUITE_P(AllKinds, Transfers,
                          ::testing::Values(mpm::ShapeKind::linear, mpm::ShapeKind::ugimp,
                                            mpm::ShapeKind::bspline2),
-                         [](const auto& param_info) { return std::string(mpm::to_string(param_info.param)); });
+                         [](const auto& param_info) {
+                           return std::string(mpm::to_string(param_info.param));
+                         });
 
 TEST(GridSolve, CundallDampingVectorAndComponent) {
   mpm::Grid g{Vec3::Zero(), Vec3::Ones(), common::Vec3i(1, 1, 1)};

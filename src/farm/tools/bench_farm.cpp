@@ -1,10 +1,12 @@
 // bench_farm: figures of the RVE farm (a program, never a test). Run under mpiexec, e.g.
 //   mpiexec -n 2 --bind-to none bench_farm overhead [--wait auto|spin|sleep] [--steps 10]
 //       [--output-every 10] (rows of results.h5: the paper's job writes every 10th step)
-//   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12] [--steps 20]
-//   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
-// Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default: the 1000-sphere reference of tests/data),
-// --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores). Figures and commands: docs/farm.md, "Benchmarks".
+//   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12] [--steps
+//   20] mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
+// Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default:
+// the 1000-sphere reference of tests/data),
+// --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
+// Figures and commands: docs/farm.md, "Benchmarks".
 #include <mpi.h>
 
 #include <algorithm>
@@ -120,9 +122,9 @@ farm::CoupledConfig triaxial(const std::string& dir, std::int64_t steps, farm::M
 
 void overhead(const Args& a, MPI_Comm comm) {
   const std::int64_t steps = std::stoll(a.get("steps", "10"));
-  farm::CoupledConfig c = triaxial("/tmp/bench_farm_overhead", steps,
-                                   dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)),
-                                   std::stod(a.get("speed", "1")));
+  farm::CoupledConfig c =
+      triaxial("/tmp/bench_farm_overhead", steps,
+               dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), std::stod(a.get("speed", "1")));
   c.farm = farm_options(a);
   c.output.every = std::stoll(a.get("output-every", "10"));
   // Per window of output.every steps (each window writes one results row): the share of the
@@ -152,18 +154,20 @@ void overhead(const Args& a, MPI_Comm comm) {
   const double total = now() - t0;
   if (rank_of(comm) == 0) {
     const farm::FarmTimes& t = s.times;
-    std::printf("overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, platen x%s eq. 13, wait %s "
-                "(resolved: %s), omp over RVEs %s, results row every %lld steps\n",
-                size_of(comm), static_cast<long long>(s.steps), a.get("speed", "1").c_str(),
-                a.get("wait", "auto").c_str(), farm::to_string(s.wait),
-                a.get("omp-over-rves", "1").c_str(), static_cast<long long>(c.output.every));
+    std::printf(
+        "overhead: ranks %d, 8 DEM RVEs, %lld MPM steps, platen x%s eq. 13, wait %s "
+        "(resolved: %s), omp over RVEs %s, results row every %lld steps\n",
+        size_of(comm), static_cast<long long>(s.steps), a.get("speed", "1").c_str(),
+        a.get("wait", "auto").c_str(), farm::to_string(s.wait), a.get("omp-over-rves", "1").c_str(),
+        static_cast<long long>(c.output.every));
     std::printf(
         "  stepping loop wall          %10.4f s  (%.4f s per MPM step; run incl. set-up %.3f s)\n",
         s.wall_s, s.wall_s / static_cast<double>(steps), total);
-    std::printf("  critical RVE busy (max rank) %10.4f s  (migrations incl. start-up %lld, %lld RVEs "
-                "moved)\n",
-                t.critical_busy, static_cast<long long>(s.migrations),
-                static_cast<long long>(s.rves_moved));
+    std::printf(
+        "  critical RVE busy (max rank) %10.4f s  (migrations incl. start-up %lld, %lld RVEs "
+        "moved)\n",
+        t.critical_busy, static_cast<long long>(s.migrations),
+        static_cast<long long>(s.rves_moved));
     std::printf("  mean RVE busy per rank       %10.4f s  -> balance mean/max %.3f\n", t.mean_busy,
                 t.mean_busy / t.critical_busy);
     std::printf("  farm exchange + wait         %10.6f s  (update_stress wall - critical busy)\n",
@@ -177,10 +181,10 @@ void overhead(const Args& a, MPI_Comm comm) {
       auto q = [&](double f) {
         return 100.0 * window_share[static_cast<std::size_t>(f * (window_share.size() - 1))];
       };
-      std::printf("  => per window of %lld steps (one results row each, %zu windows): median "
-                  "%.3f %%, quartiles %.3f-%.3f %%\n",
-                  static_cast<long long>(c.output.every), window_share.size(), q(0.5), q(0.25),
-                  q(0.75));
+      std::printf(
+          "  => per window of %lld steps (one results row each, %zu windows): median "
+          "%.3f %%, quartiles %.3f-%.3f %%\n",
+          static_cast<long long>(c.output.every), window_share.size(), q(0.5), q(0.25), q(0.75));
     }
   }
 }
@@ -272,7 +276,7 @@ void balance(const Args& a, MPI_Comm comm) {
   measure(dem ? "METIS, particle counts" : "METIS, cost estimates");
   f.migrate_to(farm::partition_round_robin(static_cast<std::size_t>(n), size));
   measure("round-robin");
-  const std::vector<double> cost = f.cost();  // measured wall seconds per RVE so far
+  const std::vector<double> cost = f.cost();  // measured CPU seconds per RVE so far
   f.migrate_to(farm::partition_metis(farm::cell_graph(grid, x), cost, size));
   measure("METIS, measured costs");
   f.stop();

@@ -15,7 +15,8 @@ constexpr ShapeKind kShapes[] = {ShapeKind::linear, ShapeKind::ugimp, ShapeKind:
 
 void bar() {
   std::printf("# elastic bar, first mode (L=25, E=100, rho=1, v0=0.1), 2 periods, CFL 0.1\n");
-  std::printf("%-9s %-5s %6s %12s %12s %12s\n", "shape", "upd", "cells", "period", "rel_err", "energy_drift");
+  std::printf("%-9s %-5s %6s %12s %12s %12s\n", "shape", "upd", "cells", "period", "rel_err",
+              "energy_drift");
   for (ShapeKind s : kShapes) {
     for (auto scheme : {mpm::StressUpdate::usf, mpm::StressUpdate::musl}) {
       for (int cells : {25, 50}) {
@@ -29,8 +30,10 @@ void bar() {
 }
 
 void column() {
-  std::printf("# self-weight column (H=1, rho=1000, g=10, E=1e7, nu=0), point stress error / (rho g H)\n");
-  std::printf("%-9s %6s %12s %8s %12s %8s %10s\n", "shape", "cells", "rms", "order", "max", "order", "ke_ratio");
+  std::printf(
+      "# self-weight column (H=1, rho=1000, g=10, E=1e7, nu=0), point stress error / (rho g H)\n");
+  std::printf("%-9s %6s %12s %8s %12s %8s %10s\n", "shape", "cells", "rms", "order", "max", "order",
+              "ke_ratio");
   for (ShapeKind s : kShapes) {
     double prev_rms = 0, prev_max = 0;
     for (int cells : {4, 8, 16, 32, 64}) {
@@ -46,7 +49,9 @@ void column() {
 }
 
 void triaxial() {
-  std::printf("# single-cell triaxial (paper section 3), p=100 kPa, E=50 MPa, nu=0.25, to 3%% axial strain, CFL 0.2, D 0.2\n");
+  std::printf(
+      "# single-cell triaxial (paper section 3), p=100 kPa, E=50 MPa, nu=0.25, to 3%% axial "
+      "strain, CFL 0.2, D 0.2\n");
   std::printf("# offsets: points displaced inside the cell (cell units)\n");
   std::printf("%-9s %-28s %12s %12s %12s %12s\n", "shape", "offsets", "lat_err_max", "lat_err_end",
               "axial_err", "eps_zz");
