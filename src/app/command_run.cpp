@@ -65,8 +65,10 @@ int command_run(const Options& o, const Comm& comm) {
         s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
     spdlog::info(
         "done: {} MPM steps, t = {:.6g} s, wall {:.1f} s; RVE time {:.1f} s of the critical rank, "
-        "balance (mean/max busy) {:.3f}, {} migration(s); {} checkpoint(s) written{}",
-        s.steps, s.time, s.wall_s, s.times.critical_busy, busy, s.migrations, s.checkpoints.size(),
+        "balance (mean/max busy) {:.3f}, {} migration(s) moving {} RVE(s) in {:.2f} s; {} "
+        "checkpoint(s) written{}",
+        s.steps, s.time, s.wall_s, s.times.critical_busy, busy, s.migrations, s.rves_moved,
+        s.times.migrate_wall, s.checkpoints.size(),
         s.checkpoints.empty() ? "" : ", last " + s.checkpoints.back());
     spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv",
                  out.string());

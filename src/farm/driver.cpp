@@ -203,8 +203,12 @@ RunSummary run_impl(const CoupledConfig& cfg, MPI_Comm comm, const std::string* 
         if (cfg.balance.enabled && size > 1 && s % cfg.balance.check_every == 0) {
           if (farm->rebalance_if_needed(cfg.balance.threshold,
                                         positions_by_index(ids, solver.points()))) {
-            spdlog::info("farm: step {}: rebalanced with METIS ({} RVEs moved in total)", s,
-                         farm->rves_moved());
+            const RebalancePlan& plan = farm->last_plan();
+            spdlog::info(
+                "farm: step {}: rebalanced with METIS: imbalance {:.3f} -> {:.3f}, {} RVE(s) "
+                "moved (predicted saving {:.3g} s, move {:.3g} s); {} moved in total",
+                s, plan.imbalance_now, plan.imbalance_new, plan.moves, plan.saving_s, plan.move_s,
+                farm->rves_moved());
           }
         }
         const double now = wall_now();

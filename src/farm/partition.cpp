@@ -156,4 +156,37 @@ void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, in
   }
 }
 
+std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& proposal, int nparts) {
+  MPMXDEM_CHECK(current.size() == proposal.size(), "one current and one proposed owner per RVE");
+  const auto np = static_cast<std::size_t>(nparts);
+  std::vector<std::int64_t> shared(np * np, 0);  // [new * np + old]
+  for (std::size_t k = 0; k < current.size(); ++k)
+    ++shared[static_cast<std::size_t>(proposal[k]) * np + static_cast<std::size_t>(current[k])];
+  std::vector<int> rename(np, -1);
+  std::vector<bool> taken(np, false);
+  for (std::size_t round = 0; round < np; ++round) {
+    std::int64_t best = -1;
+    std::size_t bn = 0;
+    std::size_t bo = 0;
+    for (std::size_t n = 0; n < np; ++n) {
+      if (rename[n] >= 0) continue;
+      for (std::size_t o = 0; o < np; ++o) {
+        if (!taken[o] && shared[n * np + o] > best) {
+          best = shared[n * np + o];
+          bn = n;
+          bo = o;
+        }
+      }
+    }
+    rename[bn] = static_cast<int>(bo);
+    taken[bo] = true;
+  }
+  std::int64_t moves = 0;
+  for (std::size_t k = 0; k < proposal.size(); ++k) {
+    proposal[k] = rename[static_cast<std::size_t>(proposal[k])];
+    moves += proposal[k] != current[k] ? 1 : 0;
+  }
+  return moves;
+}
+
 }  // namespace farm

@@ -32,6 +32,11 @@ struct RveGraph {
 /// moves RVEs from the heaviest part to the lightest while that lowers their maximum. Only
 /// balance counts here (RVEs exchange nothing with each other; the cut is a secondary goal).
 void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, int nparts);
+/// Renames the parts of `proposal` so that as many RVEs as possible keep their `current` owner
+/// (part labels are arbitrary to METIS; ranks are interchangeable for balance): greedy matching
+/// of new to old labels by the RVEs they share, largest first (ties: lowest labels).
+/// Returns the number of RVEs the renamed proposal moves.
+std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& proposal, int nparts);
 /// RVE k on rank k % nparts.
 [[nodiscard]] std::vector<int> partition_round_robin(std::size_t n, int nparts);
 /// Contiguous blocks of nearly equal counts (the start-up split before costs are known).

@@ -24,7 +24,7 @@ double imbalance(const std::vector<int>& owner, const std::vector<double>& cost,
 
 RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,
                              const std::vector<double>& cost, int nparts, double threshold,
-                             int seed) {
+                             int seed, const Payback& pay) {
   MPMXDEM_CHECK(cost.size() == owner.size() && graph.size() == owner.size(),
                 "one cost and one owner per RVE of the graph");
   RebalancePlan plan;
@@ -35,10 +35,16 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   std::vector<int> proposal = partition_metis(graph, cost, nparts, seed);
   plan.imbalance_new = imbalance(proposal, cost, nparts);
   const double margin = 0.5 * std::max(threshold - 1.0, 0.01);
-  if (plan.imbalance_now - plan.imbalance_new > margin && proposal != owner) {
-    plan.migrate = true;
-    plan.owner = std::move(proposal);
-  }
+  if (!(plan.imbalance_now - plan.imbalance_new > margin)) return plan;
+  plan.moves = keep_owners(owner, proposal, nparts);
+  if (plan.moves == 0) return plan;
+  // The critical rank's time scales with the largest load; the mean does not change.
+  plan.saving_s = pay.step_s * (1.0 - plan.imbalance_new / plan.imbalance_now) * pay.horizon_steps;
+  plan.move_s = static_cast<double>(plan.moves) * pay.move_s_per_rve;
+  const bool known = pay.step_s > 0.0 && pay.move_s_per_rve > 0.0;
+  if (known && !(plan.saving_s > plan.move_s)) return plan;
+  plan.migrate = true;
+  plan.owner = std::move(proposal);
   return plan;
 }
 

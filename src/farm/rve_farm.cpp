@@ -224,6 +224,7 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x, co
     MPMXDEM_CHECK(x.size() == n, "one position per RVE on rank 0");
     part =
         partition_metis(cell_graph(grid, x), measured ? *costs : est, size_, options_.metis_seed);
+    keep_owners(owner_, part, size_);  // move as few RVEs as the partition allows
   }
   if (n > 0) MPI_Bcast(part.data(), to_count(n), MPI_INT, 0, comm_);
   exec_migrate(std::move(part));
@@ -493,15 +494,26 @@ bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Ve
   MPMXDEM_CHECK(rank_ == 0, "rebalancing is driven by rank 0");
   cost_avg_.add_window(cost_window_);
   std::fill(cost_window_.begin(), cost_window_.end(), 0.0);
+  Payback pay;
+  const std::int64_t window_steps = times_.steps - times_at_check_.steps;
+  if (window_steps > 0) {
+    pay.step_s =
+        (times_.critical_busy - times_at_check_.critical_busy) / static_cast<double>(window_steps);
+  }
+  times_at_check_ = times_;
+  pay.horizon_steps = static_cast<double>(step_ - step_at_migration_);
+  if (moved_ > 0) pay.move_s_per_rve = times_.migrate_wall / static_cast<double>(moved_);
+  last_plan_ = RebalancePlan{};
   if (size_ == 1 || !cost_avg_.settled()) return false;
-  RebalancePlan plan = plan_rebalance(cell_graph(grid_, x), owner_, cost_avg_.cost(), size_,
-                                      threshold, options_.metis_seed);
-  if (!plan.migrate) return false;
+  last_plan_ = plan_rebalance(cell_graph(grid_, x), owner_, cost_avg_.cost(), size_, threshold,
+                              options_.metis_seed, pay);
+  if (!last_plan_.migrate) return false;
   Header h;
   h.cmd = kMigrate;
   send_command(h);
-  MPI_Bcast(plan.owner.data(), to_count(plan.owner.size()), MPI_INT, 0, comm_);
-  exec_migrate(std::move(plan.owner));
+  std::vector<int> owner = last_plan_.owner;
+  MPI_Bcast(owner.data(), to_count(owner.size()), MPI_INT, 0, comm_);
+  exec_migrate(std::move(owner));
   return true;
 }
 
@@ -518,6 +530,7 @@ void RveFarm::migrate_to(std::vector<int> owner) {
 }
 
 void RveFarm::exec_migrate(std::vector<int> new_owner) {
+  const double t0 = now();
   const std::size_t n = ids_.size();
   // Send buffers by destination: RVEs in ascending index order, each [u64 length][bytes].
   std::vector<std::vector<char>> to(static_cast<std::size_t>(size_));
@@ -580,6 +593,8 @@ void RveFarm::exec_migrate(std::vector<int> new_owner) {
   owner_ = std::move(new_owner);
   rebuild_local();
   agree_on_errors(comm_, kind_err, msg);
+  times_.migrate_wall += now() - t0;
+  step_at_migration_ = step_;
 }
 
 void RveFarm::stop() {

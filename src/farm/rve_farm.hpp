@@ -35,6 +35,7 @@ struct FarmTimes {
   double step_wall = 0.0;      ///< wall time inside update_stress on rank 0
   double critical_busy = 0.0;  ///< sum over steps of the largest rank's RVE loop time
   double mean_busy = 0.0;      ///< sum over steps of the mean rank RVE loop time
+  double migrate_wall = 0.0;   ///< wall time of the migrations on rank 0 (start-up one included)
   std::int64_t steps = 0;
 };
 
@@ -68,9 +69,11 @@ class RveFarm final : public mpm::MaterialModel {
                   bool abort_mid_write);
   /// Rank 0 only. Closes a cost window (the RVE step times since the last call) into the per-RVE
   /// cost average (rebalance.hpp); once the average is settled (3 windows), if the imbalance of
-  /// that average exceeds `threshold` and a
-  /// METIS partition (graph from `x`, current positions by RVE index) lowers it by more than the
-  /// noise margin of plan_rebalance, migrates the RVEs. Returns true if RVEs moved.
+  /// that average exceeds `threshold` and a METIS partition (graph from `x`, current positions by
+  /// RVE index) lowers it by more than the noise margin of plan_rebalance and pays back its move
+  /// (Payback: the critical rank's step time of the last window, a horizon of the steps the
+  /// current partition has lasted, the measured time per RVE moved), migrates the RVEs. Returns
+  /// true if RVEs moved; last_plan() tells the decision.
   bool rebalance_if_needed(double threshold, const std::vector<common::Vec3>& x);
   /// Rank 0 only: moves the RVEs to `owner` (one rank per RVE index), whatever the costs.
   /// For tests and benchmarks (e.g. round-robin against METIS).
@@ -102,10 +105,15 @@ class RveFarm final : public mpm::MaterialModel {
   [[nodiscard]] WaitMode wait_mode() const { return options_.wait; }
   [[nodiscard]] int size() const { return size_; }
   /// The MPM step counter carried in messages (set by the driver after a restart).
-  void set_step(std::int64_t step) { step_ = step; }
+  void set_step(std::int64_t step) {
+    step_ = step;
+    step_at_migration_ = step;
+  }
   /// Number of migrations done (including the start-up one) and RVEs moved in total.
   [[nodiscard]] std::int64_t migrations() const { return migrations_; }
   [[nodiscard]] std::int64_t rves_moved() const { return moved_; }
+  /// Rank 0: the decision of the last rebalance_if_needed check.
+  [[nodiscard]] const RebalancePlan& last_plan() const { return last_plan_; }
 
  private:
   struct Header;
@@ -157,6 +165,9 @@ class RveFarm final : public mpm::MaterialModel {
   std::int64_t migrations_ = 0;
   std::int64_t moved_ = 0;
   FarmTimes times_;
+  RebalancePlan last_plan_;             ///< rank 0
+  std::int64_t step_at_migration_ = 0;  ///< step of the last migration (or the start)
+  FarmTimes times_at_check_;            ///< rank 0: times_ at the last balance check
   bool stopped_ = false;
 };
 

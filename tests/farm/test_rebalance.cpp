@@ -1,5 +1,5 @@
 // Unit tests of the rebalancing policy (farm/rebalance.hpp): no migration on timing noise, one
-// migration on a real change of cost.
+// migration on a real change of cost, none that does not pay back its move.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -100,3 +100,49 @@ TEST(Rebalance, AverageSettlesAfterThreeWindows) {
 }
 
 }  // namespace
+
+namespace {
+
+/// 3 of 4 identical RVEs on part 0: imbalance 1.5, METIS balances them by moving one.
+struct Lopsided {
+  farm::RveGraph g = farm::RveGraph{{0, 0, 0, 0, 0}, {}};
+  std::vector<int> owner{0, 0, 0, 1};
+  std::vector<double> cost = std::vector<double>(4, 1.0);
+};
+
+}  // namespace
+
+// Saving = 1 ms per step x (1 - 1/1.5) x 100 steps = 33 ms: a move of 10 ms per RVE pays, one of
+// 100 ms does not; an unmeasured move (0) is free, as before payback existed.
+TEST(Rebalance, AMoveMustPayBackWithinTheHorizon) {
+  const Lopsided l;
+  farm::Payback pay{1e-3, 100.0, 0.1};
+  const farm::RebalancePlan no = farm::plan_rebalance(l.g, l.owner, l.cost, 2, 1.2, 1, pay);
+  EXPECT_FALSE(no.migrate);
+  EXPECT_EQ(no.owner, l.owner);
+  EXPECT_EQ(no.moves, 1);  // the renamed proposal moves one RVE of part 0
+  EXPECT_NEAR(no.saving_s, 1e-3 / 3.0 * 100.0, 1e-12);
+  EXPECT_NEAR(no.move_s, 0.1, 1e-12);
+  pay.move_s_per_rve = 0.01;
+  const farm::RebalancePlan yes = farm::plan_rebalance(l.g, l.owner, l.cost, 2, 1.2, 1, pay);
+  EXPECT_TRUE(yes.migrate);
+  EXPECT_DOUBLE_EQ(farm::imbalance(yes.owner, l.cost, 2), 1.0);
+  pay.move_s_per_rve = 0.0;
+  EXPECT_TRUE(farm::plan_rebalance(l.g, l.owner, l.cost, 2, 1.2, 1, pay).migrate);
+  EXPECT_TRUE(farm::plan_rebalance(l.g, l.owner, l.cost, 2, 1.2, 1).migrate);
+}
+
+// METIS names parts arbitrarily: the renaming keeps every RVE it can where it is.
+TEST(Rebalance, KeepOwnersRenamesPartsToMoveLeast) {
+  const std::vector<int> current{0, 0, 0, 0, 1, 1, 1, 1};
+  std::vector<int> swapped{1, 1, 1, 1, 0, 0, 0, 0};
+  EXPECT_EQ(farm::keep_owners(current, swapped, 2), 0);
+  EXPECT_EQ(swapped, current);
+  std::vector<int> one_moves{1, 1, 1, 0, 0, 0, 0, 0};  // RVE 3 changes side, named the other way
+  EXPECT_EQ(farm::keep_owners(current, one_moves, 2), 1);
+  EXPECT_EQ(one_moves, (std::vector<int>{0, 0, 0, 1, 1, 1, 1, 1}));
+  const std::vector<int> three{0, 0, 1, 1, 2, 2};
+  std::vector<int> rotated{2, 2, 0, 0, 1, 1};
+  EXPECT_EQ(farm::keep_owners(three, rotated, 3), 0);
+  EXPECT_EQ(rotated, three);
+}

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numeric>
 #include <string>
 
 #include "common/state_store.hpp"
@@ -320,6 +321,65 @@ void checkpoint(const Args& a, MPI_Comm comm) {
   f.stop();
 }
 
+// What moving an RVE costs: 8 DEM RVEs of the reference packing under the paper's strain rate;
+// after --steps steps every RVE changes rank (owner 1 - owner), then --steps more. Prints the
+// migration's wall time per RVE and the moved RVEs' CPU time per step before and after the move
+// (their first steps on the new rank pay for cold caches and rebuilt neighbour lists).
+void move(const Args& a, MPI_Comm comm) {
+  const int n = 8;
+  const int steps = std::stoi(a.get("steps", "40"));
+  const int size = size_of(comm);
+  std::vector<std::int64_t> ids(n);
+  std::vector<Vec3> x(n);
+  for (int k = 0; k < n; ++k) {
+    ids[static_cast<std::size_t>(k)] = k;
+    x[static_cast<std::size_t>(k)] =
+        Vec3(0.25 + 0.5 * (k & 1), 0.25 + 0.5 * ((k >> 1) & 1), 0.25 + 0.5 * (k >> 2));
+  }
+  const mpm::Grid grid{Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
+  farm::RveFarm f(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid,
+                  farm_options(a));
+  if (f.rank() != 0) {
+    f.serve();
+    return;
+  }
+  std::vector<Mat3> L(static_cast<std::size_t>(n), Mat3::Zero());
+  for (auto& l : L) l(2, 2) = -2.5e-4 * std::sqrt(100e3 / 1600.0);
+  std::vector<Mat3> s(static_cast<std::size_t>(n));
+  // Per-step CPU time of every RVE, summed over the RVEs: steps x total.
+  auto run = [&](int count) {
+    std::vector<double> per_step;
+    std::vector<double> before = f.cost();
+    for (int k = 0; k < count; ++k) {
+      f.update_stress(ids, L, 1.5e-3, s);
+      const std::vector<double> c = f.cost();
+      double sum = 0.0;
+      for (std::size_t j = 0; j < c.size(); ++j) sum += c[j] - before[j];
+      per_step.push_back(sum / n);
+      before = c;
+    }
+    return per_step;
+  };
+  const std::vector<double> warm = run(steps);
+  std::vector<int> owner = f.owner();
+  for (int& o : owner) o = (o + 1) % size;
+  const double m0 = f.times().migrate_wall;
+  f.migrate_to(owner);
+  const double migrate = f.times().migrate_wall - m0;
+  const std::vector<double> after = run(steps);
+  const double steady = std::accumulate(warm.end() - steps / 2, warm.end(), 0.0) / (steps / 2);
+  double excess = 0.0;
+  for (const double c : after) excess += c - steady;
+  std::printf("move: %d DEM RVEs on %d ranks, every RVE moved after %d steps\n", n, size, steps);
+  std::printf("  migration wall %.2f ms per RVE\n", 1e3 * migrate / n);
+  std::printf("  CPU per RVE and step: steady %.3f ms; after the move:", 1e3 * steady);
+  for (int k = 0; k < std::min(steps, 6); ++k)
+    std::printf(" %.3f", 1e3 * after[static_cast<std::size_t>(k)]);
+  std::printf(" ms ...\n  excess over the %d steps after the move: %.2f ms per RVE\n", steps,
+              1e3 * excess);
+  f.stop();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -339,8 +399,11 @@ int main(int argc, char** argv) {
       balance(a, MPI_COMM_WORLD);
     } else if (a.mode == "checkpoint") {
       checkpoint(a, MPI_COMM_WORLD);
+    } else if (a.mode == "move") {
+      move(a, MPI_COMM_WORLD);
     } else {
-      std::fprintf(stderr, "usage: bench_farm overhead|balance|checkpoint [--option value ...]\n");
+      std::fprintf(stderr,
+                   "usage: bench_farm overhead|balance|checkpoint|move [--option value ...]\n");
       rc = 2;
     }
   } catch (const std::exception& e) {
