@@ -34,10 +34,11 @@ class CostAverage {
   int windows_ = 0;
 };
 
-/// What a migration costs and what a better partition is worth, measured by the farm. A cost
-/// average can say a partition is better while the difference lives a few windows only (post-peak
-/// RVEs change cost from window to window): at threshold 1.05 the paper's job migrated 655 times
-/// and ran 8 % slower than with 8 migrations. So a move must pay for itself.
+/// What a migration costs and what a better partition is worth, measured by the farm: a move
+/// must pay for itself within the time the partition is expected to last. It refuses small gains
+/// on short-lived partitions and dear moves (large RVEs); it does not stop the paper's job at
+/// threshold 1.05 from chasing the post-peak flicker of the costs, whose moves are cheap
+/// (docs/farm.md, "Balancing").
 struct Payback {
   double step_s = 0.0;          ///< RVE time of the critical rank per MPM step, recent [s]
   double horizon_steps = 0.0;   ///< steps the new partition is expected to last [-]
