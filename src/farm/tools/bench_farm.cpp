@@ -283,17 +283,30 @@ void balance(const Args& a, MPI_Comm comm) {
   f.stop();
 }
 
-void checkpoint(const Args& a, MPI_Comm comm) {
-  const int n = std::stoi(a.get("rves", "8"));
+std::vector<std::int64_t> rve_ids(int n) {
   std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
-  std::vector<Vec3> x(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    ids[static_cast<std::size_t>(k)] = k;
-    x[static_cast<std::size_t>(k)] = Vec3(0.5, 0.5, 0.5);
+  for (int k = 0; k < n; ++k) ids[static_cast<std::size_t>(k)] = k;
+  return ids;
+}
+
+/// DEM RVEs of the reference packing (--packing) at the points of one unit grid cell (2x2x2,
+/// cycled): one METIS graph vertex per RVE, all neighbours.
+farm::RveFarm dem_farm_in_one_cell(const Args& a, MPI_Comm comm,
+                                   const std::vector<std::int64_t>& ids) {
+  std::vector<Vec3> x;
+  for (const std::int64_t id : ids) {
+    const auto k = static_cast<int>(id % 8);
+    x.emplace_back(0.25 + 0.5 * (k & 1), 0.25 + 0.5 * ((k >> 1) & 1), 0.25 + 0.5 * (k >> 2));
   }
   const mpm::Grid grid{Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
-  farm::RveFarm f(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid,
-                  farm_options(a));
+  return farm::RveFarm(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid,
+                       farm_options(a));
+}
+
+void checkpoint(const Args& a, MPI_Comm comm) {
+  const int n = std::stoi(a.get("rves", "8"));
+  const std::vector<std::int64_t> ids = rve_ids(n);
+  farm::RveFarm f = dem_farm_in_one_cell(a, comm, ids);
   if (f.rank() != 0) {
     f.serve();
     return;
@@ -329,16 +342,8 @@ void move(const Args& a, MPI_Comm comm) {
   const int n = 8;
   const int steps = std::stoi(a.get("steps", "40"));
   const int size = size_of(comm);
-  std::vector<std::int64_t> ids(n);
-  std::vector<Vec3> x(n);
-  for (int k = 0; k < n; ++k) {
-    ids[static_cast<std::size_t>(k)] = k;
-    x[static_cast<std::size_t>(k)] =
-        Vec3(0.25 + 0.5 * (k & 1), 0.25 + 0.5 * ((k >> 1) & 1), 0.25 + 0.5 * (k >> 2));
-  }
-  const mpm::Grid grid{Vec3::Zero(), Vec3::Ones(), common::Vec3i::Ones()};
-  farm::RveFarm f(comm, dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING)), ids, x, grid,
-                  farm_options(a));
+  const std::vector<std::int64_t> ids = rve_ids(n);
+  farm::RveFarm f = dem_farm_in_one_cell(a, comm, ids);
   if (f.rank() != 0) {
     f.serve();
     return;
