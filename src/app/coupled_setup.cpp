@@ -116,10 +116,7 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
   c.checkpoint.keep = static_cast<int>(job.integer("output.checkpoint_keep"));
   c.balance.threshold = job.number("farm.rebalance_threshold");
   c.balance.check_every = job.integer("farm.rebalance_check_every");
-  const std::string wait = job.text("farm.wait");
-  c.farm.wait = wait == "spin"    ? farm::WaitMode::spin
-                : wait == "sleep" ? farm::WaitMode::sleep
-                                  : farm::WaitMode::automatic;
+  c.farm.wait = farm::wait_mode_from(job.text("farm.wait"));
   c.validate();
   return c;
 }

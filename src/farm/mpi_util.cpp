@@ -130,6 +130,13 @@ const char* to_string(WaitMode mode) {
   return "?";
 }
 
+WaitMode wait_mode_from(const std::string& text) {
+  for (const WaitMode m : {WaitMode::automatic, WaitMode::spin, WaitMode::sleep}) {
+    if (text == to_string(m)) return m;
+  }
+  throw common::InputError("wait mode '" + text + "': must be one of auto, spin, sleep");
+}
+
 WaitMode resolve_wait_mode(MPI_Comm comm, WaitMode mode) {
   if (mode != WaitMode::automatic) return mode;
   MPI_Comm node = MPI_COMM_NULL;

@@ -21,6 +21,8 @@ enum class WaitMode {
 
 /// "auto", "spin", "sleep".
 const char* to_string(WaitMode mode);
+/// The inverse of to_string. Throws common::InputError for any other text.
+WaitMode wait_mode_from(const std::string& text);
 
 /// Collective over `comm`. `automatic` becomes `spin` when the OpenMP threads of the ranks that
 /// share this rank's node (sum of omp_get_max_threads) fit in the cores they may run on (union of

@@ -79,10 +79,7 @@ farm::MicroKind dem_kind(const std::string& packing_file) {
 
 farm::FarmOptions farm_options(const Args& a) {
   farm::FarmOptions o;
-  const std::string w = a.get("wait", "auto");
-  o.wait = w == "spin"    ? farm::WaitMode::spin
-           : w == "sleep" ? farm::WaitMode::sleep
-                          : farm::WaitMode::automatic;
+  o.wait = farm::wait_mode_from(a.get("wait", "auto"));
   o.omp_over_rves = a.get("omp-over-rves", "1") == "1";
   return o;
 }
