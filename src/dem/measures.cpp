@@ -10,13 +10,6 @@ namespace dem {
 using common::Mat3;
 using common::Vec3;
 
-double pressure(const Mat3& sigma) { return -sigma.trace() / 3.0; }
-
-double deviatoric(const Mat3& sigma) {
-  const Mat3 s = sigma - sigma.trace() / 3.0 * Mat3::Identity();
-  return std::sqrt(1.5 * (s.array() * s.array()).sum());
-}
-
 double void_ratio(const Simulation& sim) {
   double vs = 0.0;
   for (double r : sim.spheres().r) vs += 4.0 / 3.0 * std::numbers::pi * r * r * r;

@@ -2,16 +2,15 @@
 // (with and without rattlers), void ratio, unbalanced force, kinetic energy.
 #pragma once
 
+#include "common/tensor.hpp"
 #include "common/types.hpp"
 #include "dem/simulation.hpp"
 
 namespace dem {
 
-/// Mean pressure, compression positive: -tr(sigma)/3 [Pa] (sigma tension positive).
-[[nodiscard]] double pressure(const common::Mat3& sigma);
-/// Deviatoric stress q = sqrt(3/2 s:s), s = sigma - tr(sigma)/3 I [Pa] (>= 0). For a triaxial
-/// state this is |sigma_a - sigma_r|.
-[[nodiscard]] double deviatoric(const common::Mat3& sigma);
+// p = -tr(sigma)/3 and q = sqrt(3/2 s:s) (for a triaxial state |sigma_a - sigma_r|): one home.
+using common::deviatoric;
+using common::pressure;
 
 struct Measures {
   common::Mat3 stress = common::Mat3::Zero();  ///< Love-Weber, tension positive [Pa]

@@ -1,13 +1,13 @@
 // ElasticMicro: hypoelastic verification micro model (see header).
 #include "farm/elastic_micro.hpp"
 
-#include <Eigen/LU>
 #include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 
 namespace farm {
 
@@ -16,13 +16,6 @@ namespace {
 void bad(const char* key, double value, const char* rule) {
   throw common::InputError(std::string("farm elastic micro model: ") + key + " = " +
                            std::to_string(value) + ": " + rule);
-}
-
-double pressure(const common::Mat3& s) { return -s.trace() / 3.0; }
-
-double deviatoric(const common::Mat3& s) {
-  const common::Mat3 dev = s - (s.trace() / 3.0) * common::Mat3::Identity();
-  return std::sqrt(1.5 * dev.cwiseProduct(dev).sum());
 }
 
 }  // namespace
@@ -49,19 +42,11 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
         "elastic micro model: injected failure (fail_id = " + std::to_string(params_.fail_id) +
         ", fail_step = " + std::to_string(params_.fail_step) + ")");
   }
-  const double nu = params_.poisson;
-  const double lambda = params_.young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const double mu = params_.young / (2.0 * (1.0 + nu));
-  const common::Mat3 I = common::Mat3::Identity();
-  const common::Mat3 D = 0.5 * (L + L.transpose());
-  const common::Mat3 W = 0.5 * (L - L.transpose());
   const double h = dt / static_cast<double>(params_.substeps);
-  // Hughes-Winget: Q = (I - h W / 2)^-1 (I + h W / 2) is exactly orthogonal (objective update).
-  const common::Mat3 Q = (I - 0.5 * h * W).inverse() * (I + 0.5 * h * W);
-  const common::Mat3 dsig = h * (lambda * D.trace() * I + 2.0 * mu * D);
-  const double dj = (I + h * L).determinant();
+  const common::HughesWinget update(L, h, common::lame(params_.young, params_.poisson));
+  const double dj = (common::Mat3::Identity() + h * L).determinant();
   for (std::int64_t k = 0; k < params_.substeps; ++k) {
-    stress_ = Q * stress_ * Q.transpose() + dsig;
+    stress_ = update.apply(stress_);
     j_ *= dj;
   }
   if (!stress_.allFinite()) {
@@ -78,17 +63,15 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
 
 MicroReport ElasticMicro::report() const {
   MicroReport r;
-  r.p = pressure(stress_);
-  r.q = deviatoric(stress_);
+  r.p = common::pressure(stress_);
+  r.q = common::deviatoric(stress_);
   r.void_ratio = (1.0 + params_.void_ratio0) * j_ - 1.0;
   return r;
 }
 
 double ElasticMicro::wave_speed() const {
-  const double nu = params_.poisson;
-  const double lambda = params_.young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const double mu = params_.young / (2.0 * (1.0 + nu));
-  return std::sqrt((lambda + 2.0 * mu) / params_.density);
+  const common::Lame c = common::lame(params_.young, params_.poisson);
+  return std::sqrt((c.lambda + 2.0 * c.mu) / params_.density);
 }
 
 void ElasticMicro::save(common::StateWriter& w) const {

@@ -1,11 +1,11 @@
 // Hypoelastic linear elasticity, Jaumann rate, Hughes-Winget rotation (see header).
 #include "mpm/linear_elastic.hpp"
 
-#include <Eigen/LU>
 #include <cmath>
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 #include "mpm/parallel.hpp"
 
 namespace mpm {
@@ -25,8 +25,9 @@ LinearElastic::LinearElastic(double youngs_modulus, double poisson_ratio, double
     throw common::InputError("mpm linear elastic: density = " + std::to_string(density) +
                              ": must be > 0 kg/m^3");
   }
-  lambda_ = youngs_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
-  mu_ = youngs_modulus / (2.0 * (1.0 + poisson_ratio));
+  const common::Lame c = common::lame(youngs_modulus, poisson_ratio);
+  lambda_ = c.lambda;
+  mu_ = c.mu;
 }
 
 void LinearElastic::ensure(std::int64_t id) {
@@ -41,14 +42,11 @@ void LinearElastic::update_stress(std::span<const std::int64_t> ids,
   MPMXDEM_CHECK(ids.size() == L.size() && ids.size() == stress.size(), "span sizes differ");
   for (const std::int64_t id : ids) ensure(id);
   const auto n = static_cast<std::int64_t>(ids.size());
-  const common::Mat3 I = common::Mat3::Identity();
+  const common::Lame c{lambda_, mu_};
   for_each_index(n, [&](std::int64_t p) {
-    const common::Mat3& L_p = L[static_cast<std::size_t>(p)];
-    const common::Mat3 D = 0.5 * (L_p + L_p.transpose());
-    const common::Mat3 W = 0.5 * (L_p - L_p.transpose());
-    const common::Mat3 Q = (I - 0.5 * dt * W).inverse() * (I + 0.5 * dt * W);
+    const common::HughesWinget update(L[static_cast<std::size_t>(p)], dt, c);
     common::Mat3& s = stress_[static_cast<std::size_t>(ids[static_cast<std::size_t>(p)])];
-    s = Q * s * Q.transpose() + dt * (lambda_ * D.trace() * I + 2.0 * mu_ * D);
+    s = update.apply(s);
     stress[static_cast<std::size_t>(p)] = s;
   });
 }
