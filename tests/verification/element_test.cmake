@@ -2,12 +2,9 @@
 # pure DEM (`mpmxdem dem`, its [dem.loading]) into DIR, then compares the two with COMPARE
 # (compare_element_test: q and eps_v against axial strain, tolerances TOL_Q and TOL_EPS_V on
 # eps_a in [EPS_FROM, EPS_TO]). Run from the source root.
+include(${CMAKE_CURRENT_LIST_DIR}/../jobs/mpmxdem_run.cmake)
 file(REMOVE_RECURSE "${DIR}")
-execute_process(COMMAND "${MPIEXEC}" -n ${NP} --bind-to none "${EXE}" run "${JOB}" --out "${DIR}/coupled"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "mpmxdem run failed (${rc}):\n${out}\n${err}")
-endif()
+mpmxdem_run(${NP} "${JOB}" --out "${DIR}/coupled")
 execute_process(COMMAND "${EXE}" dem "${JOB}" --out "${DIR}/dem" RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "mpmxdem dem failed (${rc}):\n${err}")
