@@ -20,16 +20,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
+/// This rank and the rank count of MPI_COMM_WORLD.
+struct World {
+  int rank = 0;
+  int size = 1;
+};
+World world() {
+  World w;
+  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+  return w;
 }
-int world_size() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+int world_rank() { return world().rank; }
+int world_size() { return world().size; }
 
 /// A directory shared by the ranks (rank 0's pid), emptied.
 std::string scratch(const std::string& name) {
