@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "common/state_store.hpp"
-#include "farm/checksum.hpp"
 
 namespace farm {
 

@@ -50,10 +50,6 @@ template <class T>
   return sum;
 }
 
-/// checksum() of n 8-byte words at global word index `first` (the form used before the typed
-/// layer; kept for tools).
-[[nodiscard]] std::uint64_t hash_words(const void* data, std::size_t n, std::uint64_t first);
-
 /// "0x" and 16 hex digits.
 [[nodiscard]] std::string hex(std::uint64_t v);
 

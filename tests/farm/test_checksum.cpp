@@ -57,9 +57,3 @@ TEST(Checksum, SensitiveToPositionAndBits) {
   EXPECT_NE(farm::checksum(std::span<const double>(zeros), 0),
             farm::checksum(std::span<const double>(negative_zero), 0));
 }
-
-TEST(Checksum, HashWordsIsTheChecksumOfWords) {
-  const std::vector<double> v = values();
-  EXPECT_EQ(farm::hash_words(v.data(), v.size(), 42),
-            farm::checksum(std::span<const double>(v), 42));
-}
