@@ -53,8 +53,8 @@ FarmOptions resolved(MPI_Comm comm, FarmOptions options) {
 
 }  // namespace
 
-RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
-                 const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options)
+RveFarm::RveFarm(Setup /*tag*/, MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
+                 const mpm::Grid& grid, FarmOptions options)
     : comm_(dup_comm(comm)),
       rank_(rank_of(comm_)),
       size_(size_of(comm_)),
@@ -63,7 +63,11 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
       grid_(grid),
       placement_(std::move(ids), rank_, size_),
       models_(placement_.size()),
-      exchange_(comm_, options_.wait) {
+      exchange_(comm_, options_.wait) {}
+
+RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
+                 const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options)
+    : RveFarm(Setup{}, comm, std::move(kind), std::move(ids), grid, options) {
   ErrorKind kind_err = ErrorKind::none;
   std::string msg;
   for (const std::size_t k : placement_.local()) {
@@ -78,19 +82,12 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
   }
   agree_on_errors(comm_, kind_err, msg);
   initial_costs_and_partition(x, nullptr);
+  stopped_ = false;  // the workers serve from here on
 }
 
 RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo& info,
                  const std::vector<common::Vec3>& x, const mpm::Grid& grid, FarmOptions options)
-    : comm_(dup_comm(comm)),
-      rank_(rank_of(comm_)),
-      size_(size_of(comm_)),
-      kind_(std::move(kind)),
-      options_(resolved(comm_, options)),
-      grid_(grid),
-      placement_(info.ids, rank_, size_),
-      models_(placement_.size()),
-      exchange_(comm_, options_.wait) {
+    : RveFarm(Setup{}, comm, std::move(kind), info.ids, grid, options) {
   const std::vector<std::size_t>& local = placement_.local();
   std::vector<std::int64_t> local_i64(local.begin(), local.end());
   std::vector<common::StateStore> states = read_checkpoint_rves(comm_, info, local_i64);
@@ -109,6 +106,7 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, const CheckpointInfo& info,
   agree_on_errors(comm_, kind_err, msg);
   set_step(info.step);
   initial_costs_and_partition(x, &info.cost);
+  stopped_ = false;  // the workers serve from here on
 }
 
 RveFarm::~RveFarm() {

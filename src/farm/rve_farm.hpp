@@ -111,6 +111,11 @@ class RveFarm final : public mpm::MaterialModel {
   [[nodiscard]] const RebalancePlan& last_plan() const { return last_plan_; }
 
  private:
+  struct Setup {};
+  /// The members every constructor sets up; the object counts as stopped until a public
+  /// constructor completes (a failing one must not make rank 0's destructor send a command).
+  RveFarm(Setup tag, MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
+          const mpm::Grid& grid, FarmOptions options);
   /// Every rank: advance my RVEs under the L of the command; rank 0 stores the gathered records
   /// and writes `stress` (by point slot).
   void exec_step(const CommandHeader& h, std::span<common::Mat3> stress);
@@ -145,7 +150,7 @@ class RveFarm final : public mpm::MaterialModel {
   CostLedger ledger_;
   std::int64_t step_ = 0;
   RebalancePlan last_plan_;  ///< rank 0
-  bool stopped_ = false;
+  bool stopped_ = true;      ///< the workers left serve() (or never entered it)
 };
 
 }  // namespace farm
