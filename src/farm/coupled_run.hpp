@@ -22,13 +22,11 @@ class CoupledRun {
   /// Collective: validates the config, reads the checkpoint `restart` (null: a fresh run) and
   /// builds the farm. Errors are thrown on every rank alike (driver.hpp).
   CoupledRun(const CoupledConfig& config, MPI_Comm comm, const std::string* restart);
-  /// Collective: steps to the end (rank 0 drives, other ranks serve). Once.
+  /// Collective: steps to the end (rank 0 drives the solver, outputs, checkpoints and balancing;
+  /// the other ranks serve the farm). Call once. `config` must outlive the object.
   RunSummary run();
 
  private:
-  /// Rank 0: the MPM solver around the farm until the end; fills `sum`.
-  void drive(RunSummary& sum);
-
   const CoupledConfig& cfg_;
   MPI_Comm comm_;
   int rank_ = 0;
