@@ -13,20 +13,12 @@
 #include "app/output_dir.hpp"
 #include "app/version.hpp"
 #include "common/errors.hpp"
+#include "farm/mpi_util.hpp"
 
 namespace app {
 
-namespace {
-void bcast_string(std::string& s, const Comm& comm) {
-  std::uint64_t n = s.size();
-  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm.comm);
-  s.resize(n);
-  if (n > 0) MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, comm.comm);
-}
-}  // namespace
-
 void bcast_error(std::string& error, const Comm& comm) {
-  bcast_string(error, comm);
+  farm::bcast_string(comm.comm, error);
   if (!error.empty()) throw common::InputError(error);
 }
 
@@ -42,7 +34,7 @@ Job load_job_collective(const std::string& path, const Comm& comm) {
     }
   }
   bcast_error(error, comm);
-  bcast_string(text, comm);
+  farm::bcast_string(comm.comm, text);
   return Job::parse(text, path);
 }
 

@@ -3,8 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-
 #include "common/errors.hpp"
 
 namespace app {
@@ -33,22 +31,6 @@ void create_output_dir(const fs::path& dir) {
     throw common::InputError(
         fmt::format("cannot create output directory '{}': {}", dir.string(), ec.message()));
   }
-}
-
-void write_file_atomic(const fs::path& path, const std::string& content) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw common::InputError(fmt::format("cannot write '{}'", tmp.string()));
-    out << content;
-    out.flush();
-    if (!out) throw common::InputError(fmt::format("cannot write '{}' (disk full?)", tmp.string()));
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec)
-    throw common::InputError(
-        fmt::format("cannot rename '{}' to '{}': {}", tmp.string(), path.string(), ec.message()));
 }
 
 fs::path default_output_dir(const std::string& job_path) {

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "common/atomic_file.hpp"
+
 namespace app {
 
 /// Checks, without writing anything, that `dir` may receive a run's output. Throws
@@ -12,9 +14,9 @@ namespace app {
 void check_output_dir(const std::filesystem::path& dir, bool force, bool restart);
 /// Creates the directory (and parents).
 void create_output_dir(const std::filesystem::path& dir);
-/// Writes `content` to `path` through a temporary file and a rename: readers see the old file or
-/// the new one, never a partial one.
-void write_file_atomic(const std::filesystem::path& path, const std::string& content);
+/// Writes a file atomically (tmp + fsync + rename): readers see the old file or the new one, never
+/// a partial one. Throws common::IoError. One home: common/atomic_file.hpp.
+using common::write_file_atomic;
 /// Default output directory of a job: results/<job file stem>.
 [[nodiscard]] std::filesystem::path default_output_dir(const std::string& job_path);
 
