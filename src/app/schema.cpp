@@ -1,6 +1,8 @@
 // Schema helpers, range rules and the Markdown reference generated from the schema.
 #include "app/schema.hpp"
 
+#include "app/schema_params.hpp"
+
 #include <fmt/format.h>
 
 #include <sstream>
@@ -38,6 +40,30 @@ std::vector<const Key*> Schema::children(const std::string& parent) const {
 std::string Schema::section_doc(const std::string& path) const {
   const Key* k = find(path);
   return k != nullptr ? k->doc : std::string();
+}
+
+Quantity quantity_of(common::Unit u) {
+  switch (u) {
+    case common::Unit::none:
+      return Quantity::Dimensionless;
+    case common::Unit::length:
+      return Quantity::Length;
+    case common::Unit::pressure:
+      return Quantity::Pressure;
+    case common::Unit::angle:
+      return Quantity::Angle;
+    case common::Unit::time:
+      return Quantity::Time;
+    case common::Unit::density:
+      return Quantity::Density;
+    case common::Unit::velocity:
+      return Quantity::Velocity;
+    case common::Unit::acceleration:
+      return Quantity::Acceleration;
+    case common::Unit::rate:
+      return Quantity::Rate;
+  }
+  return Quantity::Dimensionless;
 }
 
 namespace {
