@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <sstream>
 
 namespace app {
@@ -43,27 +44,12 @@ std::string Schema::section_doc(const std::string& path) const {
 }
 
 Quantity quantity_of(common::Unit u) {
-  switch (u) {
-    case common::Unit::none:
-      return Quantity::Dimensionless;
-    case common::Unit::length:
-      return Quantity::Length;
-    case common::Unit::pressure:
-      return Quantity::Pressure;
-    case common::Unit::angle:
-      return Quantity::Angle;
-    case common::Unit::time:
-      return Quantity::Time;
-    case common::Unit::density:
-      return Quantity::Density;
-    case common::Unit::velocity:
-      return Quantity::Velocity;
-    case common::Unit::acceleration:
-      return Quantity::Acceleration;
-    case common::Unit::rate:
-      return Quantity::Rate;
-  }
-  return Quantity::Dimensionless;
+  // Indexed by common::Unit, in its order (a test checks the units agree).
+  constexpr std::array kQuantities{
+      Quantity::Dimensionless, Quantity::Length,       Quantity::Pressure,
+      Quantity::Angle,         Quantity::Time,         Quantity::Density,
+      Quantity::Velocity,      Quantity::Acceleration, Quantity::Rate};
+  return kQuantities.at(static_cast<std::size_t>(u));
 }
 
 namespace {

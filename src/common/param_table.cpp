@@ -1,6 +1,7 @@
 // Parameter tables: range rules in words and the out-of-range error (see param_table.hpp).
 #include "common/param_table.hpp"
 
+#include <array>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -8,27 +9,10 @@
 namespace common {
 
 std::string_view unit_symbol(Unit u) {
-  switch (u) {
-    case Unit::none:
-      return "";
-    case Unit::length:
-      return "m";
-    case Unit::pressure:
-      return "Pa";
-    case Unit::angle:
-      return "deg";
-    case Unit::time:
-      return "s";
-    case Unit::density:
-      return "kg/m^3";
-    case Unit::velocity:
-      return "m/s";
-    case Unit::acceleration:
-      return "m/s^2";
-    case Unit::rate:
-      return "1/s";
-  }
-  return "";
+  // Indexed by Unit, in its order.
+  constexpr std::array<std::string_view, 9> kSymbols{"",       "m",   "Pa",    "deg", "s",
+                                                     "kg/m^3", "m/s", "m/s^2", "1/s"};
+  return kSymbols.at(static_cast<std::size_t>(u));
 }
 
 namespace {

@@ -6,6 +6,7 @@
 
 #include "app/dem_setup.hpp"
 #include "app/job.hpp"
+#include "app/schema_params.hpp"
 #include "common/param_table.hpp"
 #include "dem/params.hpp"
 #include "dem/rve.hpp"
@@ -79,6 +80,15 @@ void expect_rows_in_schema(const common::ParamTable<S, N>& table) {
       EXPECT_EQ(std::get<double>(*k->fallback), row.default_value()) << k->path;
     }
   }
+}
+
+TEST(Schema, EveryTableUnitIsTheJobQuantityOfTheSameUnit) {
+  using U = common::Unit;
+  for (U u : {U::none, U::length, U::pressure, U::angle, U::time, U::density, U::velocity,
+              U::acceleration, U::rate}) {
+    EXPECT_EQ(app::canonical_unit(app::quantity_of(u)), common::unit_symbol(u));
+  }
+  EXPECT_EQ(app::quantity_of(U::none), app::Quantity::Dimensionless);
 }
 
 TEST(Schema, DemTablesAreTheSchemaOfTheirSections) {
