@@ -71,7 +71,8 @@ inline constexpr auto kNumerics = common::make_table<Numerics>(
       "Fraction of the critical time step used."},
      {"verlet_skin", &Numerics::skin_factor, Unit::none, common::gt(0), Source::job_default,
       "Verlet skin as a fraction of the largest radius: the neighbour list keeps pairs whose gap "
-      "is below it and is rebuilt when motion could close it (speed, not physics)."},
+      "is below it and is rebuilt when motion could close it (speed and round-off, not "
+      "physics)."},
      {"dt_refresh", &Numerics::dt_refresh, Unit::none, common::ge(1), Source::cpp_only,
       "Steps between critical time step refreshes."},
      {"max_skew", &Numerics::max_skew, Unit::none, common::ge(0.5), Source::cpp_only,
