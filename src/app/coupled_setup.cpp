@@ -10,6 +10,7 @@
 
 #include "app/dem_setup.hpp"
 #include "app/mpm_setup.hpp"
+#include "app/schema_params.hpp"
 #include "farm/dem_micro.hpp"
 #include "farm/elastic_micro.hpp"
 
@@ -38,9 +39,7 @@ dem::RveParams rve_params(const Job& job) {
   dem::RveParams p;
   p.material = dem_material(job);
   p.numerics = dem_numerics(job);
-  p.inertial_number = job.number("dem.coupling.inertial_number");
-  p.p_floor = job.number("dem.coupling.pressure_floor");
-  p.max_strain_per_step = job.number("dem.coupling.max_strain_per_step");
+  fill_from_job(job, dem::kRveParams, p);
   p.initial_pressure = 0.0;  // the prototype is prepared by prepared_sample()
   p.validate();
   return p;

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "app/progress.hpp"
+#include "app/schema_params.hpp"
 #include "dem/element_test.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
@@ -18,25 +19,14 @@ namespace app {
 
 dem::Material dem_material(const Job& job) {
   dem::Material m;
-  m.density = job.number("dem.material.density");
-  m.young = job.number("dem.material.young_modulus");
-  m.ks_over_kn = job.number("dem.material.stiffness_ratio");
-  m.friction_deg = job.number("dem.material.friction_angle");
-  m.alpha_r = job.number("dem.material.rolling_stiffness");
-  m.eta_r = job.number("dem.material.rolling_strength");
-  if (job.has("dem.material.twisting.stiffness")) {
-    m.alpha_t = job.number("dem.material.twisting.stiffness");
-    m.eta_t = job.number("dem.material.twisting.strength");
-  }
+  fill_from_job(job, dem::kMaterial, m);
   m.validate();
   return m;
 }
 
 dem::Numerics dem_numerics(const Job& job) {
   dem::Numerics n;
-  n.damping = job.number("dem.numerics.damping");
-  n.dt_safety = job.number("dem.numerics.timestep_safety");
-  n.skin_factor = job.number("dem.numerics.verlet_skin");
+  fill_from_job(job, dem::kNumerics, n);
   n.validate();
   return n;
 }

@@ -1,6 +1,10 @@
 // Job-file sections of the DEM (the RVE): [dem.material], [dem.sample], [dem.preparation],
-// [dem.numerics], [dem.coupling], [dem.loading]. Contact law: ../shared/reference/README.md (YADE).
+// [dem.numerics], [dem.coupling], [dem.loading]. The material, numerics and coupling keys are the
+// rows of dem's parameter tables (dem/params.hpp, dem/rve.hpp).
 #include "app/schema.hpp"
+#include "app/schema_params.hpp"
+#include "dem/params.hpp"
+#include "dem/rve.hpp"
 
 namespace app {
 
@@ -13,34 +17,9 @@ void add_dem_sections(Schema& s) {
         "Grain and contact parameters (YADE CohFrictMat with rolling resistance, Aboul Hosn et al. "
         "2017).")
       .need();
-  s.add("dem.material.density", Type::Float, "Grain density rho.")
-      .unit(Q::Density)
-      .in(0, std::nullopt, true)
-      .need();
-  s.add("dem.material.young_modulus", Type::Float, "Contact modulus E: kn = 2 E R1 R2 / (R1 + R2).")
-      .unit(Q::Pressure)
-      .in(0, std::nullopt, true)
-      .need();
-  s.add("dem.material.stiffness_ratio", Type::Float, "ks / kn (YADE's `poisson`).")
-      .in(0, std::nullopt, true)
-      .need();
-  s.add("dem.material.friction_angle", Type::Float, "Inter-particle friction angle phi.")
-      .unit(Q::Angle)
-      .in(0, 90, false, true)
-      .need();
-  s.add("dem.material.rolling_stiffness", Type::Float, "alpha_r: kr = alpha_r ks R1 R2.")
-      .in(0, std::nullopt)
-      .need();
-  s.add("dem.material.rolling_strength", Type::Float,
-        "eta_r: |Mr| <= eta_r min(R1, R2) Fn; a negative value means no cap (purely elastic).")
-      .need();
+  add_params(s, dem::kMaterial);
   s.add("dem.material.twisting", Type::Table, "Twisting resistance; absent: no twisting moment.");
-  s.add("dem.material.twisting.stiffness", Type::Float, "alpha_t: kt = alpha_t ks R1 R2.")
-      .in(0, std::nullopt)
-      .need();
-  s.add("dem.material.twisting.strength", Type::Float,
-        "eta_t: twisting cap coefficient; negative: no cap.")
-      .need();
+  add_params(s, dem::kMaterial, "twisting");
 
   s.add("dem.sample", Type::Table,
         "The sphere sample: loaded from a packing file, or generated as a cloud.")
@@ -89,30 +68,10 @@ void add_dem_sections(Schema& s) {
       .or_default(1e-3);
 
   s.add("dem.numerics", Type::Table, "Numerical knobs of the DEM.");
-  s.add("dem.numerics.damping", Type::Float, "Cundall non-viscous damping coefficient lambda.")
-      .in(0, 1, false, true)
-      .or_default(0.2);
-  s.add("dem.numerics.timestep_safety", Type::Float, "Fraction of the critical time step used.")
-      .in(0, 1, true, false)
-      .or_default(0.8);
-  s.add("dem.numerics.verlet_skin", Type::Float, "Verlet skin as a fraction of the mean radius.")
-      .in(0, std::nullopt, true)
-      .or_default(0.1);
+  add_params(s, dem::kNumerics);
 
   s.add("dem.coupling", Type::Table, "The RVE step of MPM x DEM (paper eqs. 11-12).");
-  s.add("dem.coupling.inertial_number", Type::Float,
-        "Inertial number I_n of the quasi-static time T_p (eq. 11).")
-      .in(0, 1, true, true)
-      .need();
-  s.add("dem.coupling.max_strain_per_step", Type::Float,
-        "Guard: largest strain increment of one DEM step.")
-      .in(0, 1, true, true)
-      .or_default(1e-5);
-  s.add("dem.coupling.pressure_floor", Type::Float,
-        "Guard: smallest pressure used in T_p (an RVE losing its contacts).")
-      .unit(Q::Pressure)
-      .in(0, std::nullopt, true)
-      .or_default(1e3);
+  add_params(s, dem::kRveParams);
 
   s.add("dem.loading", Type::Table, "The loading programme of a pure DEM job (`mpmxdem dem`).");
   s.add("dem.loading.type", Type::String, "What to do after preparation.")

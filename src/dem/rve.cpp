@@ -20,20 +20,7 @@ using common::Mat3;
 void RveParams::validate() const {
   material.validate();
   numerics.validate();
-  auto bad = [](const char* key, double v, const char* rule) {
-    std::ostringstream os;
-    os << key << " = " << v << ": " << rule;
-    throw common::InputError(os.str());
-  };
-  if (!(inertial_number > 0.0)) bad("dem.rve.inertial_number", inertial_number, "must be > 0");
-  if (!(d50 >= 0.0)) bad("dem.rve.d50", d50, "must be >= 0 (0: from the spheres) [m]");
-  if (!(p_floor > 0.0)) bad("dem.rve.p_floor", p_floor, "must be > 0 [Pa]");
-  if (!(max_strain_per_step > 0.0))
-    bad("dem.rve.max_strain_per_step", max_strain_per_step, "must be > 0");
-  if (max_steps_per_call < 1)
-    bad("dem.rve.max_steps_per_call", static_cast<double>(max_steps_per_call), "must be >= 1");
-  if (!(initial_pressure >= 0.0))
-    bad("dem.rve.initial_pressure", initial_pressure, "must be >= 0 [Pa]");
+  common::check_ranges(kRveParams, *this);
 }
 
 double mass_median_diameter(const std::vector<double>& radii) {

@@ -14,19 +14,41 @@
 
 namespace dem {
 
-/// Parameters of an RVE: material, numerics and the quasi-static step control.
+/// Parameters of an RVE: material, numerics and the quasi-static step control. The member
+/// initializers are the defaults of the job keys too (kRveParams).
 struct RveParams {
   Material material;
   Numerics numerics;
   double inertial_number = 2.5e-4;    ///< I of eq. (11) [-], > 0
   double d50 = 0.0;                   ///< d50 of eq. (11) [m]; 0: mass median of the spheres
   double p_floor = 1e3;               ///< floor on p in eq. (11) [Pa], > 0
-  double max_strain_per_step = 1e-4;  ///< bound on max|L dt_DEM| per DEM step [-]
+  double max_strain_per_step = 1e-5;  ///< bound on max|L dt_DEM| per DEM step [-]
   std::int64_t max_steps_per_call = 2'000'000;  ///< cap on DEM steps per step() [-]
   double initial_pressure = 0.0;  ///< > 0: equilibrate isotropically at construction [Pa]
 
+  /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
+  /// kNumerics, kRveParams).
   void validate() const;
 };
+
+/// [dem.coupling] and the C++-only step controls of RveParams (material and numerics: kMaterial,
+/// kNumerics).
+inline constexpr auto kRveParams = common::make_table<RveParams>(
+    "dem::RveParams", "dem.coupling",
+    {{"inertial_number", &RveParams::inertial_number, Unit::none, common::in_oo(0, 1),
+      Source::job_required, "Inertial number I_n of the quasi-static time T_p (eq. 11)."},
+     {"max_strain_per_step", &RveParams::max_strain_per_step, Unit::none, common::in_oo(0, 1),
+      Source::job_default,
+      "Guard: largest strain increment of one DEM step (more DEM steps than T_p / dt_DEM when "
+      "needed)."},
+     {"pressure_floor", &RveParams::p_floor, Unit::pressure, common::gt(0), Source::job_default,
+      "Guard: smallest pressure used in T_p (an RVE losing its contacts)."},
+     {"d50", &RveParams::d50, Unit::length, common::ge(0), Source::cpp_only,
+      "d50 of eq. (11); 0: the mass median of the spheres."},
+     {"max_steps_per_call", &RveParams::max_steps_per_call, Unit::none, common::ge(1),
+      Source::cpp_only, "Cap on the DEM steps of one step()."},
+     {"initial_pressure", &RveParams::initial_pressure, Unit::pressure, common::ge(0),
+      Source::cpp_only, "> 0: equilibrate isotropically at construction."}});
 
 /// Bits of StepReport::guards.
 enum RveGuard : std::uint32_t {

@@ -111,6 +111,10 @@ TEST(CoupledSetup, CreatesAndRestoresTheModelOfEachPoint) {
   EXPECT_NEAR(-s.trace() / 3.0, 1e5, 0.03e5);
   EXPECT_DOUBLE_EQ(as_dem->rve().params().inertial_number, 1e-2);
   EXPECT_DOUBLE_EQ(as_dem->rve().params().p_floor, 2e3);
+  // Keys the job leaves out take the C++ defaults (one home: dem's parameter tables).
+  EXPECT_EQ(as_dem->rve().params().max_strain_per_step, dem::RveParams{}.max_strain_per_step);
+  EXPECT_EQ(as_dem->rve().params().numerics.skin_factor, dem::Numerics{}.skin_factor);
+  EXPECT_EQ(as_dem->rve().params().numerics.damping, dem::Numerics{}.damping);
   EXPECT_NEAR(as_dem->rve().d50(), 2e-4, 1e-12);  // PSD linear in mass between 130 and 270 um
   // A second RVE of the rank is a copy of the same prototype.
   EXPECT_EQ(c.micro.create(dem_id)->stress(), s);

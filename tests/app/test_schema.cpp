@@ -1,7 +1,15 @@
-// Tests of the job schema itself: consistent paths, documented keys, no defaults on physics.
+// Tests of the job schema itself: consistent paths, documented keys, no defaults on physics, and
+// the dem parameter tables as the one home of their keys.
 #include "app/schema.hpp"
 
 #include <gtest/gtest.h>
+
+#include "app/dem_setup.hpp"
+#include "app/job.hpp"
+#include "app/schema_params.hpp"
+#include "common/param_table.hpp"
+#include "dem/params.hpp"
+#include "dem/rve.hpp"
 
 TEST(Schema, EveryKeyHasADocumentedParentSection) {
   const auto& s = app::job_schema();
@@ -46,3 +54,90 @@ TEST(Schema, PhysicalParametersHaveNoDefaults) {
     }
   }
 }
+
+namespace {
+
+// Rows of a dem parameter table are schema keys with the table's rule, unit and default, so a job
+// error and the struct's validate() state the same rule for the same key.
+template <class S, std::size_t N>
+void expect_rows_in_schema(const common::ParamTable<S, N>& table) {
+  const auto& s = app::job_schema();
+  for (const auto& row : table) {
+    const app::Key* k = s.find(table.name(row));
+    if (!row.in_job()) {
+      EXPECT_EQ(k, nullptr) << table.name(row) << " is C++ only";
+      continue;
+    }
+    ASSERT_NE(k, nullptr) << table.name(row);
+    EXPECT_EQ(k->doc, row.doc);
+    EXPECT_EQ(app::canonical_unit(k->quantity), common::unit_symbol(row.unit)) << k->path;
+    if (row.range.lo || row.range.hi) {
+      EXPECT_EQ(app::range_rule(*k), row.range.rule(row.unit)) << k->path;
+    }
+    EXPECT_EQ(k->required, row.source == common::Source::job_required) << k->path;
+    if (!k->required) {
+      ASSERT_TRUE(k->fallback.has_value()) << k->path;
+      EXPECT_EQ(std::get<double>(*k->fallback), row.default_value()) << k->path;
+    }
+  }
+}
+
+TEST(Schema, EveryTableUnitIsTheJobQuantityOfTheSameUnit) {
+  using U = common::Unit;
+  for (U u : {U::none, U::length, U::pressure, U::angle, U::time, U::density, U::velocity,
+              U::acceleration, U::rate}) {
+    EXPECT_EQ(app::canonical_unit(app::quantity_of(u)), common::unit_symbol(u));
+  }
+  EXPECT_EQ(app::quantity_of(U::none), app::Quantity::Dimensionless);
+}
+
+TEST(Schema, DemTablesAreTheSchemaOfTheirSections) {
+  expect_rows_in_schema(dem::kMaterial);
+  expect_rows_in_schema(dem::kNumerics);
+  expect_rows_in_schema(dem::kRveParams);
+}
+
+const char* kDemJob = R"([dem.material]
+density = "2650 kg/m^3"
+young_modulus = "300 MPa"
+stiffness_ratio = 0.5
+friction_angle = "0.5 rad"
+rolling_stiffness = 2.0
+rolling_strength = 0.3
+[dem.material.twisting]
+stiffness = 1.5
+strength = -1.0
+[dem.sample]
+spheres = 60
+psd_diameters = ["130 um", "270 um"]
+psd_passing = [0.0, 1.0]
+[dem.preparation]
+pressure = "100 kPa"
+friction_angle = "10 deg"
+[dem.numerics]
+verlet_skin = 0.25
+[dem.loading]
+type = "isotropic"
+inertial_number = 1e-3
+confining_pressure = "200 kPa"
+)";
+
+TEST(Schema, JobValuesFillTheDemStructsAndAbsentKeysTakeTheStructDefaults) {
+  const app::Job job = app::Job::parse(kDemJob, "dem.toml");
+  const dem::Material m = app::dem_material(job);
+  EXPECT_EQ(m.density, 2650.0);
+  EXPECT_EQ(m.young, 3e8);
+  EXPECT_EQ(m.ks_over_kn, 0.5);
+  EXPECT_NEAR(m.friction_deg, 28.647889756541161, 1e-12);
+  EXPECT_EQ(m.alpha_r, 2.0);
+  EXPECT_EQ(m.eta_r, 0.3);
+  EXPECT_EQ(m.alpha_t, 1.5);
+  EXPECT_EQ(m.eta_t, -1.0);
+  const dem::Numerics n = app::dem_numerics(job);
+  EXPECT_EQ(n.skin_factor, 0.25);
+  EXPECT_EQ(n.damping, dem::Numerics{}.damping);
+  EXPECT_EQ(n.dt_safety, dem::Numerics{}.dt_safety);
+  EXPECT_EQ(n.dt_refresh, dem::Numerics{}.dt_refresh);
+}
+
+}  // namespace

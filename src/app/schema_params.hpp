@@ -1,0 +1,53 @@
+// Parameter tables of the modules (common/param_table.hpp) in the job schema: their rows become
+// schema keys, and a validated job fills their structs. The key, unit, range, default and meaning
+// of such a setting are written once, in its module's table.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "app/job.hpp"
+#include "app/schema.hpp"
+#include "common/param_table.hpp"
+
+namespace app {
+
+/// The job quantity of a table unit.
+[[nodiscard]] Quantity quantity_of(common::Unit u);
+
+/// Adds the job rows of `table` whose key lies in sub-table `sub` of the table's section ("" for
+/// the section itself, "twisting" for "twisting.stiffness") as schema keys, in table order. The
+/// caller adds the section (and sub-table) keys themselves, with their documentation.
+template <class S, std::size_t N>
+void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_view sub = {}) {
+  for (const auto& p : table) {
+    if (!p.in_job()) continue;
+    const auto dot = p.key.rfind('.');
+    const std::string_view parent = dot == std::string_view::npos ? "" : p.key.substr(0, dot);
+    if (parent != sub) continue;
+    Key& k = s.add(table.name(p), p.is_integer() ? Type::Int : Type::Float, std::string(p.doc))
+                 .unit(quantity_of(p.unit))
+                 .in(p.range.lo, p.range.hi, p.range.lo_open, p.range.hi_open);
+    if (p.source == common::Source::job_required) {
+      k.need();
+    } else if (p.is_integer()) {
+      k.or_default(static_cast<std::int64_t>(p.default_value()));
+    } else {
+      k.or_default(p.default_value());
+    }
+  }
+}
+
+/// Sets every member of `s` whose job key `job` holds (a defaulted key holds the table's default);
+/// absent optional keys and C++-only rows keep their value in `s`.
+template <class S, std::size_t N>
+void fill_from_job(const Job& job, const common::ParamTable<S, N>& table, S& s) {
+  for (const auto& p : table) {
+    if (!p.in_job()) continue;
+    const std::string key = table.name(p);
+    if (!job.has(key)) continue;
+    p.set(s, p.is_integer() ? static_cast<double>(job.integer(key)) : job.number(key));
+  }
+}
+
+}  // namespace app
