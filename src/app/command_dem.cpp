@@ -12,6 +12,7 @@
 #include "app/progress.hpp"
 #include "app/series_output.hpp"
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 #include "dem/element_test.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
@@ -143,9 +144,7 @@ int command_dem(const Options& o, const Comm& comm) {
     series.add(row(sim, dem::measure(sim), ref));
   } else {  // strain_path
     const auto& l = job.numbers("dem.loading.velocity_gradient");
-    common::Mat3 L;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) L(i, j) = l[static_cast<std::size_t>(3 * i + j)];
+    const common::Mat3 L = common::row_major(l.data());
     const double duration = job.number("dem.loading.duration");
     const double t_end = sim.time() + duration;
     Progress progress("strain path", duration);

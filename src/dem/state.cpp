@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 
 namespace dem {
 
@@ -49,9 +50,7 @@ std::vector<double> flat(const std::vector<Vec3>& v) {
 }
 std::vector<double> flat(const Mat3& m) {
   std::vector<double> out(9);
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) out[3 * a + b] = m(a, b);
-  }
+  common::row_major_out(out.data()) = m;
   return out;
 }
 
@@ -82,11 +81,7 @@ struct Reader {
   }
   Mat3 mat3(const std::string& name) const {
     const auto v = f64(name, 9);
-    Mat3 m;
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) m(a, b) = v[3 * a + b];
-    }
-    return m;
+    return common::row_major(v.data());
   }
 };
 

@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 
 namespace farm {
 
@@ -261,11 +262,7 @@ void ResultsWriter::append(std::int64_t step, double time,
   MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
-  auto mat9 = [](const common::Mat3& a, double* out) {
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) out[3 * i + j] = a(i, j);
-    }
-  };
+  auto mat9 = [](const common::Mat3& a, double* out) { common::row_major_out(out) = a; };
   stage_row("time", &time);
   stage_row("step", &step);
   std::vector<double> buf(9 * std::max(n, m));

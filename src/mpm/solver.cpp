@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 #include "mpm/transfers.hpp"
 
 namespace mpm {
@@ -241,13 +242,8 @@ std::vector<double> flatten(const std::vector<common::Vec3>& v) {
 }
 
 std::vector<double> flatten(const std::vector<common::Mat3>& v) {
-  std::vector<double> out;
-  out.reserve(v.size() * 9);
-  for (const common::Mat3& a : v) {
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) out.push_back(a(i, j));
-    }
-  }
+  std::vector<double> out(v.size() * 9);
+  for (std::size_t p = 0; p < v.size(); ++p) common::row_major_out(out.data() + 9 * p) = v[p];
   return out;
 }
 
@@ -267,11 +263,7 @@ void unflatten(const std::vector<double>& d, std::vector<common::Vec3>& v) {
 }
 
 void unflatten(const std::vector<double>& d, std::vector<common::Mat3>& v) {
-  for (std::size_t p = 0; p < v.size(); ++p) {
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) v[p](i, j) = d[9 * p + static_cast<std::size_t>(3 * i + j)];
-    }
-  }
+  for (std::size_t p = 0; p < v.size(); ++p) v[p] = common::row_major(d.data() + 9 * p);
 }
 
 }  // namespace
