@@ -44,7 +44,8 @@ int main(int argc, char** argv) {
     if (comm.rank == 0) std::fprintf(stderr, "error: %s\n", e.what());
     code = 2;
   } catch (const common::NumericalError& e) {
-    spdlog::error("numerical failure: {}", e.what());
+    // Numerical failures reach every rank through the farm's error agreement: rank 0 reports.
+    if (comm.rank == 0) spdlog::error("numerical failure: {}", e.what());
     code = 3;
   } catch (const std::exception& e) {
     // A failure that only this rank may have seen: report it and take the whole job down.
