@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <limits>
 #include <sstream>
 
 #include "app/job.hpp"
@@ -20,18 +21,23 @@ std::string clip(const std::string& s) { return s.size() > 80 ? s.substr(0, 77) 
 
 // An integer option's rule, with a short message ("must be an integer >= 1, not 'abc'") instead of
 // CLI11's range text with its 309-digit bound.
-CLI::Validator integer_at_least(std::int64_t min) {
+CLI::Validator integer_at_least(std::int64_t min,
+                                std::int64_t max = std::numeric_limits<std::int64_t>::max()) {
+  const std::string rule =
+      max == std::numeric_limits<std::int64_t>::max()
+          ? "an integer >= " + std::to_string(min)
+          : "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
   return CLI::Validator(
-      [min](std::string& text) -> std::string {
+      [min, max, rule](std::string& text) -> std::string {
         std::int64_t v = 0;
         const char* end = text.data() + text.size();
         const auto res = std::from_chars(text.data(), end, v);
-        if (res.ec != std::errc() || res.ptr != end || v < min) {
-          return "must be an integer >= " + std::to_string(min) + ", not '" + clip(text) + "'";
+        if (res.ec != std::errc() || res.ptr != end || v < min || v > max) {
+          return "must be " + rule + ", not '" + clip(text) + "'";
         }
         return "";
       },
-      "INT>=" + std::to_string(min));
+      "INT");
 }
 
 constexpr std::array<const char*, 6> kCommands = {"run",     "check", "dem",
@@ -97,8 +103,9 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
       ->add_option("--size", o.bench_size,
                    "dem: tiling n of the reference packing (n^3 x 1000 spheres); "
                    "mpm: number of material points")
-      ->check(integer_at_least(1));
-  bench->add_option("--steps", o.bench_steps, "Timed steps")->check(integer_at_least(1));
+      ->check(integer_at_least(1, 100'000'000));
+  bench->add_option("--steps", o.bench_steps, "Timed steps")
+      ->check(integer_at_least(1, 1'000'000'000));
 
   cli.add_subcommand("schema", "Print the job-file reference (Markdown) generated from the schema");
 

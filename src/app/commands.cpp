@@ -40,9 +40,21 @@ void agree(const Comm& comm, const std::function<void()>& f) {
 }
 
 void on_root(const Comm& comm, const std::function<void()>& f) {
-  agree(comm, [&] {
-    if (comm.rank == 0) f();
-  });
+  farm::ErrorKind kind = farm::ErrorKind::none;
+  std::string message;
+  if (comm.rank == 0) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      kind = farm::current_error_kind();
+      message = e.what();
+    }
+  }
+  // The other ranks wait without holding a core (f may be a long preparation on rank 0).
+  MPI_Request barrier = MPI_REQUEST_NULL;
+  MPI_Ibarrier(comm.comm, &barrier);
+  farm::wait_for(barrier, farm::WaitMode::sleep);
+  farm::agree_on_errors(comm.comm, kind, message);
 }
 
 Job load_job_collective(const std::string& path, const Comm& comm) {
