@@ -140,6 +140,32 @@ void mpm_rules(const Job& job, Rules& r) {
     any_dem = any_dem || m == "dem";
     any_elastic = any_elastic || m == "elastic";
   }
+  // An upper bound from the memory rank 0 needs for the grid and the points (about kBytesPerNode
+  // and kBytesPerPoint, order of magnitude of mpm::GridFields and MaterialPoints with stencils):
+  // a count no machine holds is an input error here, not std::bad_alloc in the run.
+  {
+    constexpr double kBytesPerNode = 160.0;
+    constexpr double kBytesPerPoint = 1024.0;
+    double nodes = 1.0;
+    for (int a = 0; a < 3; ++a) nodes *= static_cast<double>(n[a]) + 1.0;
+    double points = 0.0;
+    for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+      const std::string base = fmt::format("mpm.body[{}].", b);
+      const auto& lo = job.numbers(base + "min");
+      const auto& hi = job.numbers(base + "max");
+      double cells = 1.0;
+      for (int a = 0; a < 3; ++a) cells *= std::max(0.0, std::ceil((hi[a] - lo[a]) / h[a]));
+      points += cells * std::pow(static_cast<double>(job.integer(base + "points_per_cell")), 3);
+    }
+    const double need = nodes * kBytesPerNode + points * kBytesPerPoint;
+    const double mem = physical_memory_bytes();
+    if (mem > 0.0 && need > mem) {
+      r.fail("mpm.grid.cells",
+             fmt::format("{:.3g} grid nodes and {:.3g} material points need about {:.3g} GB of "
+                         "memory on rank 0, more than this machine's {:.3g} GB",
+                         nodes, points, need / 1e9, mem / 1e9));
+    }
+  }
   if (any_elastic && !job.has_section("mpm.elastic")) {
     r.fail_missing("mpm.elastic", "required section when a body has material = \"elastic\"");
   }

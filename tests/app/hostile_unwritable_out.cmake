@@ -24,3 +24,10 @@ if(NOT uid STREQUAL "0")
   file(CHMOD "${DIR}/ro" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
   expect_failure("${rc}" "${err}" 2 "cannot create output directory")
 endif()
+# More ranks than RVEs: accepted with a warning (the idle ranks wait), not in silence.
+file(READ jobs/elastic_triaxial.toml text)
+string(REPLACE "points_per_cell = 2" "points_per_cell = 1" text "${text}")
+file(WRITE "${DIR}/one_rve.toml" "${text}")
+execute_process(COMMAND "${MPIEXEC}" -n 2 --bind-to none "${EXE}" run "${DIR}/one_rve.toml" --out "${DIR}/one_rve" --max-steps 2
+                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+expect_failure("${rc}" "${err}" 0 "warning: 2 ranks for 1 RVE(s): 1 rank(s) will hold no RVE and only wait")
