@@ -118,6 +118,35 @@ TEST(Solver, NegativeVolumeStopsWithContext) {
   expect_message([&] { s.step(); }, {"mpm step 0", "t = 1", "point id", "volume = -"});
 }
 
+TEST(Solver, FixedDtAboveTheStabilityLimitIsRefused) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.dt = 1.0;  // h / c = 0.25 / 9.7 = 0.026 s for this material
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::Solver s(cfg, small_block(cfg.grid), {&mat});
+  expect_message([&] { s.step(); }, {"mpm step 0 (t = 0 s)",
+                                     "fixed dt = 1 s is above the stability limit", "h = 0.25 m"});
+  cfg.dt = 0.01;  // below the limit: runs
+  mpm::Solver ok(cfg, small_block(cfg.grid), {&mat});
+  EXPECT_NO_THROW(ok.run(3));
+}
+
+TEST(Solver, VolumeBeyondTheBlowUpBoundStopsWithContext) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.max_volume_ratio = 1.1;
+  mpm::LinearElastic mat(10.0, 0.3, 1800.0);  // soft: nothing holds the expansion back
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = 0.2 * (pts.x[p] - Vec3(0.75, 0.6, 0.9));
+  mpm::Solver s(cfg, pts, {&mat});
+  expect_message([&] { s.run(200); },
+                 {"mpm step ", " (t = ", "point id ", "volume / initial volume = 1.05",
+                  "outside [1/1.1, 1.1]", "blown up"});
+  cfg.max_volume_ratio = 1.0;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"max_volume_ratio = 1", "must be > 1"});
+}
+
 TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
   mpm::LinearElastic mat(1e5, 0.3, 1800.0);
   mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
