@@ -27,6 +27,12 @@ std::string num_str(double v) {
   return s.str();
 }
 
+std::string short_str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 void config_error(const std::string& key, double value, const std::string& rule) {
   throw common::InputError("mpm config: " + key + " = " + num_str(value) + ": " + rule);
 }
@@ -215,7 +221,7 @@ void Solver::check_points(double t_end) const {
           "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
           std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
           " m: volume / initial volume = " + num_str(ratio) + ", outside [1/" +
-          num_str(config_.max_volume_ratio) + ", " + num_str(config_.max_volume_ratio) +
+          short_str(config_.max_volume_ratio) + ", " + short_str(config_.max_volume_ratio) +
           "]: the run has blown up (time step too large, or a material that lost its strength)");
     }
     if (!points_.stress[p].allFinite() || !points_.v[p].allFinite()) {
