@@ -147,6 +147,28 @@ TEST(Solver, VolumeBeyondTheBlowUpBoundStopsWithContext) {
                  {"max_volume_ratio = 1", "must be > 1"});
 }
 
+// A material that fails at its third update, as an RVE of the farm may.
+class FailingMaterial : public mpm::MaterialModel {
+ public:
+  void update_stress(std::span<const std::int64_t> /*ids*/, std::span<const common::Mat3> /*L*/,
+                     double /*dt*/, std::span<common::Mat3> stress) override {
+    if (++calls_ == 3) throw common::NumericalError("RVE id 7 failed: stress not finite");
+    for (auto& s : stress) s.setZero();
+  }
+  [[nodiscard]] double wave_speed() const override { return 10.0; }
+
+ private:
+  int calls_ = 0;
+};
+
+TEST(Solver, AMaterialFailureGainsTheStepAndSimulatedTime) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  FailingMaterial mat;
+  mpm::Solver s(cfg, small_block(cfg.grid), {&mat});
+  expect_message([&] { s.run(5); },
+                 {"mpm step 2 (t = 0.037", ", dt = 0.012", "s): RVE id 7 failed"});
+}
+
 TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
   mpm::LinearElastic mat(1e5, 0.3, 1800.0);
   mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
