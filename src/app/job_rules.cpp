@@ -19,6 +19,11 @@ double physical_memory_bytes() {
   return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
 }
 
+// A path short enough to print (a 100 kB path is not echoed whole).
+std::string short_path(const std::string& p) {
+  return p.size() > 120 ? p.substr(0, 50) + "..." + p.substr(p.size() - 50) : p;
+}
+
 class Rules {
  public:
   explicit Rules(const Job& job) : job_(job) {}
@@ -51,7 +56,8 @@ void sample_rules(const Job& job, Rules& r) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(p, ec)) {
       r.fail("dem.sample.packing",
-             fmt::format("no such file '{}' (paths are relative to the job file)", p.string()));
+             fmt::format("no such file '{}' (paths are relative to the job file)",
+                         short_path(p.string())));
     }
     return;
   }

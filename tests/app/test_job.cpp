@@ -151,3 +151,13 @@ TEST(Job, AHugeUnknownKeyIsNotEchoedWhole) {
   EXPECT_NE(e.find("kkk...: unknown key"), std::string::npos) << e.substr(0, 300);
   EXPECT_LT(e.size(), 2000u);
 }
+
+TEST(Job, AHugePackingPathIsNotEchoedWhole) {
+  std::string text = replace(kDemJob, "spheres = 100\n", "");
+  text = replace(text, "psd_diameters = [\"130 um\", \"270 um\"]\n", "");
+  text = replace(text, "psd_passing = [0.0, 1.0]\n",
+                 "packing = \"" + std::string(100000, 'p') + "\"\n");
+  const std::string e = error_of(text);
+  EXPECT_NE(e.find("no such file 'ppp"), std::string::npos) << e.substr(0, 300);
+  EXPECT_LT(e.size(), 1000u);
+}
