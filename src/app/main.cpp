@@ -52,6 +52,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rank %d: fatal: %s\n", comm.rank, e.what());
     std::fflush(stderr);
     MPI_Abort(comm.comm, 1);
+  } catch (...) {
+    std::fprintf(stderr, "rank %d: fatal: unknown exception\n", comm.rank);
+    std::fflush(stderr);
+    MPI_Abort(comm.comm, 1);
   }
   MPI_Finalize();
   return code;
