@@ -127,22 +127,6 @@ void lock_output_dir(const fs::path& dir) {
   g_lock_fd = fd;
 }
 
-void write_file_atomic(const fs::path& path, const std::string& content) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw common::InputError(fmt::format("cannot write '{}'", tmp.string()));
-    out << content;
-    out.flush();
-    if (!out) throw common::InputError(fmt::format("cannot write '{}' (disk full?)", tmp.string()));
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec)
-    throw common::InputError(
-        fmt::format("cannot rename '{}' to '{}': {}", tmp.string(), path.string(), ec.message()));
-}
-
 fs::path default_output_dir(const std::string& job_path) {
   return fs::path("results") / fs::path(job_path).stem();
 }

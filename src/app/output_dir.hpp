@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "common/atomic_file.hpp"
+
 namespace app {
 
 /// Checks, without writing anything, that `dir` may receive a run's output: not "", a directory
@@ -21,9 +23,9 @@ void create_output_dir(const std::filesystem::path& dir);
 void lock_output_dir(const std::filesystem::path& dir);
 /// The name of the lock file in an output directory.
 inline constexpr const char* kLockFile = "mpmxdem.lock";
-/// Writes `content` to `path` through a temporary file and a rename: readers see the old file or
-/// the new one, never a partial one.
-void write_file_atomic(const std::filesystem::path& path, const std::string& content);
+/// Writes a file atomically (tmp + fsync + rename): readers see the old file or the new one, never
+/// a partial one. Throws common::IoError. One home: common/atomic_file.hpp.
+using common::write_file_atomic;
 /// Default output directory of a job: results/<job file stem>.
 [[nodiscard]] std::filesystem::path default_output_dir(const std::string& job_path);
 

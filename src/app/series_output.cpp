@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 
 namespace app {
@@ -31,9 +32,9 @@ void SeriesWriter::add(const std::vector<double>& row) {
 
 void SeriesWriter::finish(const std::string& title) {
   const auto path = dir_ / (stem_ + ".h5");
-  const auto tmp = dir_ / (stem_ + ".h5.tmp");
+  const auto tmp = common::staging_path(path);
   const hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file < 0) throw common::InputError(fmt::format("cannot create '{}'", tmp.string()));
+  if (file < 0) throw common::IoError(fmt::format("cannot create '{}'", tmp.string()));
   auto put_string_attr = [](hid_t obj, const char* name, const std::string& value) {
     const hid_t type = H5Tcopy(H5T_C_S1);
     H5Tset_size(type, value.empty() ? 1 : value.size());
@@ -60,11 +61,8 @@ void SeriesWriter::finish(const std::string& title) {
     H5Sclose(space);
   }
   ok = H5Fclose(file) >= 0 && ok;
-  if (!ok) throw common::InputError(fmt::format("writing '{}' failed", tmp.string()));
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec)
-    throw common::InputError(fmt::format("cannot rename '{}': {}", tmp.string(), ec.message()));
+  if (!ok) throw common::IoError(fmt::format("writing '{}' failed", tmp.string()));
+  common::publish_file(tmp, path);
 }
 
 }  // namespace app

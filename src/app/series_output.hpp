@@ -21,7 +21,7 @@ class SeriesWriter {
                std::vector<Column> columns);
   /// Appends one row (one value per column) and flushes it to the CSV file.
   void add(const std::vector<double>& row);
-  /// Writes `<dir>/<stem>.h5` (through a temporary file and a rename).
+  /// Writes `<dir>/<stem>.h5` atomically (common::publish_file). Throws common::IoError.
   void finish(const std::string& title);
   [[nodiscard]] std::size_t rows() const { return data_.empty() ? 0 : data_[0].size(); }
 

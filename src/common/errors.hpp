@@ -21,11 +21,23 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The system failed to store a file: opening, writing, fsync or rename failed (disk full, quota,
+/// I/O error, a read-only or vanished file system). Neither the user's input (InputError) nor a
+/// bug (InternalError): the message names the file and the operating system's reason.
+class IoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// An internal invariant was broken: a bug, not a user error.
 class InternalError : public std::logic_error {
  public:
   using std::logic_error::logic_error;
 };
+
+/// The message of the exception being handled: what() of a std::exception, "unknown exception"
+/// for anything else. @pre called inside a catch block.
+[[nodiscard]] std::string current_error_text();
 
 [[noreturn]] void throw_internal(const char* expr, const char* file, int line,
                                  const std::string& msg);

@@ -1,7 +1,9 @@
 // Named-field state interfaces: how state crosses module borders (docs/architecture.md).
 // A module writes its state as named flat arrays ("contacts/shear_force"); the farm maps them to
 // HDF5 datasets or MPI buffers without knowing what they mean. Shapes are flat: a field of N
-// vectors is written as 3N doubles and the reader knows its layout.
+// vectors is written as 3N doubles and the reader knows its layout. A parameter is a field of its
+// own ("params/material/young", one value), never a position in an array: adding one adds a field
+// instead of silently shifting a layout (docs/checkpoint.md).
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "common/errors.hpp"
 
 namespace common {
 
@@ -29,5 +33,33 @@ class StateReader {
   [[nodiscard]] virtual std::vector<std::int64_t> read_i64(std::string_view name) const = 0;
   [[nodiscard]] virtual bool has(std::string_view name) const = 0;
 };
+
+/// A named scalar: a field of one value.
+inline void write_scalar(StateWriter& w, std::string_view name, double value) {
+  w.write(name, std::span<const double>(&value, 1));
+}
+inline void write_scalar(StateWriter& w, std::string_view name, std::int64_t value) {
+  w.write(name, std::span<const std::int64_t>(&value, 1));
+}
+
+namespace detail {
+template <class T>
+T only_value(const std::vector<T>& v, std::string_view name) {
+  if (v.size() != 1) {
+    throw InputError("state field '" + std::string(name) + "' has " + std::to_string(v.size()) +
+                     " values, expected 1");
+  }
+  return v[0];
+}
+}  // namespace detail
+
+/// Reads a field written by write_scalar. Throws InputError naming the field when it is missing,
+/// of the other type or not of exactly one value.
+[[nodiscard]] inline double read_scalar_f64(const StateReader& r, std::string_view name) {
+  return detail::only_value(r.read_f64(name), name);
+}
+[[nodiscard]] inline std::int64_t read_scalar_i64(const StateReader& r, std::string_view name) {
+  return detail::only_value(r.read_i64(name), name);
+}
 
 }  // namespace common

@@ -152,31 +152,28 @@ StepReport Rve::measure() const {
 
 void Rve::save(common::StateWriter& w) const {
   save_simulation(sim_, w, "");
-  const std::vector<double> rp{params_.inertial_number,
-                               params_.d50,
-                               params_.p_floor,
-                               params_.max_strain_per_step,
-                               static_cast<double>(params_.max_steps_per_call),
-                               params_.initial_pressure,
-                               d50_};
-  w.write("rve/params", rp);
+  common::write_scalar(w, "rve/inertial_number", params_.inertial_number);
+  common::write_scalar(w, "rve/d50", params_.d50);
+  common::write_scalar(w, "rve/p_floor", params_.p_floor);
+  common::write_scalar(w, "rve/max_strain_per_step", params_.max_strain_per_step);
+  common::write_scalar(w, "rve/max_steps_per_call", params_.max_steps_per_call);
+  common::write_scalar(w, "rve/initial_pressure", params_.initial_pressure);
+  common::write_scalar(w, "rve/d50_used", d50_);
 }
 
 Rve Rve::load(const common::StateReader& r) {
-  Simulation sim = load_simulation(r, "");
-  const auto rp = r.read_f64("rve/params");
-  if (rp.size() != 7) throw common::InputError("dem state: field 'rve/params' must have 7 values");
+  Simulation sim = load_simulation(r, "");  // checks dem/version, which covers rve/ too
   RveParams params;
   params.material = sim.law().material();
   params.numerics = sim.numerics();
-  params.inertial_number = rp[0];
-  params.d50 = rp[1];
-  params.p_floor = rp[2];
-  params.max_strain_per_step = rp[3];
-  params.max_steps_per_call = static_cast<std::int64_t>(rp[4]);
-  params.initial_pressure = rp[5];
+  params.inertial_number = common::read_scalar_f64(r, "rve/inertial_number");
+  params.d50 = common::read_scalar_f64(r, "rve/d50");
+  params.p_floor = common::read_scalar_f64(r, "rve/p_floor");
+  params.max_strain_per_step = common::read_scalar_f64(r, "rve/max_strain_per_step");
+  params.max_steps_per_call = common::read_scalar_i64(r, "rve/max_steps_per_call");
+  params.initial_pressure = common::read_scalar_f64(r, "rve/initial_pressure");
   params.validate();
-  return Rve(std::move(sim), params, rp[6]);
+  return Rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
 }
 
 }  // namespace dem

@@ -12,7 +12,33 @@ using common::Vec3;
 
 namespace {
 
-constexpr std::int64_t kVersion = 1;
+/// Parameters and contact properties as named fields, one per member (docs/checkpoint.md).
+template <class S>
+struct Member {
+  const char* name;
+  double S::*member;
+};
+constexpr Member<Material> kMaterialFields[] = {
+    {"density", &Material::density},       {"young", &Material::young},
+    {"ks_over_kn", &Material::ks_over_kn}, {"friction_deg", &Material::friction_deg},
+    {"alpha_r", &Material::alpha_r},       {"eta_r", &Material::eta_r},
+    {"alpha_t", &Material::alpha_t},       {"eta_t", &Material::eta_t},
+};
+constexpr Member<Numerics> kNumericsFields[] = {
+    {"damping", &Numerics::damping},
+    {"dt_safety", &Numerics::dt_safety},
+    {"skin_factor", &Numerics::skin_factor},
+    {"max_skew", &Numerics::max_skew},
+};
+constexpr Member<CohFrictProps> kContactPropsFields[] = {
+    {"kn", &CohFrictProps::kn},
+    {"ks", &CohFrictProps::ks},
+    {"kr", &CohFrictProps::kr},
+    {"kt", &CohFrictProps::kt},
+    {"tan_phi", &CohFrictProps::tan_phi},
+    {"roll_cap", &CohFrictProps::roll_cap},
+    {"twist_cap", &CohFrictProps::twist_cap},
+};
 
 std::vector<double> flat(const std::vector<Vec3>& v) {
   std::vector<double> out(3 * v.size());
@@ -66,20 +92,31 @@ struct Reader {
 
 }  // namespace
 
+void check_state_version(const common::StateReader& r, const std::string& pre) {
+  const std::string name = pre + "dem/version";
+  const std::int64_t version = common::read_scalar_i64(r, name);
+  if (version == kStateVersion) return;
+  std::string why = "this build reads version " + std::to_string(kStateVersion) + " only";
+  if (version == 1) {
+    why += " (version 1 stored the parameters as positional arrays such as 'params/material'; " +
+           std::to_string(kStateVersion) + " stores named fields such as 'params/material/young')";
+  }
+  throw common::InputError("dem state: field '" + name + "' = " + std::to_string(version) + ": " +
+                           why + "; restart from a state written by this version");
+}
+
 void save_simulation(const Simulation& sim, common::StateWriter& w, const std::string& pre) {
   const Spheres& s = sim.spheres();
   const Contacts& c = sim.contacts();
   const VerletState& vs = sim.verlet();
   const Material& mat = sim.law().material();
   const Numerics& num = sim.numerics();
-  const std::vector<std::int64_t> version{kVersion};
-  w.write(pre + "dem/version", version);
-  const std::vector<double> pm{mat.density, mat.young, mat.ks_over_kn, mat.friction_deg,
-                               mat.alpha_r, mat.eta_r, mat.alpha_t,    mat.eta_t};
-  w.write(pre + "params/material", pm);
-  const std::vector<double> pn{num.damping, num.dt_safety, num.skin_factor,
-                               static_cast<double>(num.dt_refresh), num.max_skew};
-  w.write(pre + "params/numerics", pn);
+  common::write_scalar(w, pre + "dem/version", kStateVersion);
+  for (const auto& f : kMaterialFields)
+    common::write_scalar(w, pre + "params/material/" + f.name, mat.*f.member);
+  for (const auto& f : kNumericsFields)
+    common::write_scalar(w, pre + "params/numerics/" + f.name, num.*f.member);
+  common::write_scalar(w, pre + "params/numerics/dt_refresh", num.dt_refresh);
   w.write(pre + "cell/h", flat(sim.cell().h));
   w.write(pre + "cell/l", flat(sim.cell().l));
   w.write(pre + "spheres/x", flat(s.x));
@@ -94,7 +131,7 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   std::vector<std::int64_t> pair(2 * np);
   std::vector<std::int64_t> image(3 * np);
   std::vector<std::int64_t> active(np);
-  std::vector<double> props(7 * np);
+  std::vector<std::vector<double>> props(std::size(kContactPropsFields), std::vector<double>(np));
   std::vector<Vec3> normal(np);
   std::vector<Vec3> shear(np);
   std::vector<Vec3> roll(np);
@@ -104,9 +141,8 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
     pair[2 * p + 1] = c.j[p];
     for (int a = 0; a < 3; ++a) image[3 * p + a] = c.k[p][a];
     active[p] = c.active[p];
-    const CohFrictProps& q = c.props[p];
-    const double pv[7] = {q.kn, q.ks, q.kr, q.kt, q.tan_phi, q.roll_cap, q.twist_cap};
-    for (int a = 0; a < 7; ++a) props[7 * p + a] = pv[a];
+    for (std::size_t a = 0; a < props.size(); ++a)
+      props[a][p] = c.props[p].*kContactPropsFields[a].member;
     normal[p] = c.hist[p].normal;
     shear[p] = c.hist[p].shear;
     roll[p] = c.hist[p].roll;
@@ -115,7 +151,8 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   w.write(pre + "contacts/pair", pair);
   w.write(pre + "contacts/image", image);
   w.write(pre + "contacts/active", active);
-  w.write(pre + "contacts/props", props);
+  for (std::size_t a = 0; a < props.size(); ++a)
+    w.write(pre + "contacts/" + kContactPropsFields[a].name, props[a]);
   w.write(pre + "contacts/normal", flat(normal));
   w.write(pre + "contacts/shear_force", flat(shear));
   w.write(pre + "contacts/rolling_moment", flat(roll));
@@ -128,33 +165,27 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
 
   w.write(pre + "verlet/x_ref", flat(vs.x_ref));
   w.write(pre + "verlet/h_ref_inv", flat(vs.h_ref_inv));
-  const std::vector<double> vsd{vs.skin, vs.r_max};
-  w.write(pre + "verlet/skin_rmax", vsd);
-  const std::vector<std::int64_t> vsi{vs.builds, sim.neighbors_pending() ? 1 : 0};
-  w.write(pre + "verlet/builds_pending", vsi);
+  common::write_scalar(w, pre + "verlet/skin", vs.skin);
+  common::write_scalar(w, pre + "verlet/r_max", vs.r_max);
+  common::write_scalar(w, pre + "verlet/builds", vs.builds);
+  common::write_scalar(w, pre + "verlet/pending", std::int64_t{sim.neighbors_pending() ? 1 : 0});
 
-  const std::vector<double> cd{sim.time(), sim.dt()};
-  w.write(pre + "counters/time_dt", cd);
-  const std::vector<std::int64_t> ci{sim.steps()};
-  w.write(pre + "counters/steps", ci);
+  common::write_scalar(w, pre + "counters/time", sim.time());
+  common::write_scalar(w, pre + "counters/dt", sim.dt());
+  common::write_scalar(w, pre + "counters/steps", sim.steps());
   w.write(pre + "stress", flat(sim.stress()));
 }
 
 Simulation load_simulation(const common::StateReader& r, const std::string& pre) {
   const Reader rd{r, pre};
-  if (rd.i64("dem/version", 1)[0] != kVersion) {
-    throw common::InputError("dem state: field '" + pre + "dem/version' is not " +
-                             std::to_string(kVersion));
-  }
-  const auto pm = rd.f64("params/material", 8);
-  const Material mat{pm[0], pm[1], pm[2], pm[3], pm[4], pm[5], pm[6], pm[7]};
-  const auto pn = rd.f64("params/numerics", 5);
+  check_state_version(r, pre);
+  Material mat;
+  for (const auto& f : kMaterialFields)
+    mat.*f.member = common::read_scalar_f64(r, pre + "params/material/" + f.name);
   Numerics num;
-  num.damping = pn[0];
-  num.dt_safety = pn[1];
-  num.skin_factor = pn[2];
-  num.dt_refresh = static_cast<std::int64_t>(pn[3]);
-  num.max_skew = pn[4];
+  for (const auto& f : kNumericsFields)
+    num.*f.member = common::read_scalar_f64(r, pre + "params/numerics/" + f.name);
+  num.dt_refresh = common::read_scalar_i64(r, pre + "params/numerics/dt_refresh");
 
   const auto radii = r.read_f64(pre + "spheres/r");
   const std::size_t n = radii.size();
@@ -176,7 +207,9 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   const std::size_t np = active.size();
   const auto pair = rd.i64("contacts/pair", 2 * np);
   const auto image = rd.i64("contacts/image", 3 * np);
-  const auto props = rd.f64("contacts/props", 7 * np);
+  std::vector<std::vector<double>> props;
+  for (const auto& f : kContactPropsFields)
+    props.push_back(rd.f64(std::string("contacts/") + f.name, np));
   const auto normal = rd.vec3("contacts/normal", np);
   const auto shear = rd.vec3("contacts/shear_force", np);
   const auto roll = rd.vec3("contacts/rolling_moment", np);
@@ -194,9 +227,8 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
     c.k[p] = common::Vec3i(static_cast<int>(image[3 * p]), static_cast<int>(image[3 * p + 1]),
                            static_cast<int>(image[3 * p + 2]));
     c.active[p] = static_cast<std::uint8_t>(active[p]);
-    c.props[p] =
-        CohFrictProps{props[7 * p],     props[7 * p + 1], props[7 * p + 2], props[7 * p + 3],
-                      props[7 * p + 4], props[7 * p + 5], props[7 * p + 6]};
+    for (std::size_t a = 0; a < props.size(); ++a)
+      c.props[p].*kContactPropsFields[a].member = props[a][p];
     c.hist[p] = CohFrictHistory{normal[p], shear[p], roll[p], twist[p]};
   }
   c.force = rd.vec3("contacts/force", np);
@@ -209,16 +241,14 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   VerletState& vs = sim.verlet();
   vs.x_ref = rd.vec3("verlet/x_ref", r.read_f64(pre + "verlet/x_ref").size() / 3);
   vs.h_ref_inv = rd.mat3("verlet/h_ref_inv");
-  const auto vsd = rd.f64("verlet/skin_rmax", 2);
-  vs.skin = vsd[0];
-  vs.r_max = vsd[1];
-  const auto vsi = rd.i64("verlet/builds_pending", 2);
-  vs.builds = vsi[0];
-  sim.set_neighbors_pending(vsi[1] != 0);
+  vs.skin = common::read_scalar_f64(r, pre + "verlet/skin");
+  vs.r_max = common::read_scalar_f64(r, pre + "verlet/r_max");
+  vs.builds = common::read_scalar_i64(r, pre + "verlet/builds");
+  sim.set_neighbors_pending(common::read_scalar_i64(r, pre + "verlet/pending") != 0);
 
-  const auto cd = rd.f64("counters/time_dt", 2);
-  sim.set_counters(cd[0], rd.i64("counters/steps", 1)[0]);
-  sim.set_dt(cd[1]);
+  sim.set_counters(common::read_scalar_f64(r, pre + "counters/time"),
+                   common::read_scalar_i64(r, pre + "counters/steps"));
+  sim.set_dt(common::read_scalar_f64(r, pre + "counters/dt"));
   sim.set_stress(rd.mat3("stress"));
   return sim;
 }

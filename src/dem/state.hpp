@@ -2,12 +2,21 @@
 // cell, Verlet pairs with contact history, counters. A loaded simulation continues bit for bit.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "common/state_io.hpp"
 #include "dem/simulation.hpp"
 
 namespace dem {
+
+/// Version of the named-field state of a Simulation and of an Rve (field dem/version; history in
+/// docs/checkpoint.md). 1: positional parameter arrays; 2: one named field per parameter.
+inline constexpr std::int64_t kStateVersion = 2;
+
+/// Throws common::InputError naming the field `prefix`dem/version, the version found and the one
+/// this build reads when they differ (or when the field is missing).
+void check_state_version(const common::StateReader& r, const std::string& prefix = "");
 
 /// Write every field under `prefix` (e.g. "" or "rve/"). Field names: see docs/dem.md.
 void save_simulation(const Simulation& sim, common::StateWriter& w, const std::string& prefix = "");

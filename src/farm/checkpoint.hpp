@@ -1,6 +1,6 @@
 // Farm checkpoints: ONE parallel HDF5 file written collectively by all ranks (chunked + shuffle +
 // deflate), atomic (name.tmp, fsync, rename), with a format version and a 64-bit checksum per
-// dataset. Layout and rules: docs/farm.md, "Checkpoints".
+// dataset. Format, field names and state versions: docs/checkpoint.md.
 #pragma once
 
 #include <mpi.h>
@@ -27,8 +27,8 @@ struct CheckpointInfo {
   std::vector<int> partition;     ///< owner rank of every RVE when written
   std::vector<double> cost;       ///< measured cost of every RVE [s of wall time, or estimate]
   std::string job_text;           ///< the job file the run was started with
-  std::vector<std::string> rve_fields;  ///< field names of the RVE state
-  std::vector<std::string> mpm_fields;  ///< field names of the MPM state
+  std::vector<std::string> rve_fields;  ///< RVE state fields as listed: "f:<name>" or "i:<name>"
+  std::vector<std::string> mpm_fields;  ///< MPM state fields as listed: "f:<name>" or "i:<name>"
 };
 
 /// What the collective writer needs. Vectors indexed by RVE index (ids ascending) are identical
@@ -45,9 +45,11 @@ struct CheckpointData {
   const common::StateStore* mpm = nullptr;       ///< rank 0 only (null elsewhere)
 };
 
-/// Collective: writes `final_path` atomically (final_path + ".tmp", fsync, rename, fsync of the
-/// directory). When `abort_mid_write` (fault injection), the job calls MPI_Abort after the MPM
-/// datasets and before the RVE fields: the .tmp stays behind, the previous checkpoint is untouched.
+/// Collective: writes `final_path` atomically (final_path + ".tmp", then common::publish_file:
+/// fsync, rename, fsync of the directory). A failed HDF5 write aborts the job (MPI_Abort: ranks
+/// may be inside a collective); a failed publication is a common::IoError on every rank. When
+/// `abort_mid_write` (fault injection), the job calls MPI_Abort after the MPM datasets and before
+/// the RVE fields: the .tmp stays behind, the previous checkpoint is untouched.
 void write_checkpoint(MPI_Comm comm, const std::string& final_path, const CheckpointData& data,
                       bool abort_mid_write);
 
@@ -72,11 +74,6 @@ void verify_checkpoint(const std::string& path);
 /// Human-readable summary: format, version, step, time, RVE count, ranks that wrote it and how
 /// many RVEs each held, the field lists and the job text's first line.
 [[nodiscard]] std::string describe(const CheckpointInfo& info);
-
-/// Position-keyed 64-bit checksum of n 8-byte words starting at global word index `first`:
-/// sum_i splitmix64(word_i ^ splitmix64(first + i)) mod 2^64. Additive, so ranks holding
-/// disjoint pieces of a dataset combine their partial sums with MPI_SUM.
-[[nodiscard]] std::uint64_t hash_words(const void* data, std::size_t n, std::uint64_t first);
 
 /// Checkpoint files `checkpoint_<step>.h5` in `dir`, oldest first.
 [[nodiscard]] std::vector<std::string> list_checkpoints(const std::string& dir);

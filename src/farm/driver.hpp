@@ -1,6 +1,7 @@
 // The coupled MPM x DEM run: what `mpmxdem run job.toml` and `--restart` call. Rank 0 runs the MPM
 // solver and hosts RVEs; other ranks serve the RVE farm. Entry API (small on purpose):
-// CoupledConfig, run_coupled, restart_coupled, inspect_checkpoint. See docs/farm.md.
+// CoupledConfig, run_coupled, restart_coupled, inspect_checkpoint; the run itself is
+// farm/coupled_run.*. See docs/farm.md.
 #pragma once
 
 #include <mpi.h>
@@ -12,36 +13,13 @@
 
 #include "farm/checkpoint.hpp"
 #include "farm/micro_model.hpp"
+#include "farm/run_options.hpp"
 #include "farm/rve_farm.hpp"
 #include "mpm/boundary.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/solver.hpp"
 
 namespace farm {
-
-struct OutputOptions {
-  std::string dir;         ///< output directory (exists, checked by the caller)
-  std::int64_t every = 1;  ///< results.h5 row every N MPM steps (>= 1); step 0 and the last always
-  int axial_axis = 2;      ///< axis of eps_ax in means.csv (0..2)
-  double log_every_s = 10.0;  ///< progress line on rank 0 at most this often [s of wall]
-};
-
-struct CheckpointOptions {
-  std::int64_t every_steps = 0;  ///< checkpoint every K MPM steps (0: off)
-  double every_wall_s = 0.0;     ///< and/or every T seconds of wall time (0: off)
-  int keep = 2;                  ///< newest checkpoints kept in the output dir (>= 1)
-  bool at_end = true;            ///< write one after the last step
-  /// Fault injection (tests): the n-th checkpoint write of this run aborts the job mid-write
-  /// (MPI_Abort) leaving name.tmp behind. 0: off. The environment variable
-  /// MPMXDEM_FARM_FAULT=abort_checkpoint:<n> sets it too.
-  std::int64_t fault_abort_at = 0;
-};
-
-struct BalanceOptions {
-  bool enabled = true;
-  double threshold = 1.05;        ///< rebalance when max/mean rank busy time exceeds this [-]
-  std::int64_t check_every = 20;  ///< MPM steps between checks (>= 1)
-};
 
 /// Everything a coupled run needs, plain values (the app maps the job file onto it). Every rank
 /// builds the same config; only rank 0 uses solver/points/constraints/tractions.

@@ -18,6 +18,13 @@ void bad(const char* key, double value, const char* rule) {
                            std::to_string(value) + ": " + rule);
 }
 
+/// A 3x3 as the 9 doubles of a state field (row-major).
+std::vector<double> nine(const common::Mat3& m) {
+  std::vector<double> v(9);
+  common::to_row_major(m, std::span<double, 9>(v.data(), 9));
+  return v;
+}
+
 }  // namespace
 
 void ElasticMicroParams::validate() const {
@@ -75,55 +82,56 @@ double ElasticMicro::wave_speed() const {
 }
 
 void ElasticMicro::save(common::StateWriter& w) const {
-  w.write("elastic/id", std::vector<std::int64_t>{id_});
-  std::vector<double> p{params_.young, params_.poisson, params_.density, params_.void_ratio0};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) p.push_back(params_.initial_stress(i, j));
-  }
-  w.write("elastic/params", p);
-  w.write("elastic/int_params",
-          std::vector<std::int64_t>{params_.substeps, params_.fail_id, params_.fail_step});
-  std::vector<double> s(9);
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) s[static_cast<std::size_t>(3 * i + j)] = stress_(i, j);
-  }
-  w.write("elastic/stress", s);
-  w.write("elastic/j", std::vector<double>{j_});
-  w.write("elastic/steps", std::vector<std::int64_t>{steps_});
+  common::write_scalar(w, "elastic/version", kElasticStateVersion);
+  common::write_scalar(w, "elastic/id", id_);
+  common::write_scalar(w, "elastic/params/young", params_.young);
+  common::write_scalar(w, "elastic/params/poisson", params_.poisson);
+  common::write_scalar(w, "elastic/params/density", params_.density);
+  common::write_scalar(w, "elastic/params/void_ratio0", params_.void_ratio0);
+  w.write("elastic/params/initial_stress", nine(params_.initial_stress));
+  common::write_scalar(w, "elastic/params/substeps", params_.substeps);
+  common::write_scalar(w, "elastic/params/fail_id", params_.fail_id);
+  common::write_scalar(w, "elastic/params/fail_step", params_.fail_step);
+  w.write("elastic/stress", nine(stress_));
+  common::write_scalar(w, "elastic/j", j_);
+  common::write_scalar(w, "elastic/steps", steps_);
 }
 
 std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
-  auto sized = [](auto v, std::size_t n, const char* name) {
-    if (v.size() != n) {
+  // Version 1 had no elastic/version field and positional arrays elastic/params (13 values) and
+  // elastic/int_params (3).
+  const std::int64_t version =
+      r.has("elastic/version") ? common::read_scalar_i64(r, "elastic/version") : 1;
+  if (version != kElasticStateVersion) {
+    throw common::InputError(
+        "elastic micro state: field 'elastic/version' = " + std::to_string(version) +
+        (r.has("elastic/version") ? "" : " (absent)") + ": this build reads version " +
+        std::to_string(kElasticStateVersion) +
+        " only (version 1 stored the parameters as the positional array 'elastic/params'; "
+        "version 2 stores named fields such as 'elastic/params/young'); restart from a state "
+        "written by this version");
+  }
+  auto matrix = [&r](const char* name) {
+    const std::vector<double> v = r.read_f64(name);
+    if (v.size() != 9) {
       throw common::InputError(std::string("elastic micro state: field '") + name + "' has " +
-                               std::to_string(v.size()) + " values, expected " + std::to_string(n));
+                               std::to_string(v.size()) + " values, expected 9");
     }
-    return v;
+    return common::Mat3(common::row_major(v.data()));
   };
-  const auto id = sized(r.read_i64("elastic/id"), 1, "elastic/id");
-  const auto p = sized(r.read_f64("elastic/params"), 13, "elastic/params");
-  const auto ip = sized(r.read_i64("elastic/int_params"), 3, "elastic/int_params");
-  const auto s = sized(r.read_f64("elastic/stress"), 9, "elastic/stress");
-  const auto j = sized(r.read_f64("elastic/j"), 1, "elastic/j");
-  const auto steps = sized(r.read_i64("elastic/steps"), 1, "elastic/steps");
   ElasticMicroParams params;
-  params.young = p[0];
-  params.poisson = p[1];
-  params.density = p[2];
-  params.void_ratio0 = p[3];
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b)
-      params.initial_stress(a, b) = p[static_cast<std::size_t>(4 + 3 * a + b)];
-  }
-  params.substeps = ip[0];
-  params.fail_id = ip[1];
-  params.fail_step = ip[2];
-  auto m = std::make_unique<ElasticMicro>(id[0], params);
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) m->stress_(a, b) = s[static_cast<std::size_t>(3 * a + b)];
-  }
-  m->j_ = j[0];
-  m->steps_ = steps[0];
+  params.young = common::read_scalar_f64(r, "elastic/params/young");
+  params.poisson = common::read_scalar_f64(r, "elastic/params/poisson");
+  params.density = common::read_scalar_f64(r, "elastic/params/density");
+  params.void_ratio0 = common::read_scalar_f64(r, "elastic/params/void_ratio0");
+  params.initial_stress = matrix("elastic/params/initial_stress");
+  params.substeps = common::read_scalar_i64(r, "elastic/params/substeps");
+  params.fail_id = common::read_scalar_i64(r, "elastic/params/fail_id");
+  params.fail_step = common::read_scalar_i64(r, "elastic/params/fail_step");
+  auto m = std::make_unique<ElasticMicro>(common::read_scalar_i64(r, "elastic/id"), params);
+  m->stress_ = matrix("elastic/stress");
+  m->j_ = common::read_scalar_f64(r, "elastic/j");
+  m->steps_ = common::read_scalar_i64(r, "elastic/steps");
   return m;
 }
 

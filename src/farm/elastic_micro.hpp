@@ -7,6 +7,10 @@
 
 namespace farm {
 
+/// Version of ElasticMicro's state (field elastic/version; docs/checkpoint.md). 1 (no field):
+/// positional arrays elastic/params and elastic/int_params; 2: one named field per parameter.
+inline constexpr std::int64_t kElasticStateVersion = 2;
+
 struct ElasticMicroParams {
   double young = 0.0;        ///< E [Pa], > 0
   double poisson = 0.0;      ///< nu [-], in (-1, 0.5)
@@ -31,7 +35,8 @@ class ElasticMicro final : public MicroModel {
   [[nodiscard]] common::Mat3 stress() const override { return stress_; }
   /// p and q of the stress, e = (1 + e0) J - 1, Z = 0.
   [[nodiscard]] MicroReport report() const override;
-  /// Fields: elastic/id, elastic/params, elastic/stress, elastic/j, elastic/steps.
+  /// Named fields (docs/checkpoint.md): elastic/version, elastic/id, elastic/params/<name> (one per
+  /// ElasticMicroParams member), elastic/stress, elastic/j, elastic/steps.
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override {
     return static_cast<double>(params_.substeps);
@@ -39,7 +44,8 @@ class ElasticMicro final : public MicroModel {
   /// P-wave speed sqrt((lambda + 2 mu) / rho) [m/s].
   [[nodiscard]] double wave_speed() const override;
 
-  /// Rebuilds from save(); throws common::InputError naming a missing or malformed field.
+  /// Rebuilds from save(); throws common::InputError naming a missing or malformed field, or the
+  /// version found and the one this build reads.
   static std::unique_ptr<MicroModel> load(const common::StateReader& reader);
   /// A MicroKind creating ElasticMicro(id, params) for every id.
   static MicroKind kind(const ElasticMicroParams& params);

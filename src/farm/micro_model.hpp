@@ -12,7 +12,8 @@
 
 namespace farm {
 
-/// What one micro step did. Soil-mechanics quantities are compression positive.
+/// What one micro step did: the only report type of the farm (it travels inside RveRecord,
+/// farm/exchange.hpp). Soil-mechanics quantities are compression positive.
 struct MicroReport {
   double p = 0.0;              ///< mean pressure -tr(sigma)/3 [Pa]
   double q = 0.0;              ///< deviatoric stress sqrt(3/2 s:s) [Pa]

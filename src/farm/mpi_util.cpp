@@ -47,6 +47,8 @@ void throw_kind(ErrorKind kind, const std::string& message) {
       throw common::InputError(message);
     case ErrorKind::numerical:
       throw common::NumericalError(message);
+    case ErrorKind::io:
+      throw common::IoError(message);
     default:
       throw common::InternalError(message);
   }
@@ -59,6 +61,8 @@ ErrorKind current_error_kind() {
     return ErrorKind::input;
   } catch (const common::NumericalError&) {
     return ErrorKind::numerical;
+  } catch (const common::IoError&) {
+    return ErrorKind::io;
   } catch (...) {
     return ErrorKind::internal;
   }

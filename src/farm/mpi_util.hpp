@@ -34,10 +34,10 @@ WaitMode resolve_wait_mode(MPI_Comm comm, WaitMode mode);
 void wait_for(MPI_Request& request, WaitMode mode);
 
 /// Error kinds that travel between ranks (exit codes differ in the app).
-enum class ErrorKind : std::int32_t { none = 0, input = 1, numerical = 2, internal = 3 };
+enum class ErrorKind : std::int32_t { none = 0, input = 1, numerical = 2, internal = 3, io = 4 };
 
-/// Throws the exception type of `kind` (common::InputError, NumericalError, InternalError) with
-/// `message`. @pre kind != none
+/// Throws the exception type of `kind` (common::InputError, NumericalError, InternalError,
+/// IoError) with `message`. @pre kind != none
 [[noreturn]] void throw_kind(ErrorKind kind, const std::string& message);
 
 /// Classifies the exception being handled (call inside a catch block).
@@ -47,7 +47,7 @@ ErrorKind current_error_kind();
 /// such rank (same type, same message). Otherwise returns.
 void agree_on_errors(MPI_Comm comm, ErrorKind kind, const std::string& message);
 
-/// Broadcast a string from `root`.
+/// Broadcast a string from `root` (the one home of string broadcast: farm and app use it).
 void bcast_string(MPI_Comm comm, std::string& s, int root = 0);
 
 /// Every rank's strings, concatenated in rank order.

@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <fmt/format.h>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 
 namespace farm {
@@ -84,16 +84,6 @@ std::vector<T> read_rows(hid_t file, const std::string& name, hsize_t rows) {
   check(H5Dread(d.get(), h5::native_type<T>(), ms.get(), fs.get(), H5P_DEFAULT, v.data()),
         "read " + name);
   return v;
-}
-
-void write_text_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out) throw common::InputError("output " + tmp + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace
@@ -396,7 +386,7 @@ void ResultsWriter::write_xdmf() const {
     fmt::format_to(it, "{}</Grid>\n", id_attr);
   }
   fmt::format_to(it, "</Grid>\n</Domain>\n</Xdmf>\n");
-  write_text_atomic((std::filesystem::path(dir_) / "points.xmf").string(), fmt::to_string(out));
+  common::write_file_atomic(std::filesystem::path(dir_) / "points.xmf", fmt::to_string(out));
 }
 
 void ResultsWriter::write_csv() const {
@@ -410,7 +400,7 @@ void ResultsWriter::write_csv() const {
     fmt::format_to(it, "{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", steps_[t], times_[t], m[0],
                    m[1], m[2], m[3]);
   }
-  write_text_atomic((std::filesystem::path(dir_) / "means.csv").string(), fmt::to_string(out));
+  common::write_file_atomic(std::filesystem::path(dir_) / "means.csv", fmt::to_string(out));
 }
 
 }  // namespace farm

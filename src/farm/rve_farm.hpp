@@ -1,6 +1,7 @@
 // farm::RveFarm: mpm::MaterialModel whose points are RVEs spread over MPI ranks. Rank 0 runs the
 // MPM solver and hosts RVEs too; ranks > 0 serve commands (step, checkpoint, migrate, stop).
-// Protocol, ordering rules and measurements: docs/farm.md.
+// Its collaborators: Placement (who owns what), StepExchange (the wire), CostLedger (costs and
+// times). Protocol, ordering rules and measurements: docs/farm.md.
 #pragma once
 
 #include <mpi.h>
@@ -13,9 +14,11 @@
 
 #include "common/state_store.hpp"
 #include "farm/checkpoint.hpp"
+#include "farm/cost_ledger.hpp"
+#include "farm/exchange.hpp"
 #include "farm/micro_model.hpp"
 #include "farm/mpi_util.hpp"
-#include "farm/partition.hpp"
+#include "farm/placement.hpp"
 #include "farm/rebalance.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/material_model.hpp"
@@ -28,15 +31,6 @@ struct FarmOptions {
   /// left to the inside of each RVE.
   bool omp_over_rves = true;
   int metis_seed = 1;  ///< METIS_OPTION_SEED
-};
-
-/// Per-step timing figures seen by rank 0 (cumulative since construction) [s].
-struct FarmTimes {
-  double step_wall = 0.0;      ///< wall time inside update_stress on rank 0
-  double critical_busy = 0.0;  ///< sum over steps of the largest rank's RVE loop time
-  double mean_busy = 0.0;      ///< sum over steps of the mean rank RVE loop time
-  double migrate_wall = 0.0;   ///< wall time of the migrations on rank 0 (start-up one included)
-  std::int64_t steps = 0;
 };
 
 class RveFarm final : public mpm::MaterialModel {
@@ -88,18 +82,19 @@ class RveFarm final : public mpm::MaterialModel {
   void serve();
 
   // ---- queries ----
-  [[nodiscard]] const std::vector<std::int64_t>& ids() const { return ids_; }
-  [[nodiscard]] const std::vector<int>& owner() const { return owner_; }
+  [[nodiscard]] const std::vector<std::int64_t>& ids() const { return placement_.ids(); }
+  [[nodiscard]] const std::vector<int>& owner() const { return placement_.owner(); }
+  [[nodiscard]] const Placement& placement() const { return placement_; }
   /// Rank 0: the last report of every RVE, by index (ids() order).
   [[nodiscard]] const std::vector<MicroReport>& reports() const { return reports_; }
   /// Rank 0: the stress of every RVE, by index [Pa, tension positive].
   [[nodiscard]] const std::vector<common::Mat3>& stresses() const { return stresses_; }
   /// Rank 0: measured cost of every RVE (sum of the CPU times of its steps, on the thread that
-  /// ran each) [s]; estimates before steps.
-  [[nodiscard]] const std::vector<double>& cost() const { return cost_total_; }
+  /// ran each) [s]; zero before steps (a checkpoint's costs after a restart).
+  [[nodiscard]] const std::vector<double>& cost() const { return ledger_.total(); }
   /// Rank 0: imbalance max/mean over ranks of the averaged RVE costs [-] (>= 1).
-  [[nodiscard]] double imbalance() const;
-  [[nodiscard]] const FarmTimes& times() const { return times_; }
+  [[nodiscard]] double imbalance() const { return ledger_.imbalance(owner(), size_); }
+  [[nodiscard]] const FarmTimes& times() const { return ledger_.times(); }
   [[nodiscard]] int rank() const { return rank_; }
   /// The wait mode in use (options' `automatic` resolved at construction).
   [[nodiscard]] WaitMode wait_mode() const { return options_.wait; }
@@ -107,32 +102,35 @@ class RveFarm final : public mpm::MaterialModel {
   /// The MPM step counter carried in messages (set by the driver after a restart).
   void set_step(std::int64_t step) {
     step_ = step;
-    step_at_migration_ = step;
+    ledger_.set_step(step);
   }
   /// Number of migrations done (including the start-up one) and RVEs moved in total.
-  [[nodiscard]] std::int64_t migrations() const { return migrations_; }
-  [[nodiscard]] std::int64_t rves_moved() const { return moved_; }
+  [[nodiscard]] std::int64_t migrations() const { return ledger_.migrations(); }
+  [[nodiscard]] std::int64_t rves_moved() const { return ledger_.moved(); }
   /// Rank 0: the decision of the last rebalance_if_needed check.
   [[nodiscard]] const RebalancePlan& last_plan() const { return last_plan_; }
 
  private:
-  struct Header;
-  /// Rank 0: one MPI_Iscatterv gives every rank the header and, for a step, the L of its RVEs
-  /// (cmd_send_ holds them at cmd_displs_).
-  void send_command(const Header& h);
-  /// Ranks > 0: the next command (its L block stays in cmd_recv_).
-  Header receive_command();
+  struct Setup {};
+  /// The members every constructor sets up; the object counts as stopped until a public
+  /// constructor completes (a failing one must not make rank 0's destructor send a command).
+  RveFarm(Setup tag, MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
+          const mpm::Grid& grid, FarmOptions options);
   /// Every rank: advance my RVEs under the L of the command; rank 0 stores the gathered records
   /// and writes `stress` (by point slot).
-  void exec_step(const Header& h, std::span<common::Mat3> stress);
-  /// Every rank: the texts of the RVE failures of the last step, gathered to rank 0 by index.
-  std::vector<std::pair<std::int64_t, std::string>> exec_error_texts();
-  void exec_checkpoint(const Header& h, std::string path, std::string job_text,
+  void exec_step(const CommandHeader& h, std::span<common::Mat3> stress);
+  /// Rank 0: stores the gathered records by RVE index; throws the first failure (by RVE id).
+  void collect_records(std::span<common::Mat3> stress);
+  /// Every rank: the texts of the RVE failures of the last step, gathered to rank 0.
+  std::vector<std::pair<std::size_t, std::string>> exec_error_texts();
+  void exec_checkpoint(const CommandHeader& h, std::string path, std::string job_text,
                        const common::StateStore* mpm_state);
   void exec_migrate(std::vector<int> new_owner);
-  void rebuild_local();
-  void initial_costs_and_partition(const std::vector<common::Vec3>& x, const mpm::Grid& grid,
+  /// Every rank, after the models exist: start-up measures, costs, the METIS partition.
+  void initial_costs_and_partition(const std::vector<common::Vec3>& x,
                                    const std::vector<double>* costs);
+  /// Every rank: the model of RVE index k.
+  MicroModel& model(std::size_t k) { return *models_[k]; }
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0;
@@ -140,35 +138,19 @@ class RveFarm final : public mpm::MaterialModel {
   MicroKind kind_;
   FarmOptions options_;
   mpm::Grid grid_;
-  std::vector<std::int64_t> ids_;
-  std::vector<int> owner_;
-  std::vector<std::int64_t> local_;                  ///< my RVE indices, ascending
+  Placement placement_;
   std::vector<std::unique_ptr<MicroModel>> models_;  ///< by index; null if not mine
-  // Per-step exchange, laid out once per partition by rebuild_local() (no allocation per step).
-  std::vector<std::vector<std::size_t>> members_;  ///< RVE indices of every rank, ascending
-  std::vector<int> cmd_counts_, cmd_displs_;       ///< bytes of every rank's command message
-  std::vector<char> cmd_send_;                     ///< rank 0: [header][L] of every rank
-  std::vector<char> cmd_recv_;                     ///< my [header][L block]
-  std::vector<int> rec_counts_, rec_displs_;       ///< doubles of every rank's records
-  std::vector<double> rec_;                        ///< my [loop wall][records]
-  std::vector<double> rec_all_;                    ///< rank 0: every rank's, by rank
-  std::vector<std::string> errors_;                ///< my failures of the last step, by j
-  std::vector<std::int64_t> slot_of_;              ///< rank 0: RVE index -> point slot
-  std::vector<MicroReport> reports_;               ///< rank 0, by index
-  std::vector<common::Mat3> stresses_;             ///< rank 0, by index
-  std::vector<double> cost_total_;                 ///< rank 0, by index
-  std::vector<double> cost_window_;                ///< rank 0, since the last check
-  CostAverage cost_avg_;                           ///< rank 0, over check windows
-  std::vector<double> wave_;                       ///< rank 0, by index
+  StepExchange exchange_;
+  std::vector<std::string> errors_;     ///< my failures of the last step, by local position
+  PointIndex points_;                   ///< rank 0: solver slot <-> RVE index
+  std::vector<MicroReport> reports_;    ///< rank 0, by index
+  std::vector<common::Mat3> stresses_;  ///< rank 0, by index
+  std::vector<double> wave_;            ///< rank 0, by index [m/s]
   double wave_speed_ = 0.0;
+  CostLedger ledger_;
   std::int64_t step_ = 0;
-  std::int64_t migrations_ = 0;
-  std::int64_t moved_ = 0;
-  FarmTimes times_;
-  RebalancePlan last_plan_;             ///< rank 0
-  std::int64_t step_at_migration_ = 0;  ///< step of the last migration (or the start)
-  FarmTimes times_at_check_;            ///< rank 0: times_ at the last balance check
-  bool stopped_ = false;
+  RebalancePlan last_plan_;  ///< rank 0
+  bool stopped_ = true;      ///< the workers left serve() (or never entered it)
 };
 
 }  // namespace farm

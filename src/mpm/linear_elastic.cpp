@@ -65,7 +65,7 @@ void LinearElastic::set_stress(std::int64_t id, const common::Mat3& s) {
   stress_[static_cast<std::size_t>(id)] = s;
 }
 
-void LinearElastic::write_state(common::StateWriter& writer, std::string_view prefix) const {
+void LinearElastic::save(common::StateWriter& writer, std::string_view prefix) const {
   std::vector<double> flat;
   flat.reserve(stress_.size() * 9);
   for (const common::Mat3& s : stress_) {
@@ -76,7 +76,7 @@ void LinearElastic::write_state(common::StateWriter& writer, std::string_view pr
   writer.write(std::string(prefix) + "stress", flat);
 }
 
-void LinearElastic::read_state(const common::StateReader& reader, std::string_view prefix) {
+void LinearElastic::load(const common::StateReader& reader, std::string_view prefix) {
   const std::string name = std::string(prefix) + "stress";
   const std::vector<double> flat = reader.read_f64(name);
   if (flat.size() % 9 != 0) {

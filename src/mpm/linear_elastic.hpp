@@ -2,7 +2,10 @@
 // Hughes-Winget incrementally objective scheme (Hughes & Winget 1980, IJNME 15, 1862-1867).
 #pragma once
 
+#include <string_view>
 #include <vector>
+
+#include "common/state_io.hpp"
 
 #include "mpm/material_model.hpp"
 
@@ -24,9 +27,11 @@ class LinearElastic final : public MaterialModel {
                      std::span<common::Mat3> stress) override;
   /// P-wave speed sqrt((lambda + 2 mu) / rho) [m/s].
   double wave_speed() const override;
-  /// Field <prefix>stress: 9 doubles per id (row-major), ids 0 .. max id seen.
-  void write_state(common::StateWriter& writer, std::string_view prefix) const override;
-  void read_state(const common::StateReader& reader, std::string_view prefix) override;
+  /// Writes the state as the field <prefix>stress: 9 doubles per id (row-major), ids 0 .. max id
+  /// seen (the owner calls it next to Solver::save; the parameters are the owner's).
+  void save(common::StateWriter& writer, std::string_view prefix) const;
+  /// Reads back what save wrote. Throws common::InputError naming a missing or malformed field.
+  void load(const common::StateReader& reader, std::string_view prefix);
 
   /// Current stress of one point id [Pa] (initial_stress if never updated).
   [[nodiscard]] common::Mat3 stress(std::int64_t id) const;

@@ -3,15 +3,16 @@
 
 #include <cstdint>
 #include <span>
-#include <string_view>
 
-#include "common/state_io.hpp"
 #include "common/types.hpp"
 
 namespace mpm {
 
 /// Batched constitutive model. Convention at the seam (written once, here): L is the full
 /// velocity gradient dv/dx (1/s, spin included), stress is Cauchy, Pa, TENSION POSITIVE.
+/// State is not part of the seam: the owner of a model knows its concrete type and checkpoints
+/// it with that type's save/load (LinearElastic::save; the farm's collective checkpoint), as
+/// Solver::save does for the points (docs/checkpoint.md, "One state protocol").
 class MaterialModel {
  public:
   virtual ~MaterialModel() = default;
@@ -22,13 +23,6 @@ class MaterialModel {
                              double dt, std::span<common::Mat3> stress) = 0;
   /// Largest elastic wave speed (m/s) for a CFL time step.
   virtual double wave_speed() const = 0;
-
-  /// Added member: writes the model's own state (e.g. its stresses) under `prefix`, for a
-  /// checkpoint. Default: nothing (a stateless model, or one checkpointed by its owner, as the
-  /// DEM farm does).
-  virtual void write_state(common::StateWriter& /*writer*/, std::string_view /*prefix*/) const {}
-  /// Added member: reads back what write_state wrote. Default: nothing.
-  virtual void read_state(const common::StateReader& /*reader*/, std::string_view /*prefix*/) {}
 };
 
 }  // namespace mpm

@@ -89,7 +89,7 @@ class Solver {
   /// solver/time, points/id, points/x, points/v, points/mass, points/volume, points/volume0,
   /// points/half_width0, points/stress, points/F, points/L, points/material,
   /// loads/traction_<k>/point_slots. The materials'
-  /// own state is written by their owner (MaterialModel::write_state).
+  /// own state is written by their owner (e.g. LinearElastic::save).
   void save(common::StateWriter& writer) const;
   /// Restores what save wrote; a run continued from it is bit-for-bit the uninterrupted one.
   /// Throws common::InputError on a missing field or inconsistent sizes.

@@ -66,3 +66,25 @@ TEST(StateStore, TruncatedBufferIsRefused) {
   bytes.resize(bytes.size() - 3);
   EXPECT_THROW((void)StateStore::deserialize(bytes), common::InputError);
 }
+
+// A named scalar is a field of one value; anything else is refused naming the field.
+TEST(StateStore, NamedScalars) {
+  StateStore s;
+  common::write_scalar(s, "params/material/young", 7e7);
+  common::write_scalar(s, "params/numerics/dt_refresh", std::int64_t{100});
+  EXPECT_EQ(s.read_f64("params/material/young"), std::vector<double>{7e7});
+  EXPECT_EQ(common::read_scalar_f64(s, "params/material/young"), 7e7);
+  EXPECT_EQ(common::read_scalar_i64(s, "params/numerics/dt_refresh"), 100);
+  const std::vector<double> two{1.0, 2.0};
+  s.write("params/material", std::span<const double>(two));
+  try {
+    (void)common::read_scalar_f64(s, "params/material");
+    ADD_FAILURE() << "a 2-value field was read as a scalar";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'params/material' has 2 values, expected 1"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW((void)common::read_scalar_i64(s, "params/material/young"), common::InputError);
+  EXPECT_THROW((void)common::read_scalar_f64(s, "params/material/poisson"), common::InputError);
+}

@@ -122,22 +122,10 @@ inline std::string compare_results(const std::string& a, const std::string& b) {
 
 // ---- small DEM RVEs (needs dem::Rve) ----
 #include "dem/loading.hpp"
+#include "dem/reference_material.hpp"
 #include "farm/dem_micro.hpp"
 
 namespace farm::testing {
-
-inline dem::Material dem_material() {
-  dem::Material m;  // the dem tests' reference set (README section 7 placeholders)
-  m.density = 2650.0;
-  m.young = 3e8;
-  m.ks_over_kn = 0.5;
-  m.friction_deg = 30.0;
-  m.alpha_r = 2.0;
-  m.eta_r = 0.3;
-  m.alpha_t = 0.0;
-  m.eta_t = -1.0;
-  return m;
-}
 
 /// A small periodic packing compacted to 100 kPa (deterministic for n and seed).
 inline dem::Packing small_packing(std::int64_t n, std::uint64_t seed) {
@@ -145,7 +133,7 @@ inline dem::Packing small_packing(std::int64_t n, std::uint64_t seed) {
   psd.diameter = {1.5e-4, 3e-4};
   psd.passing = {0.0, 1.0};
   const dem::Packing cloud = dem::make_cloud(psd, n, 0.3, seed);
-  dem::Simulation sim = dem::make_simulation(cloud, dem_material(), dem::Numerics{});
+  dem::Simulation sim = dem::make_simulation(cloud, dem::reference_material(), dem::Numerics{});
   dem::Preparation prep;
   prep.target.pressure = 1e5;
   prep.target.stress_tol = 0.02;
@@ -165,7 +153,7 @@ inline MicroKind small_dem_kind() {
   static const dem::Packing a = dem::read_packing(MPMXDEM_FARM_TEST_DATA "/packing_N40_seed11.txt");
   static const dem::Packing b = dem::read_packing(MPMXDEM_FARM_TEST_DATA "/packing_N70_seed12.txt");
   DemMicroParams p;
-  p.rve.material = dem_material();
+  p.rve.material = dem::reference_material();
   return DemMicro::kind(p, [](std::int64_t id) { return id % 2 == 0 ? a : b; });
 }
 

@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
@@ -74,6 +77,55 @@ TEST(ElasticMicro, InjectedFailureAndBadParams) {
   EXPECT_THROW(m.step(common::Mat3::Zero(), 1e-3), common::NumericalError);
   p.young = -1;
   EXPECT_THROW(farm::ElasticMicro(1, p), common::InputError);
+}
+
+// Every parameter is a named field holding the member it names; the state carries its version.
+TEST(ElasticMicro, ParametersAreNamedFields) {
+  farm::ElasticMicroParams p = params();
+  p.substeps = 3;
+  p.fail_id = 9;
+  p.fail_step = 11;
+  p.void_ratio0 = 0.55;
+  const farm::ElasticMicro m(4, p);
+  common::StateStore s;
+  m.save(s);
+  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{2});
+  EXPECT_EQ(s.read_i64("elastic/id"), std::vector<std::int64_t>{4});
+  EXPECT_EQ(s.read_f64("elastic/params/young"), std::vector<double>{p.young});
+  EXPECT_EQ(s.read_f64("elastic/params/poisson"), std::vector<double>{p.poisson});
+  EXPECT_EQ(s.read_f64("elastic/params/density"), std::vector<double>{p.density});
+  EXPECT_EQ(s.read_f64("elastic/params/void_ratio0"), std::vector<double>{0.55});
+  const auto s0 = s.read_f64("elastic/params/initial_stress");
+  ASSERT_EQ(s0.size(), 9u);
+  EXPECT_EQ(s0[1], p.initial_stress(0, 1));  // row-major
+  EXPECT_EQ(s0[8], p.initial_stress(2, 2));
+  EXPECT_EQ(s.read_i64("elastic/params/substeps"), std::vector<std::int64_t>{3});
+  EXPECT_EQ(s.read_i64("elastic/params/fail_id"), std::vector<std::int64_t>{9});
+  EXPECT_EQ(s.read_i64("elastic/params/fail_step"), std::vector<std::int64_t>{11});
+  EXPECT_FALSE(s.has("elastic/params"));
+  EXPECT_FALSE(s.has("elastic/int_params"));
+  common::StateStore again;
+  farm::ElasticMicro::load(s)->save(again);
+  EXPECT_TRUE(again.fields() == s.fields());
+}
+
+// A state of version 1 (positional arrays, no elastic/version) is refused with a message naming
+// the field and both versions.
+TEST(ElasticMicro, OldVersionRefused) {
+  common::StateStore s;
+  s.write("elastic/id", std::vector<std::int64_t>{1});
+  s.write("elastic/params", std::vector<double>(13, 1.0));
+  s.write("elastic/int_params", std::vector<std::int64_t>{1, -1, -1});
+  try {
+    (void)farm::ElasticMicro::load(s);
+    ADD_FAILURE() << "a version-1 state was loaded";
+  } catch (const common::InputError& e) {
+    const std::string m = e.what();
+    for (const char* needle :
+         {"'elastic/version' = 1 (absent)", "reads version 2 only", "elastic/params/young"}) {
+      EXPECT_NE(m.find(needle), std::string::npos) << m;
+    }
+  }
 }
 
 TEST(ElasticMicro, LoadRefusesMissingField) {

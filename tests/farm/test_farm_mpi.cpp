@@ -9,11 +9,14 @@
 #include <fstream>
 
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
 #include "farm/checkpoint.hpp"
 #include "farm/driver.hpp"
 #include "farm/partition.hpp"
 #include "farm/rve_farm.hpp"
 #include "farm_test_job.hpp"
+#include "mpm/linear_elastic.hpp"
+#include "mpm/solver.hpp"
 
 namespace fs = std::filesystem;
 using farm::testing::compare_results;
@@ -120,6 +123,7 @@ TEST(Farm, SmokeTinyCoupledJob) {
 // The same job on 1, 2, ... world ranks gives bit-for-bit identical results.h5 (stresses of every
 // RVE and point, p, q, e, ...), with rebalancing active (threshold 1.0, every 3 steps).
 TEST(Farm, ResultsIdenticalOnAnyRankCount) {
+  ASSERT_GE(world_size(), 2) << "run with mpiexec -n 2 or 3";
   const std::string base = scratch("ranks");
   for (int n = 1; n <= world_size(); ++n) {
     farm::CoupledConfig cfg =
@@ -136,9 +140,57 @@ TEST(Farm, ResultsIdenticalOnAnyRankCount) {
   }
 }
 
+// Verification of the seam: ElasticMicro RVEs through the farm (every rank hosting some) give the
+// points exactly the stresses and motion of the direct solver with mpm::LinearElastic (both use
+// common::HughesWinget; the farm only carries L down and the stress up, row-major, bit for bit).
+TEST(Farm, ElasticFarmEqualsDirectSolver) {
+  ASSERT_GE(world_size(), 2) << "run with mpiexec -n 2 or 3";
+  const std::string dir = scratch("elastic_direct");
+  const std::int64_t steps = 40;
+  const farm::ElasticMicroParams ep = farm::testing::elastic_params();
+  const farm::CoupledConfig cfg = triaxial_job(dir, steps, farm::ElasticMicro::kind(ep));
+  const farm::RunSummary s = farm::run_coupled(cfg, MPI_COMM_WORLD);
+  EXPECT_EQ(s.steps, steps);
+  if (world_rank() != 0) return;
+  mpm::LinearElastic elastic(ep.young, ep.poisson, ep.density, ep.initial_stress);
+  mpm::Solver direct(cfg.solver, cfg.points, {&elastic});
+  for (const auto& c : cfg.constraints) direct.add_constraint(c);
+  for (const auto& t : cfg.tractions) direct.add_traction(t);
+  std::vector<std::uint64_t> stress;  // every row, as results.h5 stores them
+  std::vector<std::uint64_t> x;
+  auto row = [&] {
+    const mpm::MaterialPoints& pts = direct.points();
+    for (std::size_t p = 0; p < pts.size(); ++p) {
+      double v[9];
+      common::to_row_major(pts.stress[p], v);
+      std::uint64_t w[9];
+      std::memcpy(w, v, sizeof w);
+      stress.insert(stress.end(), w, w + 9);
+      for (int a = 0; a < 3; ++a) {
+        std::uint64_t u = 0;
+        std::memcpy(&u, &pts.x[p](a), sizeof u);
+        x.push_back(u);
+      }
+    }
+  };
+  row();
+  for (std::int64_t k = 0; k < steps; ++k) {
+    direct.step();
+    row();
+  }
+  const auto farm_stress = farm::testing::read_words(dir + "/results.h5", "/points/stress");
+  const auto farm_x = farm::testing::read_words(dir + "/results.h5", "/points/x");
+  ASSERT_EQ(farm_stress.size(), stress.size());
+  EXPECT_TRUE(farm_stress == stress) << "point stresses differ from the direct solver's";
+  EXPECT_TRUE(farm_x == x) << "point positions differ from the direct solver's";
+  // The run did something: the axial stress moved away from the confining pressure.
+  EXPECT_GT(std::abs(direct.points().stress[0](2, 2) + 100e3), 1.0);
+}
+
 // N steps straight == N/2, checkpoint, restart (on min(world, 2) ranks), N/2: bit for bit.
 // At np3 the checkpoint is written by 3 ranks and restarted on 2.
 TEST(Farm, RestartContinuesBitForBit) {
+  ASSERT_GE(world_size(), 2) << "run with mpiexec -n 2 or 3";
   const std::string base = scratch("restart");
   const int n_write = world_size();
   const int n_read = std::min(world_size(), 2);
@@ -306,6 +358,7 @@ TEST(Farm, DamagedCheckpointRefused) {
 // DemMicro (dem::Rve, 40 and 70 spheres): identical results on 1, 2, ... ranks, and a restart
 // from a checkpoint written by all ranks onto min(world, 2) ranks continues bit for bit.
 TEST(Farm, DemResultsIdenticalOnAnyRankCountAndRestart) {
+  ASSERT_GE(world_size(), 2) << "run with mpiexec -n 2 or 3";
   const std::string base = scratch("dem");
   const std::int64_t steps = 4;
   for (int n = 1; n <= world_size(); ++n) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "farm/results.hpp"
 
 namespace {
@@ -133,6 +134,25 @@ TEST(Results, ForcedFlushRewritesTheIndexes) {
   const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("step_190"), std::string::npos);
   EXPECT_NE(text.find("Dimensions=\"20 3 3\""), std::string::npos);  // all rows of the datasets
+  // Rewritten atomically (common::write_file_atomic): nothing is left staged.
+  EXPECT_FALSE(fs::exists(dir + "/points.xmf.tmp"));
+  EXPECT_FALSE(fs::exists(dir + "/means.csv.tmp"));
+}
+
+// An index that cannot be written is a common::IoError naming the file, not an input error.
+TEST(Results, UnwritableIndexIsAnIoError) {
+  const std::string dir = scratch("unwritable");
+  const Sample smp;
+  farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+  smp.append(w, 0);
+  fs::create_directory(dir + "/means.csv");  // rename(file, non-empty directory) fails
+  std::ofstream(dir + "/means.csv/keep") << "x";
+  try {
+    w.flush(true);
+    ADD_FAILURE() << "means.csv replaced a directory";
+  } catch (const common::IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("means.csv"), std::string::npos) << e.what();
+  }
 }
 
 // Rows not yet written when the writer goes away (an error unwinding the driver) are written.

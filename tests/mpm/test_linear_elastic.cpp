@@ -62,9 +62,9 @@ TEST(LinearElastic, StateRoundTrip) {
   Mat3 s = Mat3::Random();
   a.set_stress(3, s);
   common::StateStore store;
-  a.write_state(store, "material/0/");
+  a.save(store, "material/0/");
   mpm::LinearElastic b(1e6, 0.2, 1.0);
-  b.read_state(store, "material/0/");
+  b.load(store, "material/0/");
   EXPECT_EQ(b.stress(3), s);
   EXPECT_EQ(b.stress(0), Mat3::Zero());
 }

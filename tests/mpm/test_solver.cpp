@@ -55,7 +55,7 @@ TEST(Solver, CheckpointContinuesBitForBit) {
     a.run(8);
     common::StateStore store;
     a.save(store);
-    mat_a.write_state(store, "material/0/");
+    mat_a.save(store, "material/0/");
     a.run(8);
 
     mpm::LinearElastic mat_b(1e5, 0.3, 1800.0);
@@ -65,7 +65,7 @@ TEST(Solver, CheckpointContinuesBitForBit) {
     b.add_constraint({Vec3(0, 0, 0), Vec3(2, 2, 0.25), {false, false, true}, Vec3::Zero(), {}});
     b.add_traction({0, +1, 500.0, Vec3::Zero()});
     b.load(store);
-    mat_b.read_state(store, "material/0/");
+    mat_b.load(store, "material/0/");
     EXPECT_EQ(b.step_count(), 8);
     b.run(8);
     EXPECT_EQ(a.time(), b.time());

@@ -20,6 +20,7 @@
 
 #include "common/state_store.hpp"
 #include "dem/packing_io.hpp"
+#include "dem/reference_material.hpp"
 #include "farm/dem_micro.hpp"
 #include "farm/driver.hpp"
 #include "farm/elastic_micro.hpp"
@@ -57,23 +58,10 @@ int size_of(MPI_Comm c) {
   return s;
 }
 
-dem::Material dem_material() {
-  dem::Material m;  // the dem tests' reference set
-  m.density = 2650.0;
-  m.young = 3e8;
-  m.ks_over_kn = 0.5;
-  m.friction_deg = 30.0;
-  m.alpha_r = 2.0;
-  m.eta_r = 0.3;
-  m.alpha_t = 0.0;
-  m.eta_t = -1.0;
-  return m;
-}
-
 farm::MicroKind dem_kind(const std::string& packing_file) {
   const dem::Packing pk = dem::read_packing(packing_file);
   farm::DemMicroParams p;
-  p.rve.material = dem_material();
+  p.rve.material = dem::reference_material();
   return farm::DemMicro::kind(p, [pk](std::int64_t) { return pk; });
 }
 
@@ -210,7 +198,7 @@ void balance(const Args& a, MPI_Comm comm) {
       return c == 1 ? 1 : (c == 2 || c == 5 ? 2 : 4);
     };
     farm::DemMicroParams p;
-    p.rve.material = dem_material();
+    p.rve.material = dem::reference_material();
     kind = farm::DemMicro::kind(
         p, [by_class, size_class](std::int64_t id) { return by_class.at(size_class(id)); });
     std::int64_t spheres = 0;

@@ -1,0 +1,24 @@
+// Atomic replacement of a file: the content goes to <path>.tmp, is fsync-ed, renamed over <path>
+// and the directory is fsync-ed. Readers (and a restart after a crash or a power cut) see the old
+// file or the new one, never a partial one. The one home of this protocol (checkpoints, results
+// indexes, job copies, time series).
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace common {
+
+/// Where a file is staged before publish_file: `path` + ".tmp".
+[[nodiscard]] std::filesystem::path staging_path(const std::filesystem::path& path);
+
+/// Publishes a complete staged file: fsync(tmp), rename(tmp, path) (atomic on POSIX), fsync of
+/// path's directory (the rename itself is then durable).
+/// Throws common::IoError naming the file, the failed operation and the system's reason.
+void publish_file(const std::filesystem::path& tmp, const std::filesystem::path& path);
+
+/// Writes `content` to staging_path(path) and publishes it (publish_file).
+/// Throws common::IoError naming the file, the failed operation and the system's reason.
+void write_file_atomic(const std::filesystem::path& path, std::string_view content);
+
+}  // namespace common

@@ -1,0 +1,294 @@
+// Typed HDF5 layer: see h5_file.hpp.
+#include "farm/h5_file.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <type_traits>
+
+#include "common/errors.hpp"
+
+namespace farm::h5 {
+
+namespace {
+
+/// Chunk length of a checkpoint dataset (elements); a chunk may not exceed a fixed-size dataset.
+constexpr hsize_t kChunk = hsize_t{1} << 16U;
+constexpr unsigned kDeflateLevel = 4;
+
+/// Selects `blocks` in `space` (none selected when they are all empty).
+void select_blocks(hid_t space, std::span<const Block> blocks) {
+  bool first = true;
+  for (const Block& b : blocks) {
+    if (b.count == 0) continue;
+    const hsize_t start[1] = {b.offset};
+    const hsize_t count[1] = {b.count};
+    check(H5Sselect_hyperslab(space, first ? H5S_SELECT_SET : H5S_SELECT_OR, start, nullptr, count,
+                              nullptr),
+          "H5Sselect_hyperslab");
+    first = false;
+  }
+  if (first) check(H5Sselect_none(space), "H5Sselect_none");
+}
+
+std::uint64_t total_count(std::span<const Block> blocks) {
+  std::uint64_t n = 0;
+  for (const Block& b : blocks) n += b.count;
+  return n;
+}
+
+}  // namespace
+
+File File::create(MPI_Comm comm, const std::string& path) {
+  silence_errors();
+  File f;
+  f.path_ = path;
+  f.what_ = "file";
+  f.comm_ = comm;
+  MPI_Comm_rank(comm, &f.rank_);
+  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+  check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio");
+  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (id < 0) throw common::IoError("cannot create HDF5 file '" + path + "'");
+  f.file_ = Handle(id, H5Fclose);
+  f.lcpl_ = Handle(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
+  check(H5Pset_create_intermediate_group(f.lcpl_.get(), 1), "H5Pset_create_intermediate_group");
+  f.dxpl_ = Handle(check(H5Pcreate(H5P_DATASET_XFER), "H5Pcreate"), H5Pclose);
+  check(H5Pset_dxpl_mpio(f.dxpl_.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  return f;
+}
+
+File File::open(const std::string& path, const std::string& what) {
+  silence_errors();
+  File f;
+  f.path_ = path;
+  f.what_ = what;
+  if (!std::filesystem::exists(path)) f.fail("the file does not exist");
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    f.fail("is not an HDF5 file (damaged, truncated or not a " + what + ")");
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (id < 0) f.fail("cannot be opened as HDF5 (damaged or truncated)");
+  f.file_ = Handle(id, H5Fclose);
+  return f;
+}
+
+// ---------------------------------------------------------------- writing
+
+void File::attribute(const char* name, hid_t type, const void* value) {
+  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+  Handle attr(check(H5Acreate2(file_.get(), name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                    std::string("create attribute ") + name),
+              H5Aclose);
+  check(H5Awrite(attr.get(), type, value), std::string("write attribute ") + name);
+}
+
+void File::write_attribute(const char* name, std::int64_t value) {
+  attribute(name, H5T_NATIVE_INT64, &value);
+}
+
+void File::write_attribute(const char* name, double value) {
+  attribute(name, H5T_NATIVE_DOUBLE, &value);
+}
+
+void File::write_attribute(const char* name, const std::string& value) {
+  // A fixed-length string of the text's size (HDF5 has no zero-length string type: "" is "\0").
+  Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+  check(H5Tset_size(type.get(), std::max<std::size_t>(1, value.size())), "H5Tset_size");
+  const std::string v = value.empty() ? std::string(1, '\0') : value;
+  attribute(name, type.get(), v.data());
+}
+
+template <Element T>
+void File::write_blocks(const std::string& name, std::uint64_t global_n,
+                        std::span<const Block> blocks, const T* data) {
+  MPMXDEM_CHECK(comm_ != MPI_COMM_NULL, "write to a file opened for reading: " + path_);
+  const std::uint64_t local = checksum(blocks, data);
+  std::uint64_t total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  const hsize_t dims[1] = {global_n};
+  Handle fspace(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
+  Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+  if (global_n > 0) {
+    const hsize_t chunk[1] = {std::min<hsize_t>(global_n, kChunk)};
+    check(H5Pset_chunk(dcpl.get(), 1, chunk), "H5Pset_chunk " + name);
+    check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
+    check(H5Pset_deflate(dcpl.get(), kDeflateLevel), "H5Pset_deflate");
+  }
+  Handle dset(check(H5Dcreate2(file_.get(), name.c_str(), native_type<T>(), fspace.get(),
+                               lcpl_.get(), dcpl.get(), H5P_DEFAULT),
+                    "create dataset " + name),
+              H5Dclose);
+  if (global_n > 0) {
+    // Every rank takes part in the collective write, an empty selection included.
+    const std::uint64_t local_n = total_count(blocks);
+    const hsize_t mdims[1] = {local_n};
+    Handle mspace(check(H5Screate_simple(1, mdims, nullptr), "H5Screate_simple"), H5Sclose);
+    select_blocks(fspace.get(), blocks);
+    if (local_n == 0) check(H5Sselect_none(mspace.get()), "H5Sselect_none");
+    const T dummy{};
+    check(H5Dwrite(dset.get(), native_type<T>(), mspace.get(), fspace.get(), dxpl_.get(),
+                   local_n == 0 ? &dummy : data),
+          "write dataset " + name);
+  }
+  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+  Handle attr(check(H5Acreate2(dset.get(), "hash64", H5T_NATIVE_UINT64, space.get(), H5P_DEFAULT,
+                               H5P_DEFAULT),
+                    "create attribute hash64 of " + name),
+              H5Aclose);
+  check(H5Awrite(attr.get(), H5T_NATIVE_UINT64, &total), "write attribute hash64 of " + name);
+}
+
+template <Element T>
+void File::write_from_root(const std::string& name, std::uint64_t n, const T* data) {
+  const Block whole{0, n};
+  const bool mine = rank_ == 0 && n > 0;
+  write_blocks<T>(name, n, mine ? std::span<const Block>(&whole, 1) : std::span<const Block>(),
+                  data);
+}
+
+void File::flush() { check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "H5Fflush " + path_); }
+
+void File::close() {
+  dxpl_.reset();
+  lcpl_.reset();
+  if (file_.valid() && H5Fclose(file_.get()) < 0) {
+    throw common::IoError("closing HDF5 file '" + path_ + "' failed");
+  }
+  file_ = Handle();
+}
+
+// ---------------------------------------------------------------- reading
+
+void File::fail(const std::string& message) const {
+  throw common::InputError(what_ + " " + path_ + ": " + message);
+}
+
+bool File::exists(const std::string& name) const {
+  // H5Lexists needs every group on the way to exist.
+  std::string partial;
+  std::istringstream in(name);
+  std::string part;
+  while (std::getline(in, part, '/')) {
+    if (part.empty()) continue;
+    partial += "/" + part;
+    if (H5Lexists(file_.get(), partial.c_str(), H5P_DEFAULT) <= 0) return false;
+  }
+  return !partial.empty();
+}
+
+namespace {
+
+template <class T>
+T read_attribute(const File& f, hid_t file, const char* name, hid_t type) {
+  if (H5Aexists(file, name) <= 0) f.fail("attribute /" + std::string(name) + " is missing");
+  Handle a(H5Aopen(file, name, H5P_DEFAULT), H5Aclose);
+  T v{};
+  if (!a.valid() || H5Aread(a.get(), type, &v) < 0)
+    f.fail("attribute /" + std::string(name) + " cannot be read as the expected type");
+  return v;
+}
+
+}  // namespace
+
+std::int64_t File::attribute_i64(const char* name) const {
+  return read_attribute<std::int64_t>(*this, file_.get(), name, H5T_NATIVE_INT64);
+}
+
+double File::attribute_f64(const char* name) const {
+  return read_attribute<double>(*this, file_.get(), name, H5T_NATIVE_DOUBLE);
+}
+
+std::string File::attribute_string(const char* name) const {
+  if (H5Aexists(file_.get(), name) <= 0) fail("attribute /" + std::string(name) + " is missing");
+  Handle a(H5Aopen(file_.get(), name, H5P_DEFAULT), H5Aclose);
+  Handle t(a.valid() ? H5Aget_type(a.get()) : -1, H5Tclose);
+  if (!t.valid() || H5Tget_class(t.get()) != H5T_STRING)
+    fail("attribute /" + std::string(name) + " is not a string");
+  std::string s(H5Tget_size(t.get()), '\0');
+  if (H5Aread(a.get(), t.get(), s.data()) < 0)
+    fail("attribute /" + std::string(name) + " unreadable");
+  s.erase(std::find(s.begin(), s.end(), '\0'), s.end());
+  return s;
+}
+
+template <Element T>
+Handle File::open_dataset(const std::string& name, std::uint64_t& n) const {
+  if (!exists(name)) fail("dataset " + name + " is missing");
+  Handle d(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) fail("dataset " + name + " cannot be opened");
+  Handle t(H5Dget_type(d.get()), H5Tclose);
+  const H5T_class_t want = std::is_floating_point_v<T> ? H5T_FLOAT : H5T_INTEGER;
+  if (H5Tget_class(t.get()) != want || H5Tget_size(t.get()) != sizeof(T)) {
+    fail("dataset " + name + " has the wrong element type (expected " +
+         (std::is_floating_point_v<T> ? std::string("64-bit float")
+                                      : std::to_string(8 * sizeof(T)) + "-bit integer") +
+         ")");
+  }
+  Handle s(H5Dget_space(d.get()), H5Sclose);
+  if (H5Sget_simple_extent_ndims(s.get()) != 1) fail("dataset " + name + " is not one-dimensional");
+  hsize_t dims[1] = {0};
+  H5Sget_simple_extent_dims(s.get(), dims, nullptr);
+  n = dims[0];
+  return d;
+}
+
+std::uint64_t File::stored_checksum(hid_t dset, const std::string& name) const {
+  if (H5Aexists(dset, "hash64") <= 0) fail("dataset " + name + ": attribute hash64 is missing");
+  Handle a(H5Aopen(dset, "hash64", H5P_DEFAULT), H5Aclose);
+  std::uint64_t h = 0;
+  if (!a.valid() || H5Aread(a.get(), H5T_NATIVE_UINT64, &h) < 0)
+    fail("dataset " + name + ": attribute hash64 unreadable");
+  return h;
+}
+
+template <Element T>
+std::vector<T> File::read(const std::string& name) const {
+  std::uint64_t n = 0;
+  const Handle d = open_dataset<T>(name, n);
+  std::vector<T> v(n);
+  if (n > 0 && H5Dread(d.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+    fail("dataset " + name + " cannot be read (damaged data)");
+  const std::uint64_t stored = stored_checksum(d.get(), name);
+  const std::uint64_t computed = checksum(std::span<const T>(v), 0);
+  if (stored != computed) {
+    fail("dataset " + name + ": checksum mismatch (stored " + hex(stored) + ", computed " +
+         hex(computed) + "): the file is damaged");
+  }
+  return v;
+}
+
+template <Element T>
+std::vector<T> File::read_blocks(const std::string& name, std::span<const Block> blocks,
+                                 std::uint64_t& partial, std::uint64_t& stored) const {
+  std::uint64_t n = 0;
+  const Handle d = open_dataset<T>(name, n);
+  stored = stored_checksum(d.get(), name);
+  for (const Block& b : blocks) {
+    if (b.offset + b.count > n) fail("dataset " + name + " is shorter than its counts say");
+  }
+  const std::uint64_t local_n = total_count(blocks);
+  std::vector<T> v(local_n);
+  if (local_n == 0) return v;
+  Handle fspace(H5Dget_space(d.get()), H5Sclose);
+  select_blocks(fspace.get(), blocks);
+  const hsize_t mdims[1] = {local_n};
+  Handle mspace(H5Screate_simple(1, mdims, nullptr), H5Sclose);
+  if (H5Dread(d.get(), native_type<T>(), mspace.get(), fspace.get(), H5P_DEFAULT, v.data()) < 0)
+    fail("dataset " + name + " cannot be read (damaged data)");
+  partial += checksum(blocks, v.data());
+  return v;
+}
+
+#define MPMXDEM_H5_FILE_INSTANTIATE(T)                                                           \
+  template void File::write_blocks<T>(const std::string&, std::uint64_t, std::span<const Block>, \
+                                      const T*);                                                 \
+  template void File::write_from_root<T>(const std::string&, std::uint64_t, const T*);           \
+  template std::vector<T> File::read<T>(const std::string&) const;                               \
+  template std::vector<T> File::read_blocks<T>(const std::string&, std::span<const Block>,       \
+                                               std::uint64_t&, std::uint64_t&) const;
+MPMXDEM_H5_FILE_INSTANTIATE(double)
+MPMXDEM_H5_FILE_INSTANTIATE(std::int64_t)
+MPMXDEM_H5_FILE_INSTANTIATE(std::uint8_t)
+#undef MPMXDEM_H5_FILE_INSTANTIATE
+
+}  // namespace farm::h5

@@ -1,0 +1,98 @@
+// When a coupled run writes outputs, checkpoints (keeping the newest N), balances and logs: small
+// policies of the step count and the wall clock, so that the run loop only asks "due?".
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "farm/run_options.hpp"
+
+namespace farm {
+
+/// A results.h5 row at step 0 (if the file has none), every `every` steps, and at the last step.
+class OutputSchedule {
+ public:
+  explicit OutputSchedule(std::int64_t every) : every_(every) {}
+  [[nodiscard]] bool due(std::int64_t step) const { return step % every_ == 0; }
+  /// After the loop: a row for the last step unless it has one (or the file has none at all).
+  [[nodiscard]] bool due_at_end(std::int64_t step, std::int64_t rows) const {
+    return rows == 0 || step % every_ != 0;
+  }
+
+ private:
+  std::int64_t every_;
+};
+
+/// Checkpoints every K steps and/or every T seconds of wall time, one at the end, the newest
+/// `keep` kept; counts writes for fault injection.
+class CheckpointSchedule {
+ public:
+  /// `last_step`: step of the checkpoint the run starts from (-1: none); `now`: wall clock [s].
+  CheckpointSchedule(const CheckpointOptions& options, std::int64_t fault_abort_at,
+                     std::int64_t last_step, double now);
+  [[nodiscard]] bool due(std::int64_t step, double now) const;
+  /// After the loop: at_end and no checkpoint of this step yet.
+  [[nodiscard]] bool due_at_end(std::int64_t step) const {
+    return options_.at_end && last_step_ != step;
+  }
+  /// Counts a write about to start; true if it is the one fault injection aborts.
+  bool begin_write() { return ++writes_ == fault_abort_at_; }
+  /// A checkpoint of `step` was written.
+  void written(std::int64_t step) { last_step_ = step; }
+  /// Wall-clock due-time restarts only after periodic writes (not the final one).
+  void restart_clock(double now) { last_wall_ = now; }
+  /// Of the checkpoints in `all` (oldest first), those beyond the newest `keep`.
+  [[nodiscard]] std::vector<std::string> expired(const std::vector<std::string>& all) const;
+
+ private:
+  CheckpointOptions options_;
+  std::int64_t fault_abort_at_;
+  std::int64_t last_step_;
+  double last_wall_;
+  std::int64_t writes_ = 0;
+};
+
+/// A balance check every check_every steps, when enabled and there is more than one rank.
+class BalanceSchedule {
+ public:
+  BalanceSchedule(const BalanceOptions& options, int nranks) : options_(options), nranks_(nranks) {}
+  [[nodiscard]] bool due(std::int64_t step) const {
+    return options_.enabled && nranks_ > 1 && step % options_.check_every == 0;
+  }
+  [[nodiscard]] double threshold() const { return options_.threshold; }
+
+ private:
+  BalanceOptions options_;
+  int nranks_;
+};
+
+/// A progress line at most every `every_s` seconds of wall time.
+class ProgressSchedule {
+ public:
+  ProgressSchedule(double every_s, double now) : every_s_(every_s), last_(now) {}
+  /// True (and restarts the clock) when due.
+  bool due(double now) {
+    if (now - last_ < every_s_) return false;
+    last_ = now;
+    return true;
+  }
+
+ private:
+  double every_s_;
+  double last_;
+};
+
+/// The fault injection setting: MPMXDEM_FARM_FAULT=abort_checkpoint:<n> (n >= 1) if set, else
+/// `configured`. Throws common::InputError on any other text.
+std::int64_t fault_abort_from_env(std::int64_t configured);
+
+/// Estimated wall time left [s]: steps left (max_steps) or time left (end_time, at the mean
+/// MPM dt so far), whichever ends first, at `per_step` [s of wall per step].
+double eta_s(std::int64_t step, double time, std::int64_t max_steps, double end_time,
+             double per_step);
+
+/// "1h2m3s" ("?" for a negative or non-finite duration).
+std::string format_duration(double s);
+
+}  // namespace farm
