@@ -395,6 +395,16 @@ Job Job::load(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) {
     throw common::InputError(fmt::format("{}: cannot open the job file: it is a directory", path));
   }
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw common::InputError(fmt::format(
+        "{}: cannot open the job file: not a regular file (a device or a pipe?)", path));
+  }
+  constexpr std::uintmax_t kMaxJobBytes = 16u << 20;  // job files are a few kB
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxJobBytes) {
+    throw common::InputError(fmt::format(
+        "{}: the job file has {} bytes, more than the {} a job file may have: is it a job file?",
+        path, size, kMaxJobBytes));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw common::InputError(fmt::format("{}: cannot open the job file: permission denied?", path));

@@ -25,6 +25,8 @@ cli_error(ARGS "${long}" EXPECT "unknown command 'xxxx")
 execute_process(COMMAND "${EXE}" run jobs/elastic_triaxial.toml --out "" RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 30)
 expect_failure("${rc}" "${err}" 2 "--out \"\": the output directory must not be an empty path")
 cli_error(ARGS run jobs/elastic_triaxial.toml --out= EXPECT "the output directory must not be an empty path")
+# A job "file" that is a device (reading it would never end).
+cli_error(ARGS check /dev/zero EXPECT "/dev/zero: cannot open the job file: not a regular file")
 if(EXISTS "${DIR}")
   message(FATAL_ERROR "a refused command line created ${DIR}")
 endif()
