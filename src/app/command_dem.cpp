@@ -13,6 +13,7 @@
 #include "app/progress.hpp"
 #include "app/series_output.hpp"
 #include "common/errors.hpp"
+#include "dem/element_test.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
 
@@ -115,33 +116,30 @@ int command_dem(const Options& o, const Comm& comm) {
   if (type == "triaxial") {
     bool generated = false;
     const double rho = job.number("dem.material.density");
-    const double p0 = job.number("dem.loading.confining_pressure");
+    dem::DrainedTriaxial test;
+    test.confining = job.number("dem.loading.confining_pressure");
     const double d50 = dem_d50(job, dem_packing(job, generated));
-    const double t_ref = d50 * std::sqrt(rho / p0);
-    const double rate = job.number("dem.loading.inertial_number") / t_ref;
-    const double target = job.number("dem.loading.axial_strain");
+    test.axial_rate =
+        dem::strain_rate(job.number("dem.loading.inertial_number"), d50, rho, test.confining);
+    test.eps_end = job.number("dem.loading.axial_strain");
+    test.check_every = every;
+    test.max_steps = max_steps;
     spdlog::info(
         "triaxial: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
-        "1/s, "
-        "to eps_a = {}, lateral stress {:.4g} Pa; about {:.3g} DEM steps",
-        d50, t_ref, rate, target, p0, target / rate / sim.dt());
-    dem::MixedController controller(dem::triaxial_control(rate, p0, 3.0 * rate));
-    Progress progress("triaxial", target);
-    double eps_a = 0.0;
-    while (eps_a < target && done < max_steps) {
-      const std::int64_t n = std::min(every, max_steps - done);
-      dem::advance(sim, &controller, n);
-      done += n;
-      const dem::Measures m = dem::measure(sim);
-      check_finite(m, sim);
-      const auto r = row(sim, m, ref);
-      series.add(r);
-      eps_a = r[3];
-      progress.update(
-          eps_a, sim.steps(),
-          fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, r[4], m.void_ratio),
-          eps_a >= target);
-    }
+        "1/s, to eps_a = {}, lateral stress {:.4g} Pa; about {:.3g} DEM steps",
+        d50, dem::inertial_time(d50, rho, test.confining), test.axial_rate, test.eps_end,
+        test.confining, test.eps_end / test.axial_rate / sim.dt());
+    Progress progress("triaxial", test.eps_end);
+    done = dem::run_drained_triaxial(
+        sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
+          const dem::Measures m = dem::measure(s);
+          check_finite(m, s);
+          series.add(row(s, m, ref));
+          progress.update(
+              now.eps_a, s.steps(),
+              fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v, m.void_ratio),
+              now.eps_a >= test.eps_end);
+        });
   } else if (type == "isotropic") {
     dem::EquilibriumTarget t;
     t.pressure = job.number("dem.loading.confining_pressure");

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "app/progress.hpp"
+#include "dem/element_test.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
 
@@ -96,9 +97,9 @@ dem::Simulation prepared_sample(const Job& job) {
   dem::Simulation sim = dem::make_simulation(packing, dem_material(job), dem_numerics(job));
   dem::Preparation prep = dem_preparation(job);
   // Strain-rate bound of the servo from the inertial number: I / t_ref, t_ref = d50 sqrt(rho / p).
-  const double t_ref =
-      dem_d50(job, packing) * std::sqrt(job.number("dem.material.density") / prep.target.pressure);
-  prep.compaction_rate = job.number("dem.preparation.inertial_number") / t_ref;
+  prep.compaction_rate =
+      dem::strain_rate(job.number("dem.preparation.inertial_number"), dem_d50(job, packing),
+                       job.number("dem.material.density"), prep.target.pressure);
   prep.target.max_rate = prep.compaction_rate;
   std::int64_t steps = 0;
   // A line every 10 s: preparation can take minutes (a 30,000-sphere compaction) and has no end

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dem/benchmark.hpp"
+#include "dem/reference_material.hpp"
 
 int main(int argc, char** argv) {
   try {
@@ -14,8 +15,8 @@ int main(int argc, char** argv) {
     cfg.tiles = argc > 2 ? std::atoi(argv[2]) : 1;
     cfg.threads = argc > 3 ? std::atoi(argv[3]) : 1;
     cfg.steps = argc > 4 ? std::atoll(argv[4]) : 3000;
-    const dem::Material mat{2650.0, 3e8, 0.5, 30.0, 2.0, 0.3, 0.0, -1.0};
-    const auto r = dem::run_benchmark(dem::read_packing(path), mat, dem::Numerics{}, cfg);
+    const auto r = dem::run_benchmark(dem::read_packing(path), dem::reference_material(),
+                                      dem::Numerics{}, cfg);
     std::printf("spheres %lld threads %d steps %lld wall %.3f s\n",
                 static_cast<long long>(r.spheres), r.threads, static_cast<long long>(r.steps),
                 r.wall_s);

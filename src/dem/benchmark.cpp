@@ -4,8 +4,8 @@
 #include <omp.h>
 
 #include <chrono>
-#include <cmath>
 
+#include "dem/element_test.hpp"
 #include "dem/loading.hpp"
 #include "dem/rve.hpp"
 
@@ -24,9 +24,11 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   omp_set_num_threads(cfg.threads);
   const Packing pk = tile_packing(base, cfg.tiles);
   Simulation sim = make_simulation(pk, mat, num);
-  const double d50 = mass_median_diameter(pk.r);
-  const double rate = cfg.inertial_number / (d50 * std::sqrt(mat.density / cfg.confining));
-  MixedController ctl(triaxial_control(rate, cfg.confining, 10.0 * rate));
+  DrainedTriaxial test;
+  test.axial_rate =
+      strain_rate(cfg.inertial_number, mass_median_diameter(pk.r), mat.density, cfg.confining);
+  test.confining = cfg.confining;
+  MixedController ctl(triaxial_servo(test));
   advance(sim, &ctl, cfg.warmup_steps);
   const std::int64_t builds0 = sim.verlet().builds;
   const auto t0 = std::chrono::steady_clock::now();

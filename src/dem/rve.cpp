@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "dem/element_test.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
 #include "dem/state.hpp"
@@ -94,7 +95,7 @@ StepReport Rve::step(const Mat3& l, double dt) {
   }
   const double dt_dem = sim_.numerics().dt_safety * sim_.critical_dt();
   const double rho = params_.material.density;
-  double t_p = std::max(emax / params_.inertial_number * std::sqrt(rho * d50_ * d50_ / p), dt_dem);
+  double t_p = std::max(emax / params_.inertial_number * inertial_time(d50_, rho, p), dt_dem);
   if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
   auto n = static_cast<std::int64_t>(std::ceil(t_p / dt_dem));
   const auto n_split = static_cast<std::int64_t>(std::ceil(gmax / params_.max_strain_per_step));

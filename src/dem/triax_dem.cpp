@@ -5,14 +5,15 @@
 #include <omp.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <string>
 
+#include "dem/element_test.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
+#include "dem/reference_material.hpp"
 #include "dem/rve.hpp"
 
 int main(int argc, char** argv) {
@@ -21,7 +22,7 @@ int main(int argc, char** argv) {
     const double eps_end = argc > 2 ? std::atof(argv[2]) : 0.25;
     const double inertial = argc > 3 ? std::atof(argv[3]) : 2.5e-4;
     omp_set_num_threads(argc > 4 ? std::atoi(argv[4]) : 1);
-    const dem::Material mat{2650.0, 3e8, 0.5, 30.0, 2.0, 0.3, 0.0, -1.0};
+    const dem::Material mat = dem::reference_material();
     const double p0 = 1e5;
     const dem::Packing pk = dem::read_packing(path);
     dem::Simulation sim = dem::make_simulation(pk, mat, dem::Numerics{});
@@ -31,31 +32,27 @@ int main(int argc, char** argv) {
     et.unbalanced_tol = 0.005;
     const auto eq_steps = dem::equilibrate(sim, et);
     std::fprintf(stderr, "re-equilibrated in %lld steps\n", static_cast<long long>(eq_steps));
-    const double rate = inertial / (dem::mass_median_diameter(pk.r) * std::sqrt(mat.density / p0));
-    dem::MixedController ctl(dem::triaxial_control(rate, p0, 10.0 * rate));
-    const double lz0 = sim.cell().h(2, 2);
-    const double v0 = sim.cell().volume();
+    dem::DrainedTriaxial test;
+    test.axial_rate = dem::strain_rate(inertial, dem::mass_median_diameter(pk.r), mat.density, p0);
+    test.confining = p0;
+    test.eps_end = eps_end;
     std::printf("step,time,dt,eps_a,eps_v,p,q,sig_a,sig_r,e,Z,Zm,unbalanced,wall_s\n");
     const auto t0 = std::chrono::steady_clock::now();
     double next = 0.0;
-    for (;;) {
-      dem::advance(sim, &ctl, 100);
-      const double eps_a = -std::log(sim.cell().h(2, 2) / lz0);
-      if (eps_a >= next || eps_a >= eps_end) {
-        const dem::Measures m = dem::measure(sim);
-        const double sa = -m.stress(2, 2);
-        const double sr = -0.5 * (m.stress(0, 0) + m.stress(1, 1));
-        const double wall =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("%lld,%.8e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6f,%.5f,%.5f,%.4e,%.2f\n",
-                    static_cast<long long>(sim.steps()), sim.time(), sim.dt(), eps_a,
-                    -std::log(sim.cell().volume() / v0), m.p, sa - sr, sa, sr, m.void_ratio, m.z,
-                    m.z_mech, m.unbalanced, wall);
-        std::fflush(stdout);
-        next += 0.001;
-      }
-      if (eps_a >= eps_end) break;
-    }
+    dem::run_drained_triaxial(
+        sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
+          if (now.eps_a < next && !now.last) return;
+          const dem::Measures m = dem::measure(s);
+          const double sa = -m.stress(2, 2);
+          const double sr = -0.5 * (m.stress(0, 0) + m.stress(1, 1));
+          const double wall =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          std::printf("%lld,%.8e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6f,%.5f,%.5f,%.4e,%.2f\n",
+                      static_cast<long long>(s.steps()), s.time(), s.dt(), now.eps_a, now.eps_v,
+                      m.p, sa - sr, sa, sr, m.void_ratio, m.z, m.z_mech, m.unbalanced, wall);
+          std::fflush(stdout);
+          next += 0.001;
+        });
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "triax_dem: %s\n", e.what());

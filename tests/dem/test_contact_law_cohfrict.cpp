@@ -11,23 +11,12 @@
 
 #include "dem/contact_law_cohfrict.hpp"
 #include "dem/simulation.hpp"
+#include "dem_test_util.hpp"
 
 namespace {
 
 using common::Vec3;
-
-dem::Material reference_material() {
-  dem::Material m;
-  m.density = 2650.0;
-  m.young = 3e8;
-  m.ks_over_kn = 0.5;
-  m.friction_deg = 30.0;
-  m.alpha_r = 2.0;
-  m.eta_r = 0.3;
-  m.alpha_t = 0.0;
-  m.eta_t = -1.0;
-  return m;
-}
+using dem_test::reference_material;
 
 struct Row {
   long step;
@@ -85,7 +74,7 @@ TEST(ContactLaw, CoulombAndRollingCaps) {
 // The YADE trajectory: both spheres have prescribed velocities. Row n holds the contact state
 // computed from the positions after step n-1 and the positions after step n.
 TEST(ContactLaw, YadeTwoSphereTrajectory) {
-  const auto rows = read_csv(std::string(MPMXDEM_TEST_DATA) + "/dem/yade_two_sphere_contact.csv");
+  const auto rows = read_csv(dem_test::data_path("yade_two_sphere_contact.csv"));
   ASSERT_EQ(rows.back().step, 73100);
   const double r1 = 1e-4;
   const double r2 = 0.7e-4;

@@ -1,6 +1,7 @@
 // Physics invariants of the periodic simulation: energy in a frictionless undamped collision,
 // zero stress of a contact-free gas under affine deformation, objectivity under a rigid rotation,
-// invariance under a lattice translation, bit-for-bit equality between 1 and 2 OpenMP threads.
+// invariance under a lattice translation, bit-for-bit equality between 1 and 2 OpenMP threads
+// and between the fused step() and compute_forces(); integrate().
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -180,8 +181,9 @@ Snapshot run_threads(int threads) {
   return {sim.spheres().x, sim.spheres().u, sim.spheres().w, sim.stress()};
 }
 
-bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
 TEST(Simulation, BitForBitAcrossThreadCounts_threads_1_2) {
@@ -191,6 +193,73 @@ TEST(Simulation, BitForBitAcrossThreadCounts_threads_1_2) {
   EXPECT_TRUE(same_bits(a.u, b.u));
   EXPECT_TRUE(same_bits(a.w, b.w));
   EXPECT_EQ(std::memcmp(a.stress.data(), b.stress.data(), sizeof(Mat3)), 0);
+}
+
+// Everything a step writes: spheres, contacts (with their history), stress, cell, clock.
+void expect_same_state(const dem::Simulation& a, const dem::Simulation& b) {
+  EXPECT_TRUE(same_bits(a.spheres().x, b.spheres().x));
+  EXPECT_TRUE(same_bits(a.spheres().u, b.spheres().u));
+  EXPECT_TRUE(same_bits(a.spheres().w, b.spheres().w));
+  EXPECT_TRUE(same_bits(a.spheres().force, b.spheres().force));
+  EXPECT_TRUE(same_bits(a.spheres().torque, b.spheres().torque));
+  EXPECT_TRUE(same_bits(a.contacts().i, b.contacts().i));
+  EXPECT_TRUE(same_bits(a.contacts().j, b.contacts().j));
+  EXPECT_TRUE(same_bits(a.contacts().active, b.contacts().active));
+  EXPECT_TRUE(same_bits(a.contacts().hist, b.contacts().hist));
+  EXPECT_TRUE(same_bits(a.contacts().force, b.contacts().force));
+  EXPECT_EQ(std::memcmp(a.stress().data(), b.stress().data(), sizeof(Mat3)), 0);
+  EXPECT_EQ(std::memcmp(a.cell().h.data(), b.cell().h.data(), sizeof(Mat3)), 0);
+  EXPECT_EQ(a.steps(), b.steps());
+  EXPECT_EQ(a.time(), b.time());
+  EXPECT_EQ(a.dt(), b.dt());
+  EXPECT_EQ(a.verlet().builds, b.verlet().builds);
+}
+
+// The fused step() (one parallel region, forces summed and integrated per sphere) and the
+// step with a hook give the same bits as compute_forces(); [hook;] integrate() (simulation.hpp),
+// on the reference packing under compression and shear, with neighbour rebuilds and 2 threads.
+TEST(Simulation, StepEqualsComputeForcesThenIntegrate_threads_2) {
+  omp_set_num_threads(2);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -50.0;
+  l(0, 1) = 20.0;
+  const auto make = [&] {
+    dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
+                                               dem_test::reference_material(), dem::Numerics{});
+    sim.cell().l = l;
+    // Fluctuating velocities of about 1 m/s: the spheres move past the Verlet skin.
+    auto& u = sim.spheres().u;
+    for (std::size_t q = 0; q < u.size(); ++q) {
+      const auto t = static_cast<double>(q);
+      u[q] = Vec3(std::sin(t), std::cos(1.7 * t), std::sin(2.3 * t));
+    }
+    return sim;
+  };
+  const int steps = 400;
+  dem::Simulation fused = make();
+  dem::Simulation split = make();
+  ASSERT_GT(fused.spheres().size(), 512u);  // above the threshold of the parallel region
+  for (int k = 0; k < steps; ++k) {
+    fused.step();
+    split.compute_forces();
+    split.integrate();
+  }
+  EXPECT_GT(fused.verlet().builds, 1);  // the neighbour lists were rebuilt on the way
+  expect_same_state(fused, split);
+
+  // With a hook that moves the cell (the triaxial servo, as dem::advance runs it).
+  dem::Simulation hooked = make();
+  dem::Simulation manual = make();
+  dem::MixedController c1(dem::triaxial_control(50.0, 1e5, 200.0));
+  dem::MixedController c2(dem::triaxial_control(50.0, 1e5, 200.0));
+  for (int k = 0; k < steps; ++k) {
+    hooked.step([&](dem::Simulation& s) { c1.update(s); });
+    manual.compute_forces();
+    c2.update(manual);
+    manual.integrate();
+  }
+  expect_same_state(hooked, manual);
+  omp_set_num_threads(omp_get_num_procs());
 }
 
 TEST(Simulation, CriticalTimeStepOfReferencePacking) {

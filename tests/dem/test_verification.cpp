@@ -4,10 +4,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "dem/element_test.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
 #include "dem_test_util.hpp"
@@ -60,31 +62,29 @@ TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
   et.stress_tol = 0.005;
   et.unbalanced_tol = 0.005;
   dem::equilibrate(sim, et);
-  const double t_ref = 2e-4 * std::sqrt(2650.0 / 1e5);
-  const double rate = 2.5e-4 / t_ref;
-  dem::MixedController ctl(dem::triaxial_control(rate, 1e5, 10.0 * rate));
-  const double lz0 = sim.cell().h(2, 2);
-  const double v0 = sim.cell().volume();
+  dem::DrainedTriaxial test;
+  test.axial_rate = dem::strain_rate(2.5e-4, 2e-4, 2650.0, 1e5);  // d50 of YADE's packing
+  test.confining = 1e5;
+  test.eps_end = 0.01;
+  test.check_every = 400;
   double worst_qp = 0.0;
   double worst_ev = 0.0;
   double worst_sr = 0.0;
   double eps_a = 0.0;
-  while (eps_a < 0.01) {
-    dem::advance(sim, &ctl, 400);
-    eps_a = -std::log(sim.cell().h(2, 2) / lz0);
-    const double eps_v = -std::log(sim.cell().volume() / v0);
-    const auto& s = sim.stress();
-    const double sa = -s(2, 2);
-    const double sr = -0.5 * (s(0, 0) + s(1, 1));
-    const double p = dem::pressure(s);
-    const double qp = (sa - sr) / p;
-    const double qp_y = interp(yade, eps_a, &YadeRow::q) / interp(yade, eps_a, &YadeRow::p);
-    worst_qp = std::max(worst_qp, std::abs(qp - qp_y));
-    worst_ev = std::max(worst_ev, std::abs(eps_v - interp(yade, eps_a, &YadeRow::eps_v)));
-    // The servo needs the first 0.1 % of strain to pick up the lateral rate (1.3 % overshoot at
-    // the first sample); the lateral stress is checked after that.
-    if (eps_a > 0.001) worst_sr = std::max(worst_sr, std::abs(sr - 1e5) / 1e5);
-  }
+  dem::run_drained_triaxial(
+      sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
+        eps_a = now.eps_a;
+        const auto& sigma = s.stress();
+        const double sa = -sigma(2, 2);
+        const double sr = -0.5 * (sigma(0, 0) + sigma(1, 1));
+        const double qp = (sa - sr) / dem::pressure(sigma);
+        const double qp_y = interp(yade, eps_a, &YadeRow::q) / interp(yade, eps_a, &YadeRow::p);
+        worst_qp = std::max(worst_qp, std::abs(qp - qp_y));
+        worst_ev = std::max(worst_ev, std::abs(now.eps_v - interp(yade, eps_a, &YadeRow::eps_v)));
+        // The servo needs the first 0.1 % of strain to pick up the lateral rate (1.3 % overshoot
+        // at the first sample); the lateral stress is checked after that.
+        if (eps_a > 0.001) worst_sr = std::max(worst_sr, std::abs(sr - 1e5) / 1e5);
+      });
   std::cout << "  to eps_a = " << eps_a << ": max |q/p - yade| = " << worst_qp
             << ", max |eps_v - yade| = " << worst_ev
             << ", max |sigma_r - 100 kPa| / 100 kPa = " << worst_sr << "\n";
@@ -94,8 +94,18 @@ TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
 }
 
 // Random cloud from the reference PSD (linear mass passing between 0.65 and 1.35 d50), isotropic
-// compaction at 1 degree friction, friction restored to 30 degrees, re-equilibration: the final
-// pressure is within 1 % of 100 kPa on every axis and the sample is in equilibrium.
+// compaction at 1 degree friction, friction restored to 30 degrees, re-equilibration. The loop's
+// exit condition (every axis within 1 % of 100 kPa, unbalanced force below 1 %) is checked, and
+// what it does not guarantee: the state it reaches.
+// - Physically: a near-frictionless compaction reaches random close packing. Seeds 42-46 and two
+//   1-ulp changes of the compaction rate (below) give e = 0.562-0.607 and Z without rattlers
+//   Zm = 5.79-6.02, near the isostatic 6: the bands [0.55, 0.62] and [5.7, 6.1].
+// - As stored for seed 42: e = 0.583351332865679, 584 contacts (Z = 5.84), 114,000 steps. The
+//   trajectory is chaotic: changing the compaction rate by one ulp (20 +/- 4e-15) gives
+//   e = 0.5818 / 0.5618 and 565 / 579 contacts. So a tolerance of 1e-12 on e and the exact counts
+//   fail on any change of the arithmetic of DEM (intended or not); the values hold for builds
+//   without FMA contraction (the default: MPMXDEM_NATIVE=OFF), so that part is skipped under
+//   __FMA__. A change of results made on purpose updates these values, and says so.
 TEST(Verification, CompactionReachesTargetPressure) {
   dem::Psd psd;
   psd.diameter = {0.65 * 2e-4, 1.35 * 2e-4};
@@ -112,12 +122,22 @@ TEST(Verification, CompactionReachesTargetPressure) {
   prep.compaction_rate = 20.0;
   const auto steps = dem::prepare(sim, prep);
   const auto m = dem::measure(sim);
-  std::cout << "  compaction: " << steps << " steps, p = " << m.p << " Pa, e = " << m.void_ratio
-            << ", Z = " << m.z << ", unbalanced = " << m.unbalanced << "\n";
+  std::cout << std::setprecision(15) << "  compaction: " << steps << " steps, p = " << m.p
+            << " Pa, e = " << m.void_ratio << ", Z = " << m.z << " (" << m.n_contacts
+            << " contacts), Zm = " << m.z_mech << ", unbalanced = " << m.unbalanced << "\n";
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(-m.stress(a, a), 1e5, 1e3);
   EXPECT_NEAR(m.p, 1e5, 1e3);
   EXPECT_LT(m.unbalanced, 0.01);
   EXPECT_NEAR(std::tan(30.0 * M_PI / 180.0), sim.contacts().props[0].tan_phi, 1e-12);
+  EXPECT_GE(m.void_ratio, 0.55);
+  EXPECT_LE(m.void_ratio, 0.62);
+  EXPECT_GE(m.z_mech, 5.7);
+  EXPECT_LE(m.z_mech, 6.1);
+#ifndef __FMA__
+  EXPECT_EQ(steps, 114000);
+  EXPECT_EQ(m.n_contacts, 584);
+  EXPECT_NEAR(m.void_ratio, 0.583351332865679, 1e-12);
+#endif
 }
 
 }  // namespace

@@ -1,12 +1,9 @@
 # Runs `mpiexec -n NP mpmxdem run JOB --out DIR` and checks what it wrote: results.h5, points.xmf,
 # means.csv reaching MIN_EPS_A, a checkpoint that `mpmxdem inspect` verifies, the resolved job in
 # the log, and (REQUIRE_ETA) a progress line with an ETA.
+include(${CMAKE_CURRENT_LIST_DIR}/mpmxdem_run.cmake)
 file(REMOVE_RECURSE "${DIR}")
-execute_process(COMMAND "${MPIEXEC}" -n ${NP} --bind-to none "${EXE}" run "${JOB}" --out "${DIR}"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "mpmxdem run failed (${rc}):\n${out}\n${err}")
-endif()
+mpmxdem_run(${NP} "${JOB}" --out "${DIR}")
 foreach(f IN ITEMS results.h5 points.xmf means.csv job.toml job.resolved.toml log.txt)
   if(NOT EXISTS "${DIR}/${f}")
     message(FATAL_ERROR "missing output ${f}")

@@ -4,7 +4,7 @@
 //   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12] [--steps
 //   20] mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default:
-// the 1000-sphere reference of tests/data),
+// the 1000-sphere reference of jobs/packings),
 // --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
 // Figures and commands: docs/farm.md, "Benchmarks".
 #include <mpi.h>
