@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -66,7 +67,15 @@ int command_run(const Options& o, const Comm& comm) {
       std::set<std::int32_t> built;
       for (std::size_t i = 0; i < setup.points.size(); ++i) {
         if (!built.insert(setup.points.material[i]).second) continue;
-        wave_speed = std::max(wave_speed, cfg.micro.create(setup.points.id[i])->wave_speed());
+        const auto micro = cfg.micro.create(setup.points.id[i]);
+        const common::Mat3 stress = micro->stress();
+        if (!stress.allFinite() || !std::isfinite(micro->wave_speed())) {
+          throw common::NumericalError(fmt::format(
+              "the micro model of point id {} starts with a non-finite stress (trace {}) or wave "
+              "speed ({} m/s): its sample cannot be prepared (a degenerate packing?)",
+              setup.points.id[i], stress.trace(), micro->wave_speed()));
+        }
+        wave_speed = std::max(wave_speed, micro->wave_speed());
       }
     });
     const double h = cfg.solver.grid.spacing.minCoeff();
