@@ -95,7 +95,7 @@ std::string type_name(const Key& key) {
 }
 
 namespace {
-std::string value_text(const Value& v) {
+std::string default_text(const Value& v) {
   return std::visit(
       [](const auto& x) -> std::string {
         using T = std::decay_t<decltype(x)>;
@@ -153,7 +153,7 @@ std::string schema_markdown(const Schema& s) {
       rule += fmt::format("{}{} to {} entries", rule.empty() ? "" : "; ", k.min_len, k.max_len);
     }
     const std::string dflt =
-        k.required ? "required" : (k.fallback ? value_text(*k.fallback) : "optional");
+        k.required ? "required" : (k.fallback ? default_text(*k.fallback) : "optional");
     out << "| `" << leaf_name(k.path) << "` | " << type_name(k) << " | "
         << canonical_unit(k.quantity) << " | " << rule << " | " << dflt << " | " << k.doc << " |\n";
   }
