@@ -71,9 +71,11 @@ class BalanceSchedule {
 class ProgressSchedule {
  public:
   ProgressSchedule(double every_s, double now) : every_s_(every_s), last_(now) {}
-  /// True (and restarts the clock) when due.
+  /// True (and restarts the clock) when due: at the first call (the first step: an ETA at once,
+  /// whatever the speed of the run), then every `every_s` seconds.
   bool due(double now) {
-    if (now - last_ < every_s_) return false;
+    if (!first_ && now - last_ < every_s_) return false;
+    first_ = false;
     last_ = now;
     return true;
   }
@@ -81,6 +83,7 @@ class ProgressSchedule {
  private:
   double every_s_;
   double last_;
+  bool first_ = true;
 };
 
 /// The fault injection setting: MPMXDEM_FARM_FAULT=abort_checkpoint:<n> (n >= 1) if set, else

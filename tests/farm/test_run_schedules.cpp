@@ -51,10 +51,11 @@ TEST(RunSchedules, BalanceOnlyWithRanksToBalance) {
   EXPECT_FALSE(farm::BalanceSchedule(b, 2).due(8));
 }
 
-TEST(RunSchedules, ProgressAtMostEverySoManySeconds) {
+TEST(RunSchedules, ProgressAtTheFirstStepThenAtMostEverySoManySeconds) {
   farm::ProgressSchedule p(10.0, 0.0);
+  EXPECT_TRUE(p.due(0.5));  // the first step: an ETA at once
   EXPECT_FALSE(p.due(9.0));
-  EXPECT_TRUE(p.due(10.0));
+  EXPECT_TRUE(p.due(10.5));
   EXPECT_FALSE(p.due(19.0));
   EXPECT_TRUE(p.due(20.5));
 }
