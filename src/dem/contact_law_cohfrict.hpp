@@ -1,6 +1,6 @@
 // Linear elastic-frictional contact with elastic-plastic rolling and twisting resistance, as YADE's
 // Law2_ScGeom6D_CohFrictPhys_CohesionMoment (incremental form, no cohesion). Aboul Hosn et al.
-// 2017, Granular Matter 19(1); see docs/dem.md and the reference README sections 1-3.
+// 2017, Granular Matter 19(1); see docs/dem.md and docs/yade_reference.md sections 1-3.
 #pragma once
 
 #include <Eigen/Dense>

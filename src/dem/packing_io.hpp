@@ -1,4 +1,4 @@
-// Plain packing text format (reference README section 8): '#' comments, "CELL Lx Ly Lz",
+// Plain packing text format (docs/yade_reference.md section 8): '#' comments, "CELL Lx Ly Lz",
 // "HSIZE" + 9 numbers (cell matrix row-major, columns are the cell vectors), "x y z r" per sphere.
 #pragma once
 

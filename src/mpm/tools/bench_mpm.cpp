@@ -1,5 +1,5 @@
 // bench_mpm: material-point updates per second of the MPM step, 1 and 2 threads.
-// Run: build-mpm/src/mpm/bench_mpm [points=100000] [steps=20]
+// Run: build/src/mpm/bench_mpm [points=100000] [steps=20]
 #include <cstdio>
 #include <cstdlib>
 #include <exception>

@@ -1,5 +1,5 @@
 // study_mpm: verification figures of the MPM module (docs/mpm.md, "Verification").
-// Run: build-mpm/src/mpm/study_mpm [bar|column|triaxial|all]
+// Run: build/src/mpm/study_mpm [bar|column|triaxial|all]
 #include <cmath>
 #include <cstdio>
 #include <cstring>
