@@ -11,6 +11,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
+#include "farm/placement.hpp"
 
 namespace farm {
 
@@ -133,11 +134,8 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
                              const mpm::MaterialPoints& points, std::int64_t restart_step)
     : dir_(dir), rve_ids_(rve_ids), point_ids_(points.id) {
   h5::silence_errors();
-  for (std::int64_t id : point_ids_) {
-    const auto it = std::lower_bound(rve_ids_.begin(), rve_ids_.end(), id);
-    MPMXDEM_CHECK(it != rve_ids_.end() && *it == id, "every point has an RVE");
-    rve_of_point_.push_back(static_cast<std::size_t>(it - rve_ids_.begin()));
-  }
+  const PointIndex index(rve_ids_, point_ids_);  // every point has an RVE (checked)
+  for (std::size_t p = 0; p < index.size(); ++p) rve_of_point_.push_back(index.rve_of(p));
   const std::string path = (std::filesystem::path(dir) / "results.h5").string();
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
