@@ -172,9 +172,11 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
       const Key kp = key_of(fresh, p);
       while (q < old_active.size() && key_of(c, old_active[q]) < kp) {
         // An active contact vanished from the list: only possible if the skin was violated.
-        throw common::InternalError("dem: active contact lost by the neighbour search (pair " +
-                                    std::to_string(c.i[old_active[q]]) + "-" +
-                                    std::to_string(c.j[old_active[q]]) + ")");
+        throw common::NumericalError(
+            "dem: active contact lost by the neighbour search (pair " +
+            std::to_string(c.i[old_active[q]]) + "-" + std::to_string(c.j[old_active[q]]) +
+            "): spheres moved farther than the Verlet skin between two list builds (a strain "
+            "increment or a time step too large for the packing)");
       }
       if (q < old_active.size() && key_of(c, old_active[q]) == kp) {
         const std::size_t o = old_active[q++];
@@ -191,7 +193,10 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
     }
   }
   if (q != old_active.size()) {
-    throw common::InternalError("dem: active contact lost by the neighbour search");
+    throw common::NumericalError(
+        "dem: active contact lost by the neighbour search: spheres moved farther than the Verlet "
+        "skin between two list builds (a strain increment or a time step too large for the "
+        "packing)");
   }
   fresh.build_sphere_lists(n);
   c = std::move(fresh);
