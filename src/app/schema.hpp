@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -52,18 +53,12 @@ struct Key {
     required = true;
     return *this;
   }
-  Key& or_default(Value v) {
-    fallback = std::move(v);
-    return *this;
-  }
-  // Numbers are built in place: moving a Value temporary into the optional makes GCC 12's
-  // -Wmaybe-uninitialized fire (a false positive) under -fsanitize=address at -O2.
-  Key& or_default(double v) {
-    fallback.emplace(v);
-    return *this;
-  }
-  Key& or_default(std::int64_t v) {
-    fallback.emplace(v);
+  /// The value is built in place (a Value, or what a Value is made of): moving a Value temporary
+  /// into the optional makes GCC 12's -Wmaybe-uninitialized fire (a false positive) under
+  /// -fsanitize=address at -O2.
+  template <class T>
+  Key& or_default(T&& v) {
+    fallback.emplace(std::forward<T>(v));
     return *this;
   }
   Key& one_of(std::vector<std::string> c) {
