@@ -3,11 +3,47 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <limits>
 #include <sstream>
 
+#include "app/job.hpp"
 #include "app/version.hpp"
 
 namespace app {
+
+namespace {
+
+// Short texts for user input echoed in messages (a 100 kB argument is not printed whole).
+std::string clip(const std::string& s) { return s.size() > 80 ? s.substr(0, 77) + "..." : s; }
+
+// An integer option's rule, with a short message ("must be an integer >= 1, not 'abc'") instead of
+// CLI11's range text with its 309-digit bound.
+CLI::Validator integer_at_least(std::int64_t min,
+                                std::int64_t max = std::numeric_limits<std::int64_t>::max()) {
+  const std::string rule =
+      max == std::numeric_limits<std::int64_t>::max()
+          ? "an integer >= " + std::to_string(min)
+          : "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  return CLI::Validator(
+      [min, max, rule](std::string& text) -> std::string {
+        std::int64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto res = std::from_chars(text.data(), end, v);
+        if (res.ec != std::errc() || res.ptr != end || v < min || v > max) {
+          return "must be " + rule + ", not '" + clip(text) + "'";
+        }
+        return "";
+      },
+      "INT");
+}
+
+constexpr std::array<const char*, 6> kCommands = {"run",     "check", "dem",
+                                                  "inspect", "bench", "schema"};
+
+}  // namespace
 
 std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_code) {
   Options o;
@@ -36,7 +72,7 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
                   "Stop after this many MPM steps in total, restarts included (trials, tests); a "
                   "checkpoint\n"
                   "is written at the end")
-      ->check(CLI::PositiveNumber);
+      ->check(integer_at_least(1));
   run->add_flag("--force", o.force,
                 "Write into a non-empty output directory (files of the same name are replaced)");
 
@@ -55,7 +91,7 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   demc->add_option("job", o.job, "Job file (TOML)")->required();
   demc->add_option("-o,--out", o.out, "Output directory (default: results/<job file name>)");
   demc->add_option("--max-steps", o.max_steps, "Stop the loading after this many DEM steps")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integer_at_least(0));
   demc->add_flag("--force", o.force, "Write into a non-empty output directory");
 
   auto* bench = cli.add_subcommand(
@@ -67,21 +103,66 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
       ->add_option("--size", o.bench_size,
                    "dem: tiling n of the reference packing (n^3 x 1000 spheres); "
                    "mpm: number of material points")
-      ->check(CLI::PositiveNumber);
-  bench->add_option("--steps", o.bench_steps, "Timed steps")->check(CLI::PositiveNumber);
+      ->check(integer_at_least(1, 100'000'000));
+  bench->add_option("--steps", o.bench_steps, "Timed steps")
+      ->check(integer_at_least(1, 1'000'000'000));
 
   cli.add_subcommand("schema", "Print the job-file reference (Markdown) generated from the schema");
 
+  // An empty output directory (CLI11 would call it a missing value).
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool empty_out =
+        ((a == "-o" || a == "--out") && i + 1 < argc && argv[i + 1][0] == '\0') || a == "--out=";
+    if (empty_out) {
+      if (print) {
+        std::fputs("error: --out \"\": the output directory must not be an empty path\n", stderr);
+      }
+      exit_code = 2;
+      return std::nullopt;
+    }
+  }
+  // An unknown command is named (CLI11 would only say that a subcommand is required).
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.empty() || a[0] == '-') continue;
+    if (std::find(kCommands.begin(), kCommands.end(), a) != kCommands.end()) break;
+    std::string msg = "unknown command '" + clip(a) + "'";
+    std::size_t best_d = 3;
+    std::string best;
+    for (const char* c : kCommands) {
+      if (const std::size_t d = edit_distance(a, c); d < best_d) {
+        best_d = d;
+        best = c;
+      }
+    }
+    if (!best.empty()) msg += "; did you mean '" + best + "'?";
+    msg += " (commands: run, check, dem, inspect, bench, schema; mpmxdem --help)";
+    if (print) std::fprintf(stderr, "error: %s\n", msg.c_str());
+    exit_code = 2;
+    return std::nullopt;
+  }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     std::ostringstream out;
     std::ostringstream err;
-    exit_code = cli.exit(e, out, err);
-    if (print) {
-      std::fputs(out.str().c_str(), stdout);
-      std::fputs(err.str().c_str(), stderr);
+    const int code = cli.exit(e, out, err);
+    if (code == 0) {  // --help, --version
+      if (print) std::fputs(out.str().c_str(), stdout);
+      exit_code = 0;
+      return std::nullopt;
     }
+    // A usage error: one short line, exit 2 as every input error.
+    std::string what = e.what();
+    if (what.size() > 300) what = what.substr(0, 297) + "...";
+    if (print) {
+      std::fprintf(stderr, "error: %s (mpmxdem %s--help for the usage)\n", what.c_str(),
+                   cli.get_subcommands().empty()
+                       ? ""
+                       : (cli.get_subcommands().front()->get_name() + " ").c_str());
+    }
+    exit_code = 2;
     return std::nullopt;
   }
   for (const auto* sub : cli.get_subcommands()) o.command = sub->get_name();

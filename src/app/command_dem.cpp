@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "app/dem_setup.hpp"
@@ -83,6 +84,11 @@ int command_dem(const Options& o, const Comm& comm) {
     throw common::InputError(fmt::format(
         "{}: `dem` needs a [dem.loading] section (what to do after preparation)", job.file()));
   }
+  // Nothing is written before the sample is prepared (rank 0; its error reaches every rank).
+  check_output(o, comm);
+  check_job_packing(job, comm);
+  std::optional<dem::Simulation> sample;
+  on_root(comm, [&] { sample.emplace(prepared_sample(job)); });
   const std::filesystem::path out = open_output(o, job, comm);
   if (comm.size > 1) {
     spdlog::warn("`dem` runs one sample on rank 0 with OpenMP; ranks 1..{} have nothing to do",
@@ -90,7 +96,7 @@ int command_dem(const Options& o, const Comm& comm) {
   }
   if (comm.rank != 0) return 0;
 
-  dem::Simulation sim = prepared_sample(job);
+  dem::Simulation sim = std::move(*sample);
   dem::Packing prepared{sim.cell(), sim.spheres().x, sim.spheres().r};
   prepared.cell.l.setZero();
   dem::write_packing((out / "prepared_packing.txt").string(), prepared,

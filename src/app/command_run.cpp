@@ -5,11 +5,16 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
+#include <set>
 
 #include "app/commands.hpp"
 #include "app/coupled_setup.hpp"
+#include "app/mpm_setup.hpp"
+#include "app/restart_check.hpp"
 #include "common/errors.hpp"
 #include "farm/driver.hpp"
 #include "farm/mpi_util.hpp"
@@ -22,30 +27,7 @@ int command_run(const Options& o, const Comm& comm) {
     throw common::InputError(fmt::format(
         "{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)", job.file()));
   }
-  // Everything the job implies is checked before the output directory is touched.
-  const farm::CoupledConfig cfg =
-      coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps});
-  if (!o.restart.empty()) {
-    // A damaged checkpoint is refused before anything is written (collective: same error
-    // everywhere).
-    std::string error;
-    if (comm.rank == 0) {
-      try {
-        const farm::CheckpointInfo info = farm::inspect_checkpoint(o.restart, true);
-        if (info.job_text != job.source_text()) {
-          spdlog::warn(
-              "{}: the job file differs from the one the checkpoint was written with; its grid, "
-              "loads, "
-              "end and outputs are used, the state comes from the checkpoint",
-              o.job);
-        }
-      } catch (const common::InputError& e) {
-        error = e.what();
-      }
-    }
-    bcast_error(error, comm);
-  }
-  const std::filesystem::path out = open_output(o, job, comm);
+  // Threads first: the sample preparation below runs with them.
   const int threads = farm::threads_per_rank(comm.comm);
   if (std::getenv("OMP_NUM_THREADS") == nullptr) {
     omp_set_num_threads(threads);
@@ -54,6 +36,53 @@ int command_run(const Options& o, const Comm& comm) {
   } else {
     spdlog::info("OpenMP: OMP_NUM_THREADS = {} (this node's cores per rank: {})",
                  std::getenv("OMP_NUM_THREADS"), threads);
+  }
+  // Everything the job implies is checked before the output directory is touched: the directory
+  // itself (cheap, first), the packing, the mapping onto the grid, the checkpoint.
+  check_output(o, comm);
+  check_job_packing(job, comm);
+  std::optional<farm::CoupledConfig> config;
+  agree(comm, [&] {
+    config.emplace(coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps}));
+  });
+  const farm::CoupledConfig& cfg = *config;
+  std::size_t rves = cfg.points.size();
+  if (!o.restart.empty()) {
+    // A damaged checkpoint, or one of another job, is refused before anything is written.
+    on_root(comm, [&] {
+      const farm::CheckpointInfo info = farm::inspect_checkpoint(o.restart, true);
+      check_restart(job, o.restart, info.job_text, output_path(o));
+      rves = info.ids.size();
+    });
+  }
+  if (o.restart.empty()) {
+    // One micro model of each material is built now, on every rank, not on the farm's first use:
+    // a DEM sample that cannot be prepared fails before anything is written, and a fixed dt is
+    // checked against the materials' wave speed. The farm's RVEs are copies of the prepared
+    // sample (the micro kind keeps it), so nothing is prepared twice.
+    double wave_speed = 0.0;
+    agree(comm, [&] {
+      const MpmSetup setup = mpm_setup(job);
+      std::set<std::int32_t> built;
+      for (std::size_t i = 0; i < setup.points.size(); ++i) {
+        if (!built.insert(setup.points.material[i]).second) continue;
+        wave_speed = std::max(wave_speed, cfg.micro.create(setup.points.id[i])->wave_speed());
+      }
+    });
+    const double h = cfg.solver.grid.spacing.minCoeff();
+    if (job.has("mpm.dt") && wave_speed > 0.0 && job.number("mpm.dt") > h / wave_speed) {
+      throw common::InputError(job.message(
+          "mpm.dt", fmt::format("above the stability limit h / c = {:.4g} s (smallest spacing h = "
+                                "{:.4g} m, largest wave speed of the materials c = {:.4g} m/s): "
+                                "the explicit step would blow up; lower it, or leave dt out to "
+                                "use the CFL step",
+                                h / wave_speed, h, wave_speed)));
+    }
+  }
+  const std::filesystem::path out = open_output(o, job, comm);
+  if (comm.rank == 0 && static_cast<std::size_t>(comm.size) > rves) {
+    spdlog::warn("{} ranks for {} RVE(s): {} rank(s) will hold no RVE and only wait", comm.size,
+                 rves, static_cast<std::size_t>(comm.size) - rves);
   }
   spdlog::info(
       "coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,

@@ -5,14 +5,19 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
+#include "app/coupled_setup.hpp"
+#include "app/dem_setup.hpp"
 #include "app/logging.hpp"
 #include "app/output_dir.hpp"
 #include "app/version.hpp"
 #include "common/errors.hpp"
+#include "dem/packing_io.hpp"
 #include "farm/mpi_util.hpp"
 
 namespace app {
@@ -22,24 +27,77 @@ void bcast_error(std::string& error, const Comm& comm) {
   if (!error.empty()) throw common::InputError(error);
 }
 
-Job load_job_collective(const std::string& path, const Comm& comm) {
-  std::string text;
-  std::string error;
+void agree(const Comm& comm, const std::function<void()>& f) {
+  farm::ErrorKind kind = farm::ErrorKind::none;
+  std::string message;
+  try {
+    f();
+  } catch (const std::exception& e) {
+    kind = farm::current_error_kind();
+    message = e.what();
+  }
+  farm::agree_on_errors(comm.comm, kind, message);
+}
+
+void on_root(const Comm& comm, const std::function<void()>& f) {
+  farm::ErrorKind kind = farm::ErrorKind::none;
+  std::string message;
   if (comm.rank == 0) {
     try {
-      // Job::load checks existence and readability with the message users see.
-      text = Job::load(path).source_text();
-    } catch (const common::InputError& e) {
-      error = e.what();
+      f();
+    } catch (const std::exception& e) {
+      kind = farm::current_error_kind();
+      message = e.what();
     }
   }
-  bcast_error(error, comm);
+  // The other ranks wait without holding a core (f may be a long preparation on rank 0).
+  MPI_Request barrier = MPI_REQUEST_NULL;
+  MPI_Ibarrier(comm.comm, &barrier);
+  farm::wait_for(barrier, farm::WaitMode::sleep);
+  farm::agree_on_errors(comm.comm, kind, message);
+}
+
+Job load_job_collective(const std::string& path, const Comm& comm) {
+  std::string text;
+  // Job::load checks existence and readability with the message users see.
+  on_root(comm, [&] { text = Job::load(path).source_text(); });
   farm::bcast_string(comm.comm, text);
-  return Job::parse(text, path);
+  std::optional<Job> job;
+  agree(comm, [&] { job.emplace(Job::parse(text, path)); });
+  return std::move(*job);
+}
+
+void check_job_packing(const Job& job, const Comm& comm) {
+  if (!job.has_section("dem.sample")) return;
+  on_root(comm, [&] {
+    if (job.has("dem.sample.packing")) {
+      bool generated = false;
+      const dem::Packing pk = dem_packing(job, generated);  // read_packing checks it
+      // The neighbour search needs every cell width >= 2 r_max + skin.
+      const double r_max = *std::max_element(pk.r.begin(), pk.r.end());
+      const double skin = job.number("dem.numerics.verlet_skin") * r_max;
+      for (int a = 0; a < 3; ++a) {
+        if (pk.cell.width(a) < 2.0 * r_max + skin) {
+          throw common::InputError(job.message(
+              "dem.sample.packing",
+              fmt::format("the cell of this packing is {:.6g} m wide across axis {}, below 2 r_max "
+                          "+ skin = {:.6g} m (r_max {:.6g} m, dem.numerics.verlet_skin {}): too "
+                          "few spheres across the cell for a periodic simulation",
+                          pk.cell.width(a), a, 2.0 * r_max + skin, r_max,
+                          job.number("dem.numerics.verlet_skin"))));
+        }
+      }
+    }
+  });
 }
 
 int command_check(const Options& o, const Comm& comm) {
   const Job job = load_job_collective(o.job, comm);
+  check_job_packing(job, comm);
+  if (job.has_section("mpm")) {
+    // The mapping onto the grid and the run set-up: the errors `run` would give before writing.
+    agree(comm, [&] { (void)coupled_setup(job, RunLimits{"(check)", -1}); });
+  }
   if (comm.rank == 0) {
     std::fputs(job.resolved_toml().c_str(), stdout);
     spdlog::info("{}: valid", o.job);
@@ -56,16 +114,25 @@ std::filesystem::path output_path(const Options& o) {
   return o.out.empty() ? default_output_dir(o.job) : std::filesystem::path(o.out);
 }
 
+void check_output(const Options& o, const Comm& comm) {
+  agree(comm, [&] { check_output_dir(output_path(o), o.force, !o.restart.empty()); });
+}
+
 std::filesystem::path open_output(const Options& o, const Job& job, const Comm& comm) {
   const std::filesystem::path out = output_path(o);
-  check_output_dir(out, o.force, !o.restart.empty());
-  MPI_Barrier(comm.comm);  // every rank has checked before anything is written
-  if (comm.rank == 0) {
+  check_output(o, comm);  // every rank has checked before anything is written
+  on_root(comm, [&] {
     create_output_dir(out);
-    add_log_file((out / "log.txt").string());
+    lock_output_dir(out);
+    try {
+      add_log_file((out / "log.txt").string());
+    } catch (const std::exception& e) {
+      throw common::InputError(
+          fmt::format("cannot write the log file '{}': {}", (out / "log.txt").string(), e.what()));
+    }
     write_file_atomic(out / "job.toml", job.source_text());
     write_file_atomic(out / "job.resolved.toml", job.resolved_toml());
-  }
+  });
   spdlog::info("mpmxdem {} `{}` on {} rank(s); job {}; output {}", kVersion, o.command, comm.size,
                o.job, out.string());
   spdlog::info("resolved job:\n{}", job.resolved_toml());

@@ -5,6 +5,7 @@
 #include <mpi.h>
 
 #include <filesystem>
+#include <functional>
 
 #include "app/cli.hpp"
 #include "app/job.hpp"
@@ -20,6 +21,13 @@ struct Comm {
 /// Broadcasts rank 0's error text; when it is not empty, every rank throws it as an InputError.
 void bcast_error(std::string& error, const Comm& comm);
 
+/// Collective: runs `f` on every rank; an exception on any rank becomes the same exception (type
+/// and message of the lowest failing rank) on every rank, so no rank is left waiting in a later
+/// collective. Use it for every step before the farm's collective phase that can fail.
+void agree(const Comm& comm, const std::function<void()>& f);
+/// Collective: runs `f` on rank 0 only; its exception is thrown on every rank (as agree()).
+void on_root(const Comm& comm, const std::function<void()>& f);
+
 /// Rank 0 reads the job file and broadcasts its text; every rank parses and validates it, so an
 /// error is seen (and thrown) on every rank alike.
 [[nodiscard]] Job load_job_collective(const std::string& path, const Comm& comm);
@@ -27,9 +35,21 @@ void bcast_error(std::string& error, const Comm& comm);
 /// The output directory of a command: --out, or results/<job file name>.
 [[nodiscard]] std::filesystem::path output_path(const Options& o);
 
-/// Checks the output directory on every rank, then (rank 0) creates it and writes the job, the
-/// resolved job and the log file there. Returns the directory.
+/// Collective: checks, without writing anything, that the output directory may receive this
+/// command's output (see check_output_dir). Call it before any long set-up.
+void check_output(const Options& o, const Comm& comm);
+
+/// Collective: checks the output directory again, then (rank 0) creates it, locks it (lock file
+/// mpmxdem.lock naming the holder: a second run into it is refused), and writes the job, the
+/// resolved job and the log file there. Call it only once everything that can be checked has been
+/// checked: nothing is written before it. An error on rank 0 is thrown on every rank. Returns the
+/// directory.
 std::filesystem::path open_output(const Options& o, const Job& job, const Comm& comm);
+
+/// Collective: the packing of the job's [dem.sample] (when it has one), read and checked on rank 0
+/// (read_packing, check_packing; a generated sample: its memory bound). Throws the InputError
+/// naming the packing file and line on every rank.
+void check_job_packing(const Job& job, const Comm& comm);
 
 int command_check(const Options& o, const Comm& comm);
 int command_run(const Options& o, const Comm& comm);

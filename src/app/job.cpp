@@ -6,9 +6,11 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -72,20 +74,51 @@ std::string describe(const Key& key) {
   return unit.empty() ? key.doc : key.doc + " [" + unit + "]";
 }
 
+// A key as compared for suggestions: lower case, without '_', '-' and spaces ("End_Time" and
+// "endtime" are the same word).
+std::string normalized(std::string_view s) {
+  std::string out;
+  for (const char c : s) {
+    if (c == '_' || c == '-' || c == ' ') continue;
+    out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return out;
+}
+
+std::size_t common_prefix(std::string_view a, std::string_view b) {
+  std::size_t n = 0;
+  while (n < a.size() && n < b.size() && a[n] == b[n]) ++n;
+  return n;
+}
+
+// The sibling key closest to `name`: edit distance of the normalized names; a name that holds the
+// other whole (both at least 3 letters: "young" for "young_modulus") counts as distance 1; ties go
+// to the longer common prefix. "" when nothing is close.
 std::string suggestion(std::string_view name, const std::vector<const Key*>& candidates) {
+  const std::string n = normalized(name);
   std::string best;
-  std::size_t best_d = std::max<std::size_t>(2, name.size() / 3) + 1;
+  std::size_t best_d = std::max<std::size_t>(2, n.size() / 3) + 1;
+  std::size_t best_prefix = 0;
   for (const Key* k : candidates) {
     const std::string leaf = leaf_name(k->path);
-    std::size_t d = edit_distance(name, leaf);
-    if (leaf.find(name) != std::string::npos || name.find(leaf) != std::string::npos)
+    const std::string l = normalized(leaf);
+    std::size_t d = edit_distance(n, l);
+    if (std::min(n.size(), l.size()) >= 3 &&
+        (l.find(n) != std::string::npos || n.find(l) != std::string::npos))
       d = std::min<std::size_t>(d, 1);
-    if (d < best_d) {
+    const std::size_t prefix = common_prefix(n, l);
+    if (d < best_d || (d == best_d && !best.empty() && prefix > best_prefix)) {
       best_d = d;
       best = leaf;
+      best_prefix = prefix;
     }
   }
   return best;
+}
+
+// A key or name from the file, short enough to print (a 100 kB key is not echoed whole).
+std::string clipped(std::string_view s) {
+  return s.size() > 60 ? std::string(s.substr(0, 57)) + "..." : std::string(s);
 }
 
 }  // namespace
@@ -107,6 +140,7 @@ class Validator {
       }
       if (key->type == Type::Table) {
         if (!node.is_table()) {
+          invalid_.insert(cpath);
           error(node_line(node),
                 fmt::format("{} = {}: must be a table [{}]", cpath, node_text(node), key->path));
           continue;
@@ -155,7 +189,7 @@ class Validator {
         continue;
       }
       if (child->type == Type::Table) {
-        if (job_.sections_.count(cpath) != 0) continue;  // walked already
+        if (job_.sections_.count(cpath) != 0 || invalid_.count(cpath) != 0) continue;
         if (present && child->required) {
           error(section_line(cprefix),
                 fmt::format("[{}] is missing: required section ({})", cpath, child->doc));
@@ -165,7 +199,7 @@ class Validator {
         if (!has_required_descendant(child->path)) fill_absent(cpath, child->path, false);
         continue;
       }
-      if (job_.entries_.count(cpath) != 0) continue;
+      if (job_.entries_.count(cpath) != 0 || invalid_.count(cpath) != 0) continue;
       if (child->fallback) {
         job_.entries_[cpath] = Entry{*child->fallback, 0, true, child, ""};
       } else if (present && child->required) {
@@ -192,7 +226,7 @@ class Validator {
   void unknown(const std::string& name, int line, const std::string& cpath,
                const std::string& sprefix) {
     const auto siblings = schema_.children(sprefix);
-    std::string msg = fmt::format("{}: unknown key", cpath);
+    std::string msg = fmt::format("{}: unknown key", clipped(cpath));
     const std::string best = suggestion(name, siblings);
     if (!best.empty()) msg += fmt::format("; did you mean '{}'?", best);
     std::vector<std::string> names;
@@ -231,6 +265,7 @@ class Validator {
     const int line = node_line(node);
     const std::string raw = node_text(node);
     auto fail = [&](const std::string& rule) {
+      invalid_.insert(cpath);  // reported once: not "missing" as well
       error(line, fmt::format("{} = {}: {} [{}]", cpath, raw, rule, describe(key)));
     };
     Value value;
@@ -323,9 +358,10 @@ class Validator {
   Job& job_;
   const Schema& schema_;
   std::vector<std::string> errors_;
+  std::set<std::string> invalid_;  ///< keys present with an invalid value
 };
 
-Job Job::parse(std::string_view text, std::string file, const Schema& schema) {
+Job Job::parse(std::string_view text, std::string file, const Schema& schema, bool rules) {
   Job job;
   job.file_ = std::move(file);
   job.text_ = std::string(text);
@@ -347,7 +383,7 @@ Job Job::parse(std::string_view text, std::string file, const Schema& schema) {
   Validator v(job, schema);
   v.walk(root, "", "");
   if (!v.errors().empty()) throw common::InputError(fmt::format("{}", fmt::join(v.errors(), "\n")));
-  check_job_rules(job);  // cross-key rules only make sense once every key is valid
+  if (rules) check_job_rules(job);  // cross-key rules only make sense once every key is valid
   return job;
 }
 
@@ -358,6 +394,16 @@ Job Job::load(const std::string& path) {
   }
   if (std::filesystem::is_directory(path, ec)) {
     throw common::InputError(fmt::format("{}: cannot open the job file: it is a directory", path));
+  }
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw common::InputError(fmt::format(
+        "{}: cannot open the job file: not a regular file (a device or a pipe?)", path));
+  }
+  constexpr std::uintmax_t kMaxJobBytes = 16u << 20;  // job files are a few kB
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxJobBytes) {
+    throw common::InputError(fmt::format(
+        "{}: the job file has {} bytes, more than the {} a job file may have: is it a job file?",
+        path, size, kMaxJobBytes));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -451,6 +497,11 @@ std::string toml_value(const Value& v) {
       v);
 }
 
+}  // namespace
+
+std::string value_text(const Value& value) { return toml_value(value); }
+
+namespace {
 std::string entry_line(const std::string& name, const Entry& e) {
   std::string line = fmt::format("{} = {}", name, toml_value(e.value));
   const std::string unit = e.key != nullptr ? std::string(canonical_unit(e.key->quantity)) : "";

@@ -23,7 +23,9 @@ class Job {
  public:
   /// Parses and validates job text. `file` is the name used in messages. Throws common::InputError
   /// listing every problem found, one per line ("file:line: key = value: rule").
-  static Job parse(std::string_view text, std::string file, const Schema& schema = job_schema());
+  /// `rules` = false skips the cross-key rules (check_job_rules): for a job stored in a checkpoint.
+  static Job parse(std::string_view text, std::string file, const Schema& schema = job_schema(),
+                   bool rules = true);
   /// Reads the file, then parse(). A missing or unreadable file is an InputError.
   static Job load(const std::string& path);
 
@@ -68,6 +70,9 @@ class Job {
 
 /// Cross-key rules (job_rules.cpp): throws an InputError listing every broken rule.
 void check_job_rules(const Job& job);
+
+/// A value as TOML writes it (canonical unit): 1.0, "text", [1, 2].
+[[nodiscard]] std::string value_text(const Value& value);
 
 /// Edit distance for "did you mean" suggestions.
 [[nodiscard]] std::size_t edit_distance(std::string_view a, std::string_view b);

@@ -1,6 +1,7 @@
 // Cross-key rules of a job file: what one key requires of others (sample source, loading type,
 // materials of the bodies, geometry). Single-key rules live in the schema.
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -11,6 +12,17 @@
 namespace app {
 
 namespace {
+
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+}
+
+// A path short enough to print (a 100 kB path is not echoed whole).
+std::string short_path(const std::string& p) {
+  return p.size() > 120 ? p.substr(0, 50) + "..." + p.substr(p.size() - 50) : p;
+}
 
 class Rules {
  public:
@@ -44,7 +56,8 @@ void sample_rules(const Job& job, Rules& r) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(p, ec)) {
       r.fail("dem.sample.packing",
-             fmt::format("no such file '{}' (paths are relative to the job file)", p.string()));
+             fmt::format("no such file '{}' (paths are relative to the job file)",
+                         short_path(p.string())));
     }
     return;
   }
@@ -52,6 +65,20 @@ void sample_rules(const Job& job, Rules& r) {
   r.require("dem.sample.spheres", why);
   r.require("dem.sample.psd_diameters", why);
   r.require("dem.sample.psd_passing", why);
+  if (job.has("dem.sample.spheres")) {
+    // An upper bound from the memory a sample needs (spheres, contacts, neighbour lists: about
+    // kBytesPerSphere each, measured order of magnitude) against this machine's memory.
+    constexpr double kBytesPerSphere = 2048.0;
+    const double mem = physical_memory_bytes();
+    const auto n = static_cast<double>(job.integer("dem.sample.spheres"));
+    if (mem > 0.0 && n * kBytesPerSphere > mem) {
+      r.fail("dem.sample.spheres",
+             fmt::format("a sample of {:.3g} spheres needs about {:.3g} GB of memory ({} bytes per "
+                         "sphere), more than this machine's {:.3g} GB: at most {:.0f} spheres",
+                         n, n * kBytesPerSphere / 1e9, kBytesPerSphere, mem / 1e9,
+                         std::floor(mem / kBytesPerSphere)));
+    }
+  }
   if (!job.has("dem.sample.psd_diameters") || !job.has("dem.sample.psd_passing")) return;
   const auto& d = job.numbers("dem.sample.psd_diameters");
   const auto& f = job.numbers("dem.sample.psd_passing");
@@ -119,6 +146,32 @@ void mpm_rules(const Job& job, Rules& r) {
     any_dem = any_dem || m == "dem";
     any_elastic = any_elastic || m == "elastic";
   }
+  // An upper bound from the memory rank 0 needs for the grid and the points (about kBytesPerNode
+  // and kBytesPerPoint, order of magnitude of mpm::GridFields and MaterialPoints with stencils):
+  // a count no machine holds is an input error here, not std::bad_alloc in the run.
+  {
+    constexpr double kBytesPerNode = 160.0;
+    constexpr double kBytesPerPoint = 1024.0;
+    double nodes = 1.0;
+    for (int a = 0; a < 3; ++a) nodes *= static_cast<double>(n[a]) + 1.0;
+    double points = 0.0;
+    for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+      const std::string base = fmt::format("mpm.body[{}].", b);
+      const auto& lo = job.numbers(base + "min");
+      const auto& hi = job.numbers(base + "max");
+      double cells = 1.0;
+      for (int a = 0; a < 3; ++a) cells *= std::max(0.0, std::ceil((hi[a] - lo[a]) / h[a]));
+      points += cells * std::pow(static_cast<double>(job.integer(base + "points_per_cell")), 3);
+    }
+    const double need = nodes * kBytesPerNode + points * kBytesPerPoint;
+    const double mem = physical_memory_bytes();
+    if (mem > 0.0 && need > mem) {
+      r.fail("mpm.grid.cells",
+             fmt::format("{:.3g} grid nodes and {:.3g} material points need about {:.3g} GB of "
+                         "memory on rank 0, more than this machine's {:.3g} GB",
+                         nodes, points, need / 1e9, mem / 1e9));
+    }
+  }
   if (any_elastic && !job.has_section("mpm.elastic")) {
     r.fail_missing("mpm.elastic", "required section when a body has material = \"elastic\"");
   }
@@ -157,9 +210,24 @@ void mpm_rules(const Job& job, Rules& r) {
         r.fail(base + "max", "min and max must have 3 coordinates each");
         continue;
       }
-      for (int a = 0; a < 3; ++a) {
+      bool ordered = true;
+      for (int a = 0; a < 3 && ordered; ++a) {
         if (!(hi[a] >= lo[a])) {
           r.fail(base + "max", fmt::format("must be >= min on every axis (axis {})", "xyz"[a]));
+          ordered = false;
+        }
+      }
+      // A box must hold at least one grid node on every axis, or the constraint does nothing
+      // (e.g. a platen that never moves). Nodes are origin + i spacing, i in 0..cells.
+      for (int a = 0; a < 3 && ordered; ++a) {
+        const double k_lo = std::ceil((lo[a] - origin[a]) / h[a] - 1e-9);
+        const double k_hi = std::floor((hi[a] - origin[a]) / h[a] + 1e-9);
+        if (std::max(k_lo, 0.0) > std::min(k_hi, static_cast<double>(n[a]))) {
+          r.fail(base + "max",
+                 fmt::format("the box [{}, {}] x [{}, {}] x [{}, {}] holds no grid node (none on "
+                             "axis {}; nodes are origin + i spacing, i in 0..cells): the "
+                             "constraint would act on nothing",
+                             lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], "xyz"[a]));
           break;
         }
       }

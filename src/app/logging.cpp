@@ -3,17 +3,23 @@
 
 #include <spdlog/sinks/ansicolor_sink.h>
 #include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <memory>
 
 namespace app {
 
 namespace {
 int g_rank = 0;
-}
+constexpr const char* kFilePattern = "[%Y-%m-%d %H:%M:%S] %l: %v";
+// Rank 0's lines before the log file exists (set-up, preparation): copied into it when it opens.
+std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> g_early;
+}  // namespace
 
 void setup_logging(int rank, int verbosity) {
   g_rank = rank;
@@ -33,15 +39,31 @@ void setup_logging(int rank, int verbosity) {
     logger->set_pattern("[%H:%M:%S] rank " + std::to_string(rank) + " %^%l%$: %v");
     logger->set_level(verbosity >= 2 ? spdlog::level::debug : spdlog::level::warn);
   }
+  if (rank == 0) {
+    g_early = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(4096);
+    g_early->set_pattern(kFilePattern);
+    logger->sinks().push_back(g_early);
+  }
   logger->flush_on(spdlog::level::info);
   spdlog::set_default_logger(logger);
 }
 
 void add_log_file(const std::string& path) {
   if (g_rank != 0) return;
+  auto& sinks = spdlog::default_logger()->sinks();
+  if (g_early) {
+    std::string early;
+    for (const auto& line : g_early->last_formatted()) early += line;
+    if (std::FILE* f = std::fopen(path.c_str(), "a"); f != nullptr) {
+      std::fputs(early.c_str(), f);
+      std::fclose(f);
+    }
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), g_early), sinks.end());
+    g_early.reset();
+  }
   auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, false);
-  file->set_pattern("[%Y-%m-%d %H:%M:%S] %l: %v");
-  spdlog::default_logger()->sinks().push_back(file);
+  file->set_pattern(kFilePattern);
+  sinks.push_back(file);
 }
 
 }  // namespace app

@@ -1,5 +1,6 @@
 // mpmxdem entry point: MPI set-up, command-line parsing, dispatch, and the error policy
-// (input errors: message on rank 0, exit 2; numerical failures: exit 3; anything else: exit 1).
+// (input errors: message on rank 0, exit 2; numerical failures: exit 3; I/O failures: exit 4;
+// anything else: MPI_Abort, exit 1).
 #include <mpi.h>
 #include <spdlog/spdlog.h>
 
@@ -44,11 +45,21 @@ int main(int argc, char** argv) {
     if (comm.rank == 0) std::fprintf(stderr, "error: %s\n", e.what());
     code = 2;
   } catch (const common::NumericalError& e) {
-    spdlog::error("numerical failure: {}", e.what());
+    // Numerical failures reach every rank through the farm's error agreement: rank 0 reports.
+    if (comm.rank == 0) spdlog::error("numerical failure: {}", e.what());
     code = 3;
+  } catch (const common::IoError& e) {
+    // The system failed to store a file (disk full, I/O error): agreed across ranks like the two
+    // above (farm::ErrorKind::io), so every rank exits cleanly.
+    if (comm.rank == 0) std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
+    code = 4;
   } catch (const std::exception& e) {
     // A failure that only this rank may have seen: report it and take the whole job down.
     std::fprintf(stderr, "rank %d: fatal: %s\n", comm.rank, e.what());
+    std::fflush(stderr);
+    MPI_Abort(comm.comm, 1);
+  } catch (...) {
+    std::fprintf(stderr, "rank %d: fatal: unknown exception\n", comm.rank);
     std::fflush(stderr);
     MPI_Abort(comm.comm, 1);
   }

@@ -9,11 +9,20 @@
 
 namespace app {
 
-/// Checks, without writing anything, that `dir` may receive a run's output. Throws
-/// common::InputError naming the directory and the way out when it may not.
+/// Checks, without writing anything, that `dir` may receive a run's output: not "", a directory
+/// (or absent) whose nearest existing ancestor is a writable directory, empty unless `force` or
+/// `restart`, and not locked by a live run. Throws common::InputError naming the directory and
+/// the way out when it may not.
 void check_output_dir(const std::filesystem::path& dir, bool force, bool restart);
 /// Creates the directory (and parents).
 void create_output_dir(const std::filesystem::path& dir);
+/// Takes the exclusive lock of an output directory for the rest of this process's life: the file
+/// dir/mpmxdem.lock is locked (flock) and then holds "pid <pid> host <host> since <UTC time>".
+/// A lock held by a live process (another run, or a stray rank of a killed launch) is an
+/// InputError naming the holder; a lock file left by a process that ended is taken over.
+void lock_output_dir(const std::filesystem::path& dir);
+/// The name of the lock file in an output directory.
+inline constexpr const char* kLockFile = "mpmxdem.lock";
 /// Writes a file atomically (tmp + fsync + rename): readers see the old file or the new one, never
 /// a partial one. Throws common::IoError. One home: common/atomic_file.hpp.
 using common::write_file_atomic;

@@ -141,6 +141,12 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
   }
   if (!(solid > 0.0 && solid < 0.5))
     throw common::InputError("dem: cloud solid fraction in (0, 0.5)");
+  // A count no machine holds fails here, not in std::bad_alloc (the app bounds it by memory).
+  constexpr std::int64_t kMaxCloud = 1'000'000'000;
+  if (n < 2 || n > kMaxCloud) {
+    throw common::InputError("dem: make_cloud: " + std::to_string(n) + " spheres: must be in [2, " +
+                             std::to_string(kMaxCloud) + "]");
+  }
   // Number weights of fine sub-intervals: mass fraction / d^3.
   constexpr int kSub = 64;
   std::vector<double> d_lo;

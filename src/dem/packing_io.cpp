@@ -1,10 +1,13 @@
 // Packing text format reader/writer and n x n x n tiling.
 #include "dem/packing_io.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <numbers>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -43,6 +46,7 @@ Packing read_packing(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw common::InputError(path + ": cannot open packing file");
   Packing pk;
+  std::vector<long> lines;  // packing line of each sphere
   bool have_h = false;
   bool have_cell = false;
   std::string line;
@@ -71,11 +75,117 @@ Packing read_packing(const std::string& path) {
       if (!(v[3] > 0.0)) fail(path, ln, "radius must be > 0");
       pk.x.emplace_back(v[0], v[1], v[2]);
       pk.r.push_back(v[3]);
+      lines.push_back(ln);
     }
   }
   if (!have_h && !have_cell) throw common::InputError(path + ": no CELL or HSIZE line");
   if (pk.r.empty()) throw common::InputError(path + ": no spheres");
+  check_packing(pk, path, lines);
   return pk;
+}
+
+namespace {
+
+std::string where(const std::string& source, const std::vector<long>& lines, std::size_t i) {
+  return i < lines.size() ? source + ":" + std::to_string(lines[i])
+                          : source + ": sphere " + std::to_string(i);
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Two centres closer than half the sum of their radii (overlap beyond anything a packing at rest
+// holds), found with bins of 2 r_max over the fractional coordinates (periodic images ignored: a
+// check for degenerate input, not a contact search). Returns the pair, or n, n.
+std::pair<std::size_t, std::size_t> coincident_pair(const Packing& pk, const common::Mat3& hinv) {
+  const std::size_t n = pk.r.size();
+  const double r_max = *std::max_element(pk.r.begin(), pk.r.end());
+  std::array<long, 3> nb{};
+  for (int a = 0; a < 3; ++a) {
+    nb[static_cast<std::size_t>(a)] =
+        std::clamp(static_cast<long>(pk.cell.width(a) / (2.0 * r_max)), 1L,
+                   std::max(1L, static_cast<long>(std::cbrt(static_cast<double>(n))) + 1));
+  }
+  std::map<std::array<long, 3>, std::vector<std::size_t>> bins;
+  std::vector<std::array<long, 3>> bin_of(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const common::Vec3 s = hinv * pk.x[i];
+    for (std::size_t a = 0; a < 3; ++a) {
+      bin_of[i][a] = static_cast<long>(
+          std::floor(s[static_cast<Eigen::Index>(a)] * static_cast<double>(nb[a])));
+    }
+    bins[bin_of[i]].push_back(i);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    for (long dx = -1; dx <= 1; ++dx) {
+      for (long dy = -1; dy <= 1; ++dy) {
+        for (long dz = -1; dz <= 1; ++dz) {
+          const auto it = bins.find({bin_of[i][0] + dx, bin_of[i][1] + dy, bin_of[i][2] + dz});
+          if (it == bins.end()) continue;
+          for (const std::size_t j : it->second) {
+            if (j <= i) continue;
+            if ((pk.x[i] - pk.x[j]).norm() < 0.5 * (pk.r[i] + pk.r[j])) return {i, j};
+          }
+        }
+      }
+    }
+  }
+  return {n, n};
+}
+
+}  // namespace
+
+void check_packing(const Packing& pk, const std::string& source, const std::vector<long>& lines) {
+  const std::size_t n = pk.r.size();
+  auto bad = [&](std::size_t i, const std::string& what) {
+    throw common::InputError(where(source, lines, i) + ": " + what);
+  };
+  if (n < 2) {
+    throw common::InputError(source + ": " + std::to_string(n) +
+                             " sphere(s): a packing needs at least 2 spheres");
+  }
+  if (!pk.cell.h.allFinite() || !(pk.cell.h.determinant() > 0.0)) {
+    throw common::InputError(source + ": the cell matrix must be finite with det > 0");
+  }
+  double w_min = pk.cell.width(0);
+  for (int a = 1; a < 3; ++a) w_min = std::min(w_min, pk.cell.width(a));
+  const common::Mat3 hinv = pk.cell.h.inverse();
+  double solid = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!pk.x[i].allFinite()) bad(i, "the centre must be finite");
+    if (!(std::isfinite(pk.r[i]) && pk.r[i] > 0.0))
+      bad(i, "radius " + num(pk.r[i]) + " must be > 0 and finite");
+    if (!(2.0 * pk.r[i] < w_min)) {
+      bad(i, "radius " + num(pk.r[i]) +
+                 " m: the diameter must be below the cell's smallest width " + num(w_min) +
+                 " m (a larger sphere touches its own periodic image; radii and cell "
+                 "in the same unit?)");
+    }
+    const common::Vec3 s = hinv * pk.x[i];
+    if ((s.array() < -1.0).any() || (s.array() > 2.0).any()) {
+      bad(i, "centre (" + num(pk.x[i].x()) + ", " + num(pk.x[i].y()) + ", " + num(pk.x[i].z()) +
+                 ") is " + num(std::max((-s.array()).maxCoeff(), s.array().maxCoeff() - 1.0)) +
+                 " cell lengths outside the cell: centres must lie within one cell length of it "
+                 "(not wrapped silently; centres and cell in the same unit?)");
+    }
+    solid += 4.0 / 3.0 * std::numbers::pi * pk.r[i] * pk.r[i] * pk.r[i];
+  }
+  const auto [a, b] = coincident_pair(pk, hinv);
+  if (a < n) {
+    bad(b, "the centre is " + num((pk.x[a] - pk.x[b]).norm()) +
+               " m from the centre of the sphere at " + where(source, lines, a) +
+               ": closer than half the sum of their radii (" + num(0.5 * (pk.r[a] + pk.r[b])) +
+               " m): a degenerate packing (spheres at one point?)");
+  }
+  const double fraction = solid / pk.cell.volume();
+  if (!(fraction >= 0.01 && fraction <= 1.0)) {
+    throw common::InputError(source + ": solid volume fraction " + num(fraction) +
+                             " (spheres over cell volume) must be in [0.01, 1]: radii and cell in "
+                             "different units?");
+  }
 }
 
 void write_packing(const std::string& path, const Packing& pk, const std::string& comment) {

@@ -18,8 +18,18 @@ struct Packing {
   std::vector<double> r;        ///< radii [m]
 };
 
-/// Read a packing file. Throws common::InputError naming file:line and the rule broken.
+/// Read a packing file and check it (check_packing). Throws common::InputError naming file:line
+/// and the rule broken.
 [[nodiscard]] Packing read_packing(const std::string& path);
+/// Checks that a packing can be simulated, and names the first problem as "source:line: rule"
+/// (line = lines[i] of sphere i; without lines, "source: sphere i"): at least 2 spheres; finite
+/// positions, finite radii > 0; every diameter below the cell's smallest perpendicular width (a
+/// larger sphere touches its own periodic image); no centre more than one cell length outside the
+/// cell (fractional coordinate outside [-1, 2]: a unit mismatch, not something to wrap); no two
+/// centres closer than half the sum of their radii (degenerate: spheres at one point); a solid
+/// volume fraction in [0.01, 1] (radii and cell in different units). Throws common::InputError.
+void check_packing(const Packing& packing, const std::string& source,
+                   const std::vector<long>& lines = {});
 /// Write a packing file (17 significant digits: the round trip is exact).
 void write_packing(const std::string& path, const Packing& packing,
                    const std::string& comment = "");

@@ -27,6 +27,12 @@ std::string num_str(double v) {
   return s.str();
 }
 
+std::string short_str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 void config_error(const std::string& key, double value, const std::string& rule) {
   throw common::InputError("mpm config: " + key + " = " + num_str(value) + ": " + rule);
 }
@@ -50,6 +56,9 @@ void SolverConfig::validate() const {
                  "must be in [0, 1) (relative to the mean nodal mass)");
   }
   if (!gravity.allFinite()) throw common::InputError("mpm config: gravity is not finite");
+  if (!(max_volume_ratio > 1.0)) {
+    config_error("max_volume_ratio", max_volume_ratio, "must be > 1 (a blow-up guard)");
+  }
 }
 
 Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials)
@@ -101,19 +110,36 @@ void Solver::add_traction(const TractionLoad& load) {
   traction_areas_.push_back(0.0);
 }
 
-double Solver::next_dt() const {
-  if (config_.dt > 0.0) return config_.dt;
+double Solver::stable_dt(double& speed) const {
   double c = 0.0;
   for (const MaterialModel* m : materials_) c = std::max(c, m->wave_speed());
   double vmax = 0.0;
   for (const common::Vec3& v : points_.v) vmax = std::max(vmax, v.norm());
-  const double speed = c + vmax;
+  speed = c + vmax;
   if (!(speed > 0.0) || !std::isfinite(speed)) {
     throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " + num_str(time_) +
-                                 " s): CFL time step needs a positive finite wave speed, got " +
+                                 " s): the time step needs a positive finite wave speed, got " +
                                  num_str(speed) + " m/s");
   }
-  return config_.cfl * config_.grid.spacing.minCoeff() / speed;
+  return config_.grid.spacing.minCoeff() / speed;
+}
+
+double Solver::next_dt() const {
+  if (config_.dt > 0.0 && !config_.refuse_unstable_dt) return config_.dt;
+  double speed = 0.0;
+  const double limit = stable_dt(speed);
+  // The CFL step exactly as written before the stability check existed (bit-for-bit results).
+  if (config_.dt <= 0.0) return config_.cfl * config_.grid.spacing.minCoeff() / speed;
+  if (config_.dt > limit) {
+    throw common::NumericalError(
+        "mpm step " + std::to_string(step_) + " (t = " + num_str(time_) +
+        " s): the fixed dt = " + num_str(config_.dt) +
+        " s is above the stability limit h / (c + |v|max) = " + num_str(limit) + " s (h = " +
+        num_str(config_.grid.spacing.minCoeff()) + " m, c + |v|max = " + num_str(speed) +
+        " m/s): lower dt, or leave it out to use the CFL "
+        "step");
+  }
+  return config_.dt;
 }
 
 void Solver::prepare_grid(std::int64_t step, double t) {
@@ -145,6 +171,17 @@ void Solver::update_stress(double dt) {
     points_.F[p] = dF * points_.F[p];
     points_.volume[p] *= dF.determinant();
   });
+  try {
+    update_material_stress(dt);
+  } catch (const common::NumericalError& e) {
+    // A material's failure (e.g. an RVE of the farm) gains the MPM step and simulated time.
+    throw common::NumericalError("mpm step " + std::to_string(step_) +
+                                 " (t = " + num_str(time_ + dt) + " s, dt = " + num_str(dt) +
+                                 " s): " + e.what());
+  }
+}
+
+void Solver::update_material_stress(double dt) {
   if (materials_.size() == 1) {
     materials_[0]->update_stress(points_.id, points_.L, dt, points_.stress);
     return;
@@ -177,11 +214,22 @@ void Solver::check_points(double t_end) const {
           std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
           " m: volume = " + num_str(vol) + " m^3 (must be positive and finite)");
     }
-    if (!points_.stress[p].allFinite()) {
+    const double ratio = vol / points_.volume0[p];
+    if (points_.volume0[p] > 0.0 &&
+        (ratio > config_.max_volume_ratio || ratio < 1.0 / config_.max_volume_ratio)) {
+      throw common::NumericalError(
+          "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
+          std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
+          " m: volume / initial volume = " + num_str(ratio) + ", outside [1/" +
+          short_str(config_.max_volume_ratio) + ", " + short_str(config_.max_volume_ratio) +
+          "]: the run has blown up (time step too large, or a material that lost its strength)");
+    }
+    if (!points_.stress[p].allFinite() || !points_.v[p].allFinite()) {
       throw common::NumericalError(
           "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
           std::to_string(points_.id[p]) +
-          ": stress is not finite (trace = " + num_str(points_.stress[p].trace()) + " Pa)");
+          ": stress is not finite (trace = " + num_str(points_.stress[p].trace()) +
+          " Pa, |v| = " + num_str(points_.v[p].norm()) + " m/s)");
     }
   }
 }

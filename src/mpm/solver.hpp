@@ -41,6 +41,13 @@ struct SolverConfig {
   /// Only for element tests whose cell IS the sample (the paper's single-cell triaxial): the
   /// material does not advect. docs/mpm.md, "Fixed points".
   bool move_points = true;
+  /// A fixed dt above the stability limit h_min / (c + |v|_max) (c: the materials' largest wave
+  /// speed) is refused: common::NumericalError naming the step, time and both steps. false only
+  /// for tests that provoke a blow-up on purpose.
+  bool refuse_unstable_dt = true;
+  /// Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run
+  /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1.
+  double max_volume_ratio = 10.0;
   /// Throws common::InputError naming the field, its value and the rule.
   void validate() const;
 };
@@ -91,8 +98,11 @@ class Solver {
  private:
   void prepare_grid(std::int64_t step, double t);
   void update_stress(double dt);
+  void update_material_stress(double dt);
   void add_external_loads();
   void check_points(double t_end) const;
+  /// The stable step h_min / (c + |v|_max) [s] and the speed used [m/s].
+  [[nodiscard]] double stable_dt(double& speed) const;
 
   SolverConfig config_;
   MaterialPoints points_;

@@ -118,3 +118,46 @@ TEST(EditDistance, Basics) {
   EXPECT_EQ(app::edit_distance("kitten", "sitting"), 3u);
   EXPECT_EQ(app::edit_distance("same", "same"), 0u);
 }
+
+TEST(Job, AnInvalidRequiredValueIsReportedOnceNotAlsoAsMissing) {
+  const std::string e =
+      error_of(replace(kDemJob, "friction_angle = 30", "friction_angle = \"95 deg\""));
+  EXPECT_NE(e.find("job.toml:6: dem.material.friction_angle = \"95 deg\": must be in [0, 90)"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("is missing"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << "one error only:\n" << e;
+}
+
+TEST(Job, SuggestionsPreferTheSameWordsOverShortSubstrings) {
+  // "endtime" holds "dt" but is "end_time" without its underscore.
+  const std::string mpm = R"([mpm]
+endtime = "1 s"
+[mpm.grid]
+origin = [0, 0, 0]
+spacing = [1, 1, 1]
+cells = [1, 1, 1]
+)";
+  const std::string e = error_of(mpm);
+  EXPECT_NE(e.find("mpm.endtime: unknown key; did you mean 'end_time'?"), std::string::npos) << e;
+  EXPECT_NE(error_of(replace(kDemJob, "young_modulus", "Young_Modulus"))
+                .find("did you mean 'young_modulus'?"),
+            std::string::npos);
+}
+
+TEST(Job, AHugeUnknownKeyIsNotEchoedWhole) {
+  const std::string key(100000, 'k');
+  const std::string e = error_of(replace(kDemJob, "density = ", key + " = 1\ndensity = "));
+  EXPECT_NE(e.find("kkk...: unknown key"), std::string::npos) << e.substr(0, 300);
+  EXPECT_LT(e.size(), 2000u);
+}
+
+TEST(Job, AHugePackingPathIsNotEchoedWhole) {
+  std::string text = replace(kDemJob, "spheres = 100\n", "");
+  text = replace(text, "psd_diameters = [\"130 um\", \"270 um\"]\n", "");
+  text = replace(text, "psd_passing = [0.0, 1.0]\n",
+                 "packing = \"" + std::string(100000, 'p') + "\"\n");
+  const std::string e = error_of(text);
+  EXPECT_NE(e.find("no such file 'ppp"), std::string::npos) << e.substr(0, 300);
+  EXPECT_LT(e.size(), 1000u);
+}

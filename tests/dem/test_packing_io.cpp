@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include "common/errors.hpp"
 #include "dem/loading.hpp"
@@ -78,6 +79,90 @@ TEST(PackingIo, TilingAlongOneAxisKeepsTheStress) {
   EXPECT_LT((sa - sb).norm(), 1e-9 * sa.norm());
   EXPECT_EQ(dem::measure(b).z, dem::measure(a).z);
   EXPECT_THROW((void)dem::tile_packing(pk, {1, 0, 1}), common::InputError);
+}
+
+// check_packing: each rule of a packing that cannot be simulated, named with the packing line.
+dem::Packing lattice() {
+  dem::Packing pk;
+  pk.cell.h = common::Mat3::Identity();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < 3; ++k) {
+        pk.x.emplace_back((i + 0.5) / 3, (j + 0.5) / 3, (k + 0.5) / 3);
+        pk.r.push_back(0.1);
+      }
+    }
+  }
+  return pk;
+}
+
+std::string packing_error(const dem::Packing& pk) {
+  std::vector<long> lines;
+  for (std::size_t i = 0; i < pk.r.size(); ++i) lines.push_back(static_cast<long>(i) + 10);
+  try {
+    dem::check_packing(pk, "p.txt", lines);
+  } catch (const common::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PackingIo, CheckAcceptsAPlainLattice) { EXPECT_EQ(packing_error(lattice()), ""); }
+
+TEST(PackingIo, CheckRefusesRadiusLargerThanTheCell) {
+  dem::Packing pk = lattice();
+  pk.r[4] = 0.6;
+  EXPECT_NE(packing_error(pk).find("p.txt:14: radius 0.6 m: the diameter must be below the "
+                                   "cell's smallest width 1 m"),
+            std::string::npos)
+      << packing_error(pk);
+}
+
+TEST(PackingIo, CheckRefusesNonFiniteOrNonPositiveRadius) {
+  dem::Packing pk = lattice();
+  pk.r[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(packing_error(pk).find("p.txt:12: radius nan"), std::string::npos) << packing_error(pk);
+  pk.r[2] = -0.1;
+  EXPECT_NE(packing_error(pk).find("p.txt:12: radius -0.1 must be > 0"), std::string::npos);
+}
+
+TEST(PackingIo, CheckRefusesCentreFarOutsideRatherThanWrapping) {
+  dem::Packing pk = lattice();
+  pk.x[5].x() = 2900.5;
+  EXPECT_NE(packing_error(pk).find("p.txt:15: centre (2900.5, "), std::string::npos)
+      << packing_error(pk);
+  EXPECT_NE(packing_error(pk).find("2899.5 cell lengths outside the cell"), std::string::npos);
+  pk = lattice();
+  pk.x[5].x() = 1.9;  // within one cell length: a periodic packing may hold it
+  EXPECT_EQ(packing_error(pk), "");
+}
+
+TEST(PackingIo, CheckRefusesSpheresAtOnePoint) {
+  dem::Packing pk = lattice();
+  for (auto& x : pk.x) x = common::Vec3(0.5, 0.5, 0.5);
+  const std::string e = packing_error(pk);
+  EXPECT_NE(e.find("p.txt:11: the centre is 0 m from the centre of the sphere at p.txt:10"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("degenerate packing"), std::string::npos);
+}
+
+TEST(PackingIo, CheckRefusesASingleSphereAndUnitMismatch) {
+  dem::Packing pk = lattice();
+  pk.x.resize(1);
+  pk.r.resize(1);
+  EXPECT_NE(packing_error(pk).find("p.txt: 1 sphere(s): a packing needs at least 2 spheres"),
+            std::string::npos);
+  pk = lattice();
+  pk.cell.h *= 1000.0;  // cell in mm written as m: solid fraction 1e-10
+  for (auto& x : pk.x) x *= 1000.0;
+  EXPECT_NE(packing_error(pk).find("solid volume fraction 1.13097e-10"), std::string::npos)
+      << packing_error(pk);
+}
+
+TEST(PackingIo, ReferencePackingPassesTheChecks) {
+  const dem::Packing pk = dem_test::reference_packing();  // read_packing checks it
+  EXPECT_NO_THROW(dem::check_packing(pk, "reference"));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 # Runs `mpmxdem check JOB` and passes when it fails with exit code 2 and its message contains every
-# "# expect: ..." fragment written at the top of JOB. Usage:
+# "# expect: ..." fragment written at the top of JOB, and none of its "# absent: ..." fragments
+# (e.g. a second report of the same key). Usage:
 #   cmake -DEXE=... -DJOB=... [-DFRAGMENT=...] -P expect_error.cmake   (from the source root)
 execute_process(COMMAND "${EXE}" check "${JOB}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 2)
@@ -26,3 +27,13 @@ foreach(f IN LISTS fragments)
     message(FATAL_ERROR "expected fragment not found:\n  ${f}\nstderr was:\n${err}")
   endif()
 endforeach()
+if(EXISTS "${JOB}")
+  file(STRINGS "${JOB}" lines REGEX "^# absent: ")
+  foreach(line IN LISTS lines)
+    string(REGEX REPLACE "^# absent: " "" f "${line}")
+    string(FIND "${err}" "${f}" pos)
+    if(NOT pos EQUAL -1)
+      message(FATAL_ERROR "fragment that must not appear was found:\n  ${f}\nstderr was:\n${err}")
+    endif()
+  endforeach()
+endif()

@@ -97,6 +97,7 @@ TEST(Solver, PointLeavingTheGridNamesIdStepAndPosition) {
   mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
   cfg.gravity = Vec3::Zero();
   cfg.dt = 0.01;
+  cfg.refuse_unstable_dt = false;  // 100 m/s on purpose: the point must leave the grid
   mpm::LinearElastic mat(1e5, 0.3, 1800.0);
   mpm::MaterialPoints pts = small_block(cfg.grid);
   pts.v[5] = Vec3(100.0, 0, 0);  // leaves the 1.5 m grid within two steps
@@ -109,11 +110,63 @@ TEST(Solver, NegativeVolumeStopsWithContext) {
   mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
   cfg.gravity = Vec3::Zero();
   cfg.dt = 1.0;
+  cfg.refuse_unstable_dt = false;  // the blow-up is the point of the test
   mpm::LinearElastic mat(1e5, 0.3, 1800.0);
   mpm::MaterialPoints pts = small_block(cfg.grid);
   for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = Vec3(0, 0, -2.0 * (pts.x[p][2] - 0.9));
   mpm::Solver s(cfg, pts, {&mat});
   expect_message([&] { s.step(); }, {"mpm step 0", "t = 1", "point id", "volume = -"});
+}
+
+TEST(Solver, FixedDtAboveTheStabilityLimitIsRefused) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.dt = 1.0;  // h / c = 0.25 / 9.7 = 0.026 s for this material
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::Solver s(cfg, small_block(cfg.grid), {&mat});
+  expect_message([&] { s.step(); }, {"mpm step 0 (t = 0 s)",
+                                     "fixed dt = 1 s is above the stability limit", "h = 0.25 m"});
+  cfg.dt = 0.01;  // below the limit: runs
+  mpm::Solver ok(cfg, small_block(cfg.grid), {&mat});
+  EXPECT_NO_THROW(ok.run(3));
+}
+
+TEST(Solver, VolumeBeyondTheBlowUpBoundStopsWithContext) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.max_volume_ratio = 1.1;
+  mpm::LinearElastic mat(10.0, 0.3, 1800.0);  // soft: nothing holds the expansion back
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = 0.2 * (pts.x[p] - Vec3(0.75, 0.6, 0.9));
+  mpm::Solver s(cfg, pts, {&mat});
+  expect_message([&] { s.run(200); },
+                 {"mpm step 0 (t = 0.5", "point id 0", "volume / initial volume = 1.2",
+                  "outside [1/1.1, 1.1]", "blown up"});
+  cfg.max_volume_ratio = 1.0;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"max_volume_ratio = 1", "must be > 1"});
+}
+
+// A material that fails at its third update, as an RVE of the farm may.
+class FailingMaterial : public mpm::MaterialModel {
+ public:
+  void update_stress(std::span<const std::int64_t> /*ids*/, std::span<const common::Mat3> /*L*/,
+                     double /*dt*/, std::span<common::Mat3> stress) override {
+    if (++calls_ == 3) throw common::NumericalError("RVE id 7 failed: stress not finite");
+    for (auto& s : stress) s.setZero();
+  }
+  [[nodiscard]] double wave_speed() const override { return 10.0; }
+
+ private:
+  int calls_ = 0;
+};
+
+TEST(Solver, AMaterialFailureGainsTheStepAndSimulatedTime) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  FailingMaterial mat;
+  mpm::Solver s(cfg, small_block(cfg.grid), {&mat});
+  expect_message([&] { s.run(5); },
+                 {"mpm step 2 (t = 0.037", ", dt = 0.012", "s): RVE id 7 failed"});
 }
 
 TEST(Solver, ConfigErrorsNameKeyValueAndRule) {

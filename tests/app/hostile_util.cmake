@@ -1,0 +1,32 @@
+# Helpers of the hostile-input tests (included by tests/app/hostile_*.cmake).
+#   snapshot(DIR VAR): VAR = every file under DIR (hidden ones too) with its SHA-256, sorted.
+#   expect_failure(RC ERR CODE FRAGMENTS...): RC must be CODE and ERR must hold every fragment.
+function(snapshot dir var)
+  file(GLOB_RECURSE files LIST_DIRECTORIES false RELATIVE "${dir}" "${dir}/*")
+  list(SORT files)
+  set(out)
+  foreach(f IN LISTS files)
+    file(SHA256 "${dir}/${f}" h)
+    list(APPEND out "${f}=${h}")
+  endforeach()
+  set(${var} "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_failure rc err code)
+  if(NOT "${rc}" STREQUAL "${code}")
+    message(FATAL_ERROR "expected exit code ${code}, got '${rc}'\nstderr:\n${err}")
+  endif()
+  foreach(f IN LISTS ARGN)
+    string(FIND "${err}" "${f}" pos)
+    if(pos EQUAL -1)
+      message(FATAL_ERROR "expected fragment not found:\n  ${f}\nstderr was:\n${err}")
+    endif()
+  endforeach()
+endfunction()
+
+function(expect_unchanged dir before what)
+  snapshot("${dir}" after)
+  if(NOT "${before}" STREQUAL "${after}")
+    message(FATAL_ERROR "${what} changed ${dir}:\nbefore: ${before}\nafter:  ${after}")
+  endif()
+endfunction()
