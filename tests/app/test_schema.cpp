@@ -12,6 +12,7 @@
 #include "app/schema_params.hpp"
 #include "common/errors.hpp"
 #include "common/param_table.hpp"
+#include "dem/loading.hpp"
 #include "dem/params.hpp"
 #include "dem/rve.hpp"
 #include "farm/mpi_util.hpp"
@@ -102,6 +103,8 @@ TEST(Schema, DemTablesAreTheSchemaOfTheirSections) {
   expect_rows_in_schema(dem::kMaterial);
   expect_rows_in_schema(dem::kNumerics);
   expect_rows_in_schema(dem::kRveParams);
+  expect_rows_in_schema(dem::kPreparation);
+  expect_rows_in_schema(dem::kPreparationTarget);
 }
 
 TEST(Schema, MpmAndFarmTablesAreTheSchemaOfTheirKeys) {
@@ -207,6 +210,12 @@ TEST(Schema, JobValuesFillTheDemStructsAndAbsentKeysTakeTheStructDefaults) {
   EXPECT_EQ(n.damping, dem::Numerics{}.damping);
   EXPECT_EQ(n.dt_safety, dem::Numerics{}.dt_safety);
   EXPECT_EQ(n.dt_refresh, dem::Numerics{}.dt_refresh);
+  const dem::Preparation p = app::dem_preparation(job);
+  EXPECT_EQ(p.friction_comp_deg, 10.0);
+  EXPECT_EQ(p.target.pressure, 1e5);
+  EXPECT_EQ(p.target.stress_tol, dem::EquilibriumTarget{}.stress_tol);
+  EXPECT_EQ(p.target.unbalanced_tol, dem::EquilibriumTarget{}.unbalanced_tol);
+  EXPECT_EQ(p.target.check_every, dem::EquilibriumTarget{}.check_every);
 }
 
 }  // namespace
