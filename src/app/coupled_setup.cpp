@@ -108,13 +108,9 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
   c.job_text = job.source_text();
 
   c.output.dir = limits.out_dir;
-  c.output.every = job.integer("output.every");
-  c.output.log_every_s = job.number("output.progress_interval");
-  c.checkpoint.every_steps = job.integer("output.checkpoint_every");
-  c.checkpoint.every_wall_s = job.number("output.checkpoint_interval");
-  c.checkpoint.keep = static_cast<int>(job.integer("output.checkpoint_keep"));
-  c.balance.threshold = job.number("farm.rebalance_threshold");
-  c.balance.check_every = job.integer("farm.rebalance_check_every");
+  fill_from_job(job, farm::kOutputOptions, c.output);
+  fill_from_job(job, farm::kCheckpointOptions, c.checkpoint);
+  fill_from_job(job, farm::kBalanceOptions, c.balance);
   c.farm.wait = farm::wait_mode_from(job.text("farm.wait"));
   c.validate();
   return c;

@@ -33,10 +33,8 @@ dem::Numerics dem_numerics(const Job& job) {
 
 dem::Preparation dem_preparation(const Job& job) {
   dem::Preparation p;
-  p.friction_comp_deg = job.number("dem.preparation.friction_angle");
-  p.target.pressure = job.number("dem.preparation.pressure");
-  p.target.stress_tol = job.number("dem.preparation.stress_tolerance");
-  p.target.unbalanced_tol = job.number("dem.preparation.unbalanced_force");
+  fill_from_job(job, dem::kPreparation, p);
+  fill_from_job(job, dem::kPreparationTarget, p.target);
   return p;
 }
 

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "app/schema_params.hpp"
 #include "common/errors.hpp"
 
 namespace app {
@@ -33,15 +34,11 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.shape = mpm::shape_kind_from_string(job.text("mpm.shape_function"));
   cfg.stress_update =
       job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
-  cfg.pic_fraction = 1.0 - job.number("mpm.flip");
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
-  cfg.damping = job.number("mpm.damping");
   cfg.damping_mode = job.text("mpm.damping_mode") == "component"
                          ? mpm::DampingMode::cundall_component
                          : mpm::DampingMode::cundall_vector;
-  cfg.dt = job.has("mpm.dt") ? job.number("mpm.dt") : 0.0;
-  cfg.cfl = job.number("mpm.cfl");
-  cfg.mass_threshold = job.number("mpm.mass_threshold");
+  fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold
   cfg.move_points = job.flag("mpm.move_points");
   setup.end_time = job.number("mpm.end_time");
 

@@ -1,11 +1,8 @@
 // Schema helpers, range rules and the Markdown reference generated from the schema.
 #include "app/schema.hpp"
 
-#include "app/schema_params.hpp"
-
 #include <fmt/format.h>
 
-#include <array>
 #include <sstream>
 
 namespace app {
@@ -41,15 +38,6 @@ std::vector<const Key*> Schema::children(const std::string& parent) const {
 std::string Schema::section_doc(const std::string& path) const {
   const Key* k = find(path);
   return k != nullptr ? k->doc : std::string();
-}
-
-Quantity quantity_of(common::Unit u) {
-  // Indexed by common::Unit, in its order (a test checks the units agree).
-  constexpr std::array kQuantities{
-      Quantity::Dimensionless, Quantity::Length,       Quantity::Pressure,
-      Quantity::Angle,         Quantity::Time,         Quantity::Density,
-      Quantity::Velocity,      Quantity::Acceleration, Quantity::Rate};
-  return kQuantities.at(static_cast<std::size_t>(u));
 }
 
 namespace {

@@ -1,8 +1,9 @@
 // Job-file sections of the DEM (the RVE): [dem.material], [dem.sample], [dem.preparation],
-// [dem.numerics], [dem.coupling], [dem.loading]. The material, numerics and coupling keys are the
-// rows of dem's parameter tables (dem/params.hpp, dem/rve.hpp).
+// [dem.numerics], [dem.coupling], [dem.loading]. The material, numerics, coupling and preparation
+// keys are the rows of dem's parameter tables (dem/params.hpp, dem/rve.hpp, dem/loading.hpp).
 #include "app/schema.hpp"
 #include "app/schema_params.hpp"
+#include "dem/loading.hpp"
 #include "dem/params.hpp"
 #include "dem/rve.hpp"
 
@@ -45,23 +46,8 @@ void add_dem_sections(Schema& s) {
   s.add("dem.preparation", Type::Table,
         "Isotropic compaction with a lowered friction angle, friction restored, re-equilibration.")
       .need();
-  s.add("dem.preparation.pressure", Type::Float, "Target confining pressure p0.")
-      .unit(Q::Pressure)
-      .in(0, std::nullopt, true)
-      .need();
-  s.add("dem.preparation.friction_angle", Type::Float,
-        "Friction angle during compaction (controls the void ratio).")
-      .unit(Q::Angle)
-      .in(0, 90, false, true)
-      .need();
-  s.add("dem.preparation.stress_tolerance", Type::Float,
-        "Relative tolerance on the reached pressure.")
-      .in(0, 1, true, true)
-      .or_default(0.01);
-  s.add("dem.preparation.unbalanced_force", Type::Float,
-        "Equilibrium when the unbalanced force ratio is below this.")
-      .in(0, 1, true, true)
-      .or_default(0.01);
+  add_params(s, dem::kPreparationTarget);  // pressure, stress_tolerance, unbalanced_force
+  add_params(s, dem::kPreparation);        // friction_angle
   s.add("dem.preparation.inertial_number", Type::Float,
         "Inertial number of the compaction strain rate.")
       .in(0, 1, true, true)

@@ -1,6 +1,9 @@
 // Job-file sections of the MPM (paper section 2.1): [mpm], [mpm.grid], [[mpm.body]], [mpm.elastic],
-// [[mpm.velocity]], [[mpm.traction]].
+// [[mpm.velocity]], [[mpm.traction]]. The numeric knobs of [mpm] are the rows of mpm's parameter
+// table (mpm/solver.hpp, kSolverConfig).
 #include "app/schema.hpp"
+#include "app/schema_params.hpp"
+#include "mpm/solver.hpp"
 
 namespace app {
 
@@ -15,28 +18,16 @@ void add_mpm_sections(Schema& s) {
         "Stress update: Update Stress First (the paper's) or Modified USL.")
       .one_of({"usf", "musl"})
       .or_default(std::string("usf"));
-  s.add("mpm.flip", Type::Float,
-        "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP.")
-      .in(0, 1)
-      .or_default(1.0);
   s.add("mpm.move_points", Type::Bool,
         "false: points keep their initial positions (eq. 10 skipped): only for element tests whose "
         "cell is the "
         "sample, e.g. the paper's single-cell triaxial (see docs/mpm.md, Fixed points).")
       .or_default(true);
-  s.add("mpm.damping", Type::Float, "Cundall damping D of the nodal accelerations (eq. 8).")
-      .in(0, 1, false, true)
-      .or_default(0.0);
   s.add("mpm.damping_mode", Type::String,
         "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
       .one_of({"vector", "component"})
       .or_default(std::string("vector"));
-  s.add("mpm.dt", Type::Float, "Fixed MPM time step; absent: from the CFL condition.")
-      .unit(Q::Time)
-      .in(0, std::nullopt, true);
-  s.add("mpm.cfl", Type::Float, "CFL number when dt is not given.")
-      .in(0, 1, true, false)
-      .or_default(0.5);
+  add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold
   s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.")
       .unit(Q::Time)
       .in(0, std::nullopt, true)
@@ -44,10 +35,6 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.gravity", Type::FloatList, "Gravity vector; absent: no gravity.")
       .unit(Q::Acceleration)
       .len(3, 3);
-  s.add("mpm.mass_threshold", Type::Float,
-        "Nodes lighter than this fraction of the typical nodal mass are inactive.")
-      .in(0, 1, true, true)
-      .or_default(1e-6);
 
   s.add("mpm.grid", Type::Table, "Structured grid of hexahedral cells.").need();
   s.add("mpm.grid.origin", Type::FloatList, "Corner of the grid with the smallest coordinates.")

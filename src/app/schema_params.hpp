@@ -12,9 +12,6 @@
 
 namespace app {
 
-/// The job quantity of a table unit.
-[[nodiscard]] Quantity quantity_of(common::Unit u);
-
 /// Adds the job rows of `table` whose key lies in sub-table `sub` of the table's section ("" for
 /// the section itself, "twisting" for "twisting.stiffness") as schema keys, in table order. The
 /// caller adds the section (and sub-table) keys themselves, with their documentation.
@@ -26,10 +23,12 @@ void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_vi
     const std::string_view parent = dot == std::string_view::npos ? "" : p.key.substr(0, dot);
     if (parent != sub) continue;
     Key& k = s.add(table.name(p), p.is_integer() ? Type::Int : Type::Float, std::string(p.doc))
-                 .unit(quantity_of(p.unit))
+                 .unit(p.unit)
                  .in(p.range.lo, p.range.hi, p.range.lo_open, p.range.hi_open);
     if (p.source == common::Source::job_required) {
       k.need();
+    } else if (p.source == common::Source::job_optional) {
+      continue;  // absent: the struct keeps its "not set" value
     } else if (p.is_integer()) {
       k.or_default(static_cast<std::int64_t>(p.default_value()));
     } else {

@@ -48,29 +48,7 @@ std::string_view trim(std::string_view s) {
 }
 }  // namespace
 
-std::string_view canonical_unit(Quantity q) {
-  switch (q) {
-    case Quantity::Dimensionless:
-      return "";
-    case Quantity::Length:
-      return "m";
-    case Quantity::Pressure:
-      return "Pa";
-    case Quantity::Angle:
-      return "deg";
-    case Quantity::Time:
-      return "s";
-    case Quantity::Density:
-      return "kg/m^3";
-    case Quantity::Velocity:
-      return "m/s";
-    case Quantity::Acceleration:
-      return "m/s^2";
-    case Quantity::Rate:
-      return "1/s";
-  }
-  return "";
-}
+std::string_view canonical_unit(Quantity q) { return common::unit_symbol(q); }
 
 std::string_view quantity_name(Quantity q) {
   switch (q) {

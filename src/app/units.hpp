@@ -6,21 +6,14 @@
 #include <string>
 #include <string_view>
 
+#include "common/param_table.hpp"
+
 namespace app {
 
-enum class Quantity {
-  Dimensionless,
-  Length,        ///< m
-  Pressure,      ///< Pa
-  Angle,         ///< deg
-  Time,          ///< s
-  Density,       ///< kg/m^3
-  Velocity,      ///< m/s
-  Acceleration,  ///< m/s^2
-  Rate,          ///< 1/s
-};
+/// A job key's quantity: the parameter tables' unit (one enum for both).
+using Quantity = common::Unit;
 
-/// The unit a bare number is read in ("Pa", "deg", "" for dimensionless).
+/// The unit a bare number is read in ("Pa", "deg", "" for dimensionless): common::unit_symbol.
 [[nodiscard]] std::string_view canonical_unit(Quantity q);
 /// Human name of the quantity ("a pressure").
 [[nodiscard]] std::string_view quantity_name(Quantity q);

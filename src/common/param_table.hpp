@@ -8,10 +8,12 @@
 // physical parameter): its member initializer is only a placeholder for C++ users.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,8 +21,19 @@
 
 namespace common {
 
-/// Physical quantity of a parameter; a bare number is in the unit that unit_symbol() names.
-enum class Unit { none, length, pressure, angle, time, density, velocity, acceleration, rate };
+/// Physical quantity of a parameter (the job files' app::Quantity is this enum); a bare number is
+/// in the unit that unit_symbol() names.
+enum class Unit {
+  Dimensionless,
+  Length,        ///< m
+  Pressure,      ///< Pa
+  Angle,         ///< deg
+  Time,          ///< s
+  Density,       ///< kg/m^3
+  Velocity,      ///< m/s
+  Acceleration,  ///< m/s^2
+  Rate,          ///< 1/s
+};
 
 /// "m", "Pa", "deg", "s", "kg/m^3", "m/s", "m/s^2", "1/s"; "" for none.
 [[nodiscard]] std::string_view unit_symbol(Unit u);
@@ -57,29 +70,38 @@ constexpr Range in_oo(double a, double b) { return {a, b, true, true}; }
 enum class Source {
   job_default,   ///< optional job key; absent: the struct's default
   job_required,  ///< job key that must be given (physical parameter, no default)
+  job_optional,  ///< optional job key without a default value: absent keeps the struct's value,
+                 ///< which means "not set" (e.g. mpm.dt: 0, the CFL step)
   cpp_only,      ///< set by the code that builds the struct, not a job key
 };
 
-/// One row: a member of S with its job key (relative to the table's section; may contain a dot
-/// for a sub-table: "twisting.stiffness"), unit, range, source and meaning.
+/// One row: a member of S (double, std::int64_t or int) with its job key (relative to the table's
+/// section; may contain a dot for a sub-table: "twisting.stiffness"), unit, range, source and
+/// meaning.
 template <class S>
 struct Param {
   std::string_view key;
-  std::variant<double S::*, std::int64_t S::*> member;
-  Unit unit = Unit::none;
+  std::variant<double S::*, std::int64_t S::*, int S::*> member;
+  Unit unit = Unit::Dimensionless;
   Range range;
   Source source = Source::job_default;
   std::string_view doc;
 
-  [[nodiscard]] bool is_integer() const { return member.index() == 1; }
+  [[nodiscard]] bool is_integer() const { return member.index() != 0; }
   [[nodiscard]] bool in_job() const { return source != Source::cpp_only; }
   [[nodiscard]] double get(const S& s) const {
     if (const auto* i = std::get_if<1>(&member)) return static_cast<double>(s.**i);
+    if (const auto* i = std::get_if<2>(&member)) return static_cast<double>(s.**i);
     return s.*std::get<0>(member);
   }
+  /// Sets the member; an integer member takes v truncated (a job gives integers exactly), an int
+  /// member v clamped to the range of int (check_ranges then reports the clamped value).
   void set(S& s, double v) const {
     if (const auto* i = std::get_if<1>(&member)) {
       s.** i = static_cast<std::int64_t>(v);
+    } else if (const auto* j = std::get_if<2>(&member)) {
+      s.** j = static_cast<int>(std::clamp(v, double{std::numeric_limits<int>::min()},
+                                           double{std::numeric_limits<int>::max()}));
     } else {
       s.*std::get<0>(member) = v;
     }

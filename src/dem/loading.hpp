@@ -82,11 +82,40 @@ struct Psd {
 /// radii drawn from the PSD by number (mass weights / d^3). Deterministic for a seed.
 [[nodiscard]] Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t seed);
 
+/// Sample preparation. A job gives the friction angle and the target pressure (their
+/// initializers are placeholders for C++ users); the tolerances' initializers are the job
+/// defaults (kPreparation, kPreparationTarget). The app sets compaction_rate (and
+/// target.max_rate) from dem.preparation.inertial_number.
 struct Preparation {
   double friction_comp_deg = 1.0;  ///< friction during compaction [deg]
   EquilibriumTarget target;        ///< target pressure and tolerances
   double compaction_rate = 10.0;   ///< strain-rate bound while compacting [1/s]
 };
+
+/// [dem.preparation]: the friction angle of the compaction (the target: kPreparationTarget).
+inline constexpr auto kPreparation = common::make_table<Preparation>(
+    "dem::Preparation", "dem.preparation",
+    {{"friction_angle", &Preparation::friction_comp_deg, Unit::Angle, common::in_co(0, 90),
+      Source::job_required, "Friction angle during compaction (controls the void ratio)."},
+     {"compaction_rate", &Preparation::compaction_rate, Unit::Rate, common::gt(0), Source::cpp_only,
+      "Strain-rate bound while compacting."}});
+
+/// [dem.preparation]: the target of Preparation::target (an EquilibriumTarget).
+inline constexpr auto kPreparationTarget = common::make_table<EquilibriumTarget>(
+    "dem::EquilibriumTarget", "dem.preparation",
+    {{"pressure", &EquilibriumTarget::pressure, Unit::Pressure, common::gt(0), Source::job_required,
+      "Target confining pressure p0."},
+     {"stress_tolerance", &EquilibriumTarget::stress_tol, Unit::Dimensionless, common::in_oo(0, 1),
+      Source::job_default, "Relative tolerance on the reached pressure."},
+     {"unbalanced_force", &EquilibriumTarget::unbalanced_tol, Unit::Dimensionless,
+      common::in_oo(0, 1), Source::job_default,
+      "Equilibrium when the unbalanced force ratio is below this."},
+     {"max_rate", &EquilibriumTarget::max_rate, Unit::Rate, common::gt(0), Source::cpp_only,
+      "Servo strain-rate bound."},
+     {"check_every", &EquilibriumTarget::check_every, Unit::Dimensionless, common::ge(1),
+      Source::cpp_only, "Steps between two checks of the target."},
+     {"max_steps", &EquilibriumTarget::max_steps, Unit::Dimensionless, common::ge(1),
+      Source::cpp_only, "Steps after which equilibrate() gives up."}});
 /// Isotropic compaction with lowered friction, then friction restored (also on existing contacts)
 /// and re-equilibration. Returns the number of steps.
 std::int64_t prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe = {});

@@ -45,37 +45,39 @@ using common::Unit;
 /// [dem.material]: YADE CohFrictMat with rolling resistance, Aboul Hosn et al. 2017.
 inline constexpr auto kMaterial = common::make_table<Material>(
     "dem::Material", "dem.material",
-    {{"density", &Material::density, Unit::density, common::gt(0), Source::job_required,
+    {{"density", &Material::density, Unit::Density, common::gt(0), Source::job_required,
       "Grain density rho."},
-     {"young_modulus", &Material::young, Unit::pressure, common::gt(0), Source::job_required,
+     {"young_modulus", &Material::young, Unit::Pressure, common::gt(0), Source::job_required,
       "Contact modulus E: kn = 2 E R1 R2 / (R1 + R2)."},
-     {"stiffness_ratio", &Material::ks_over_kn, Unit::none, common::gt(0), Source::job_required,
-      "ks / kn (YADE's `poisson`)."},
-     {"friction_angle", &Material::friction_deg, Unit::angle, common::in_co(0, 90),
+     {"stiffness_ratio", &Material::ks_over_kn, Unit::Dimensionless, common::gt(0),
+      Source::job_required, "ks / kn (YADE's `poisson`)."},
+     {"friction_angle", &Material::friction_deg, Unit::Angle, common::in_co(0, 90),
       Source::job_required, "Inter-particle friction angle phi."},
-     {"rolling_stiffness", &Material::alpha_r, Unit::none, common::ge(0), Source::job_required,
-      "alpha_r: kr = alpha_r ks R1 R2."},
-     {"rolling_strength", &Material::eta_r, Unit::none, common::any(), Source::job_required,
+     {"rolling_stiffness", &Material::alpha_r, Unit::Dimensionless, common::ge(0),
+      Source::job_required, "alpha_r: kr = alpha_r ks R1 R2."},
+     {"rolling_strength", &Material::eta_r, Unit::Dimensionless, common::any(),
+      Source::job_required,
       "eta_r: |Mr| <= eta_r min(R1, R2) Fn; a negative value means no cap (purely elastic)."},
-     {"twisting.stiffness", &Material::alpha_t, Unit::none, common::ge(0), Source::job_required,
-      "alpha_t: kt = alpha_t ks R1 R2."},
-     {"twisting.strength", &Material::eta_t, Unit::none, common::any(), Source::job_required,
-      "eta_t: twisting cap coefficient; negative: no cap."}});
+     {"twisting.stiffness", &Material::alpha_t, Unit::Dimensionless, common::ge(0),
+      Source::job_required, "alpha_t: kt = alpha_t ks R1 R2."},
+     {"twisting.strength", &Material::eta_t, Unit::Dimensionless, common::any(),
+      Source::job_required, "eta_t: twisting cap coefficient; negative: no cap."}});
 
 /// [dem.numerics]: the defaults are the member initializers of Numerics.
 inline constexpr auto kNumerics = common::make_table<Numerics>(
     "dem::Numerics", "dem.numerics",
-    {{"damping", &Numerics::damping, Unit::none, common::in_co(0, 1), Source::job_default,
+    {{"damping", &Numerics::damping, Unit::Dimensionless, common::in_co(0, 1), Source::job_default,
       "Cundall non-viscous damping coefficient lambda."},
-     {"timestep_safety", &Numerics::dt_safety, Unit::none, common::in_oc(0, 1), Source::job_default,
-      "Fraction of the critical time step used."},
-     {"verlet_skin", &Numerics::skin_factor, Unit::none, common::gt(0), Source::job_default,
+     {"timestep_safety", &Numerics::dt_safety, Unit::Dimensionless, common::in_oc(0, 1),
+      Source::job_default, "Fraction of the critical time step used."},
+     {"verlet_skin", &Numerics::skin_factor, Unit::Dimensionless, common::gt(0),
+      Source::job_default,
       "Verlet skin as a fraction of the largest radius: the neighbour list keeps pairs whose gap "
       "is below it and is rebuilt when motion could close it (speed and round-off, not "
       "physics)."},
-     {"dt_refresh", &Numerics::dt_refresh, Unit::none, common::ge(1), Source::cpp_only,
+     {"dt_refresh", &Numerics::dt_refresh, Unit::Dimensionless, common::ge(1), Source::cpp_only,
       "Steps between critical time step refreshes."},
-     {"max_skew", &Numerics::max_skew, Unit::none, common::ge(0.5), Source::cpp_only,
+     {"max_skew", &Numerics::max_skew, Unit::Dimensionless, common::ge(0.5), Source::cpp_only,
       "Re-map the cell when |c_b . c_a| / |c_a|^2 exceeds this."}});
 
 }  // namespace dem

@@ -35,19 +35,19 @@ struct RveParams {
 /// kNumerics).
 inline constexpr auto kRveParams = common::make_table<RveParams>(
     "dem::RveParams", "dem.coupling",
-    {{"inertial_number", &RveParams::inertial_number, Unit::none, common::in_oo(0, 1),
+    {{"inertial_number", &RveParams::inertial_number, Unit::Dimensionless, common::in_oo(0, 1),
       Source::job_required, "Inertial number I_n of the quasi-static time T_p (eq. 11)."},
-     {"max_strain_per_step", &RveParams::max_strain_per_step, Unit::none, common::in_oo(0, 1),
-      Source::job_default,
+     {"max_strain_per_step", &RveParams::max_strain_per_step, Unit::Dimensionless,
+      common::in_oo(0, 1), Source::job_default,
       "Guard: largest strain increment of one DEM step (more DEM steps than T_p / dt_DEM when "
       "needed)."},
-     {"pressure_floor", &RveParams::p_floor, Unit::pressure, common::gt(0), Source::job_default,
+     {"pressure_floor", &RveParams::p_floor, Unit::Pressure, common::gt(0), Source::job_default,
       "Guard: smallest pressure used in T_p (an RVE losing its contacts)."},
-     {"d50", &RveParams::d50, Unit::length, common::ge(0), Source::cpp_only,
+     {"d50", &RveParams::d50, Unit::Length, common::ge(0), Source::cpp_only,
       "d50 of eq. (11); 0: the mass median of the spheres."},
-     {"max_steps_per_call", &RveParams::max_steps_per_call, Unit::none, common::ge(1),
+     {"max_steps_per_call", &RveParams::max_steps_per_call, Unit::Dimensionless, common::ge(1),
       Source::cpp_only, "Cap on the DEM steps of one step()."},
-     {"initial_pressure", &RveParams::initial_pressure, Unit::pressure, common::ge(0),
+     {"initial_pressure", &RveParams::initial_pressure, Unit::Pressure, common::ge(0),
       Source::cpp_only, "> 0: equilibrate isotropically at construction."}});
 
 /// Bits of StepReport::guards.

@@ -3,14 +3,16 @@
 #include "farm/driver.hpp"
 
 #include "common/errors.hpp"
+#include "common/param_table.hpp"
 #include "farm/coupled_run.hpp"
 
 namespace farm {
 
 namespace {
 
-void bad(const std::string& key, const std::string& value, const std::string& rule) {
-  throw common::InputError("farm config: " + key + " = " + value + ": " + rule);
+// A CoupledConfig field that is no job key: named as the C++ member.
+void bad(const std::string& member, const std::string& value, const std::string& rule) {
+  throw common::InputError("farm::CoupledConfig::" + member + " = " + value + ": " + rule);
 }
 
 }  // namespace
@@ -32,19 +34,10 @@ void CoupledConfig::validate() const {
   if (!micro.create || !micro.load)
     bad("micro", "(empty)", "a MicroKind with create and load is required");
   if (output.dir.empty()) bad("output.dir", "\"\"", "an output directory is required");
-  if (output.every < 1) bad("output.every", std::to_string(output.every), "must be >= 1 step");
-  if (output.axial_axis < 0 || output.axial_axis > 2) {
-    bad("output.axial_axis", std::to_string(output.axial_axis), "must be 0, 1 or 2");
-  }
-  if (checkpoint.every_steps < 0)
-    bad("checkpoint.every_steps", std::to_string(checkpoint.every_steps), "must be >= 0");
-  if (!(checkpoint.every_wall_s >= 0.0))
-    bad("checkpoint.every_wall_s", std::to_string(checkpoint.every_wall_s), "must be >= 0 s");
-  if (checkpoint.keep < 1) bad("checkpoint.keep", std::to_string(checkpoint.keep), "must be >= 1");
-  if (!(balance.threshold >= 1.0))
-    bad("balance.threshold", std::to_string(balance.threshold), "must be >= 1 (max/mean)");
-  if (balance.check_every < 1)
-    bad("balance.check_every", std::to_string(balance.check_every), "must be >= 1");
+  // The options name their job keys (output.every, farm.rebalance_threshold, ...).
+  common::check_ranges(kOutputOptions, output);
+  common::check_ranges(kCheckpointOptions, checkpoint);
+  common::check_ranges(kBalanceOptions, balance);
 }
 
 RunSummary run_coupled(const CoupledConfig& config, MPI_Comm comm) {

@@ -34,32 +34,12 @@ std::string short_str(double v) {
   return s.str();
 }
 
-void config_error(const std::string& key, double value, const std::string& rule) {
-  throw common::InputError("mpm config: " + key + " = " + num_str(value) + ": " + rule);
-}
-
 }  // namespace
 
 void SolverConfig::validate() const {
   grid.validate();
-  if (!(pic_fraction >= 0.0 && pic_fraction <= 1.0)) {
-    config_error("pic_fraction", pic_fraction, "must be in [0, 1] (0 = pure NFLIP)");
-  }
-  if (!(damping >= 0.0 && damping < 1.0)) {
-    config_error("damping", damping, "must be in [0, 1) (Cundall damping ratio D of eq. 8)");
-  }
-  if (!(dt >= 0.0) || !std::isfinite(dt)) config_error("dt", dt, "must be >= 0 s (0 = CFL)");
-  if (dt == 0.0 && !(cfl > 0.0 && cfl <= 1.0)) {
-    config_error("cfl", cfl, "must be in (0, 1] when dt = 0");
-  }
-  if (!(mass_threshold >= 0.0 && mass_threshold < 1.0)) {
-    config_error("mass_threshold", mass_threshold,
-                 "must be in [0, 1) (relative to the mean nodal mass)");
-  }
-  if (!gravity.allFinite()) throw common::InputError("mpm config: gravity is not finite");
-  if (!(max_volume_ratio > 1.0)) {
-    config_error("max_volume_ratio", max_volume_ratio, "must be > 1 (a blow-up guard)");
-  }
+  common::check_ranges(kSolverConfig, *this);
+  if (!gravity.allFinite()) throw common::InputError("mpm.gravity is not finite");
 }
 
 Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials)
@@ -256,7 +236,8 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
-    g2p_update(grid, cache_, fields_, config_.pic_fraction, config_.move_points, dt, points_);
+    // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
+    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
@@ -264,7 +245,7 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
-    g2p_update(grid, cache_, fields_, config_.pic_fraction, config_.move_points, dt, points_);
+    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
     p2g_momentum(grid, cache_, bins_, points_, fields_);
     compute_nodal_velocity(threshold_, fields_);
     apply_velocity_constraints(grid, constraints_, t + dt, fields_);

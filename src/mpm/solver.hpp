@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/param_table.hpp"
 #include "common/state_io.hpp"
 #include "mpm/boundary.hpp"
 #include "mpm/grid.hpp"
@@ -22,19 +23,21 @@ enum class StressUpdate {
   musl,  ///< Modified Update Stress Last: L from re-projected end-of-step point velocities
 };
 
-/// Plain run configuration (the app maps the job file onto it). Units in each comment.
+/// Plain run configuration (the app maps the job file onto it). Units in each comment. The member
+/// initializers of the numeric knobs are the defaults of their job keys too (kSolverConfig).
 struct SolverConfig {
   Grid grid;                            ///< background grid [m]
   ShapeKind shape = ShapeKind::linear;  ///< shape function (the paper: linear)
   StressUpdate stress_update = StressUpdate::usf;
-  double pic_fraction = 0.0;                    ///< PIC share in [0, 1]; 0 = pure NFLIP (eq. 9)
+  /// FLIP share of the velocity update in [0, 1] [-]: 1 = pure NFLIP (eq. 9, the paper), 0 = PIC.
+  double flip = 1.0;
   common::Vec3 gravity = common::Vec3::Zero();  ///< g of eq. 6 [m/s^2]; zero = no gravity
   double damping = 0.0;                         ///< D of eq. 8, in [0, 1) [-]
   DampingMode damping_mode = DampingMode::cundall_vector;
   double dt = 0.0;   ///< fixed time step [s]; 0 = use cfl
-  double cfl = 0.0;  ///< CFL number in (0, 1] when dt == 0 [-]
+  double cfl = 0.5;  ///< CFL number in (0, 1] when dt == 0 [-]
   /// Nodes with m_v < mass_threshold * (mean active nodal mass) get zero velocity and
-  /// acceleration [-]; in [0, 1).
+  /// acceleration [-]; in (0, 1).
   double mass_threshold = 1e-6;
   /// false: eq. 10 is skipped, the points keep their initial positions (their integration
   /// weights stay those of the regular arrangement) while F, volume, stress and velocity evolve.
@@ -48,9 +51,29 @@ struct SolverConfig {
   /// Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run
   /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1.
   double max_volume_ratio = 10.0;
-  /// Throws common::InputError naming the field, its value and the rule.
+  /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
+
+/// [mpm]: the numeric knobs of SolverConfig (the grid, shape, stress update, damping mode,
+/// gravity and move_points are mapped by the app: they are not numbers with a range).
+inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
+    "mpm::SolverConfig", "mpm",
+    {{"flip", &SolverConfig::flip, common::Unit::Dimensionless, common::in_cc(0, 1),
+      common::Source::job_default,
+      "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP."},
+     {"damping", &SolverConfig::damping, common::Unit::Dimensionless, common::in_co(0, 1),
+      common::Source::job_default, "Cundall damping D of the nodal accelerations (eq. 8)."},
+     {"dt", &SolverConfig::dt, common::Unit::Time, common::ge(0), common::Source::job_optional,
+      "Fixed MPM time step; absent or 0: from the CFL condition."},
+     {"cfl", &SolverConfig::cfl, common::Unit::Dimensionless, common::in_oc(0, 1),
+      common::Source::job_default, "CFL number when dt is not given."},
+     {"mass_threshold", &SolverConfig::mass_threshold, common::Unit::Dimensionless,
+      common::in_oo(0, 1), common::Source::job_default,
+      "Nodes lighter than this fraction of the typical nodal mass are inactive."},
+     {"max_volume_ratio", &SolverConfig::max_volume_ratio, common::Unit::Dimensionless,
+      common::gt(1), common::Source::cpp_only,
+      "Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run."}});
 
 /// Owns the points and the grid fields; materials are not owned and must outlive the solver.
 class Solver {

@@ -21,7 +21,7 @@ BarResult run_elastic_bar(ShapeKind shape, int cells, double periods, double cfl
   cfg.grid = {Vec3(-2 * h, -1, -1), Vec3(h, 1, 1), common::Vec3i(cells + 4, 3, 3)};
   cfg.shape = shape;
   cfg.stress_update = scheme;
-  cfg.pic_fraction = pic_fraction;
+  cfg.flip = 1.0 - pic_fraction;
   cfg.cfl = cfl;
   LinearElastic material(E, 0.0, rho);
   MaterialPoints pts;

@@ -94,6 +94,13 @@ TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
   EXPECT_EQ(c.balance.check_every, 11);
   EXPECT_EQ(c.farm.wait, farm::WaitMode::sleep);
   EXPECT_EQ(c.job_text, std::string(kJob));
+  // Keys the job leaves out take the C++ defaults (one home: the parameter tables).
+  EXPECT_EQ(c.checkpoint.every_wall_s, farm::CheckpointOptions{}.every_wall_s);
+  EXPECT_EQ(c.solver.dt, 1e-3);
+  EXPECT_EQ(c.solver.cfl, mpm::SolverConfig{}.cfl);
+  EXPECT_EQ(c.solver.flip, mpm::SolverConfig{}.flip);
+  EXPECT_EQ(c.solver.damping, mpm::SolverConfig{}.damping);
+  EXPECT_EQ(c.solver.mass_threshold, mpm::SolverConfig{}.mass_threshold);
 }
 
 TEST(CoupledSetup, CreatesAndRestoresTheModelOfEachPoint) {

@@ -61,7 +61,7 @@ TEST(MpmSetup, PaperSingleCellSetUp) {
   EXPECT_TRUE(setup.has_elastic);
   EXPECT_FALSE(setup.has_dem);
   EXPECT_DOUBLE_EQ(setup.points.stress[0](0, 0), -1e5);
-  EXPECT_DOUBLE_EQ(setup.config.pic_fraction, 0.0);  // NFLIP
+  EXPECT_EQ(setup.config.flip, 1.0);  // NFLIP
   ASSERT_EQ(setup.constraints.size(), 2u);
   EXPECT_TRUE(setup.constraints[1].fixed[2]);
   EXPECT_DOUBLE_EQ(setup.constraints[1].velocity[2], -1e-3);

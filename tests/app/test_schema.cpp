@@ -4,12 +4,21 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <string>
+
 #include "app/dem_setup.hpp"
 #include "app/job.hpp"
 #include "app/schema_params.hpp"
+#include "common/errors.hpp"
 #include "common/param_table.hpp"
+#include "dem/loading.hpp"
 #include "dem/params.hpp"
 #include "dem/rve.hpp"
+#include "farm/mpi_util.hpp"
+#include "farm/run_options.hpp"
+#include "farm/rve_farm.hpp"
+#include "mpm/solver.hpp"
 
 TEST(Schema, EveryKeyHasADocumentedParentSection) {
   const auto& s = app::job_schema();
@@ -75,26 +84,89 @@ void expect_rows_in_schema(const common::ParamTable<S, N>& table) {
       EXPECT_EQ(app::range_rule(*k), row.range.rule(row.unit)) << k->path;
     }
     EXPECT_EQ(k->required, row.source == common::Source::job_required) << k->path;
-    if (!k->required) {
+    EXPECT_EQ(k->type, row.is_integer() ? app::Type::Int : app::Type::Float) << k->path;
+    if (row.source == common::Source::job_optional) {
+      EXPECT_FALSE(k->fallback.has_value()) << k->path;
+    } else if (!k->required) {
       ASSERT_TRUE(k->fallback.has_value()) << k->path;
-      EXPECT_EQ(std::get<double>(*k->fallback), row.default_value()) << k->path;
+      if (row.is_integer()) {
+        EXPECT_EQ(static_cast<double>(std::get<std::int64_t>(*k->fallback)), row.default_value())
+            << k->path;
+      } else {
+        EXPECT_EQ(std::get<double>(*k->fallback), row.default_value()) << k->path;
+      }
     }
   }
-}
-
-TEST(Schema, EveryTableUnitIsTheJobQuantityOfTheSameUnit) {
-  using U = common::Unit;
-  for (U u : {U::none, U::length, U::pressure, U::angle, U::time, U::density, U::velocity,
-              U::acceleration, U::rate}) {
-    EXPECT_EQ(app::canonical_unit(app::quantity_of(u)), common::unit_symbol(u));
-  }
-  EXPECT_EQ(app::quantity_of(U::none), app::Quantity::Dimensionless);
 }
 
 TEST(Schema, DemTablesAreTheSchemaOfTheirSections) {
   expect_rows_in_schema(dem::kMaterial);
   expect_rows_in_schema(dem::kNumerics);
   expect_rows_in_schema(dem::kRveParams);
+  expect_rows_in_schema(dem::kPreparation);
+  expect_rows_in_schema(dem::kPreparationTarget);
+}
+
+TEST(Schema, MpmAndFarmTablesAreTheSchemaOfTheirKeys) {
+  expect_rows_in_schema(mpm::kSolverConfig);
+  expect_rows_in_schema(farm::kOutputOptions);
+  expect_rows_in_schema(farm::kCheckpointOptions);
+  expect_rows_in_schema(farm::kBalanceOptions);
+}
+
+// The [mpm] keys that are no table rows (names, not numbers): their job defaults are the
+// SolverConfig defaults too.
+TEST(Schema, MpmChoiceDefaultsAreTheSolverConfigDefaults) {
+  const auto& s = app::job_schema();
+  const mpm::SolverConfig cfg;
+  const auto text = [&](const char* key) { return std::get<std::string>(*s.find(key)->fallback); };
+  EXPECT_EQ(mpm::shape_kind_from_string(text("mpm.shape_function")), cfg.shape);
+  EXPECT_EQ(text("mpm.update") == "musl", cfg.stress_update == mpm::StressUpdate::musl);
+  EXPECT_EQ(text("mpm.damping_mode") == "component",
+            cfg.damping_mode == mpm::DampingMode::cundall_component);
+  EXPECT_EQ(std::get<bool>(*s.find("mpm.move_points")->fallback), cfg.move_points);
+  EXPECT_EQ(s.find("mpm.gravity")->fallback.has_value(), false);
+  EXPECT_TRUE(cfg.gravity.isZero());
+  EXPECT_EQ(farm::wait_mode_from(std::get<std::string>(*s.find("farm.wait")->fallback)),
+            farm::FarmOptions{}.wait);
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const common::InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// The structs' validate() name the job keys, with the rule the job errors state.
+TEST(Schema, MpmAndFarmValidationNamesTheJobKeys) {
+  mpm::SolverConfig cfg;
+  cfg.grid = {common::Vec3::Zero(), common::Vec3::Ones(), common::Vec3i::Ones()};
+  EXPECT_EQ(error_of([&] { cfg.validate(); }), "");
+  cfg.flip = 1.5;
+  EXPECT_EQ(error_of([&] { cfg.validate(); }), "mpm.flip = 1.5: must be in [0, 1]");
+  cfg.flip = 1.0;
+  cfg.mass_threshold = 0.0;
+  EXPECT_EQ(error_of([&] { cfg.validate(); }), "mpm.mass_threshold = 0: must be in (0, 1)");
+  cfg.mass_threshold = 1e-6;
+  cfg.max_volume_ratio = 1.0;
+  EXPECT_EQ(error_of([&] { cfg.validate(); }),
+            "mpm::SolverConfig::max_volume_ratio = 1: must be > 1");
+
+  farm::BalanceOptions b;
+  b.threshold = 0.5;
+  EXPECT_EQ(error_of([&] { common::check_ranges(farm::kBalanceOptions, b); }),
+            "farm.rebalance_threshold = 0.5: must be >= 1");
+  farm::OutputOptions o;
+  o.every = 0;
+  EXPECT_EQ(error_of([&] { common::check_ranges(farm::kOutputOptions, o); }),
+            "output.every = 0: must be >= 1");
+  farm::CheckpointOptions c;
+  c.keep = 0;
+  EXPECT_EQ(error_of([&] { common::check_ranges(farm::kCheckpointOptions, c); }),
+            "output.checkpoint_keep = 0: must be >= 1");
 }
 
 const char* kDemJob = R"([dem.material]
@@ -138,6 +210,12 @@ TEST(Schema, JobValuesFillTheDemStructsAndAbsentKeysTakeTheStructDefaults) {
   EXPECT_EQ(n.damping, dem::Numerics{}.damping);
   EXPECT_EQ(n.dt_safety, dem::Numerics{}.dt_safety);
   EXPECT_EQ(n.dt_refresh, dem::Numerics{}.dt_refresh);
+  const dem::Preparation p = app::dem_preparation(job);
+  EXPECT_EQ(p.friction_comp_deg, 10.0);
+  EXPECT_EQ(p.target.pressure, 1e5);
+  EXPECT_EQ(p.target.stress_tol, dem::EquilibriumTarget{}.stress_tol);
+  EXPECT_EQ(p.target.unbalanced_tol, dem::EquilibriumTarget{}.unbalanced_tol);
+  EXPECT_EQ(p.target.check_every, dem::EquilibriumTarget{}.check_every);
 }
 
 }  // namespace

@@ -20,14 +20,16 @@ struct Knobs {
   double safety = 0.8;         // job default 0.8
   std::int64_t refresh = 100;  // C++ only
   double angle = 30.0;
+  int axis = 2;  // C++ only, an int member
 };
 
 constexpr auto kKnobs = common::make_table<Knobs>(
     "test::Knobs", "sec.knobs",
-    {{"stiffness", &Knobs::stiffness, Unit::pressure, common::gt(0), Source::job_required, "k"},
-     {"safety", &Knobs::safety, Unit::none, common::in_oc(0, 1), Source::job_default, "s"},
-     {"refresh", &Knobs::refresh, Unit::none, common::ge(1), Source::cpp_only, "r"},
-     {"sub.angle", &Knobs::angle, Unit::angle, common::in_co(0, 90), Source::job_default, "a"}});
+    {{"stiffness", &Knobs::stiffness, Unit::Pressure, common::gt(0), Source::job_required, "k"},
+     {"safety", &Knobs::safety, Unit::Dimensionless, common::in_oc(0, 1), Source::job_default, "s"},
+     {"refresh", &Knobs::refresh, Unit::Dimensionless, common::ge(1), Source::cpp_only, "r"},
+     {"sub.angle", &Knobs::angle, Unit::Angle, common::in_co(0, 90), Source::job_default, "a"},
+     {"axis", &Knobs::axis, Unit::Dimensionless, common::in_cc(0, 2), Source::cpp_only, "x"}});
 
 std::string error_of(const Knobs& k) {
   try {
@@ -53,12 +55,12 @@ TEST(ParamTable, RangesIncludeOrExcludeTheirBoundsAndRejectNonFiniteValues) {
 }
 
 TEST(ParamTable, RulesReadAsTheJobErrorsWriteThem) {
-  EXPECT_EQ(common::in_co(0, 90).rule(Unit::angle), "must be in [0, 90) deg");
-  EXPECT_EQ(common::gt(0).rule(Unit::pressure), "must be > 0 Pa");
-  EXPECT_EQ(common::ge(0.5).rule(Unit::none), "must be >= 0.5");
-  EXPECT_EQ(common::in_oo(0, 1).rule(Unit::none), "must be in (0, 1)");
-  EXPECT_EQ(common::in_oc(1e-5, 1).rule(Unit::none), "must be in (1e-05, 1]");
-  EXPECT_EQ(common::any().rule(Unit::none), "must be a finite number");
+  EXPECT_EQ(common::in_co(0, 90).rule(Unit::Angle), "must be in [0, 90) deg");
+  EXPECT_EQ(common::gt(0).rule(Unit::Pressure), "must be > 0 Pa");
+  EXPECT_EQ(common::ge(0.5).rule(Unit::Dimensionless), "must be >= 0.5");
+  EXPECT_EQ(common::in_oo(0, 1).rule(Unit::Dimensionless), "must be in (0, 1)");
+  EXPECT_EQ(common::in_oc(1e-5, 1).rule(Unit::Dimensionless), "must be in (1e-05, 1]");
+  EXPECT_EQ(common::any().rule(Unit::Dimensionless), "must be a finite number");
 }
 
 TEST(ParamTable, RowsReadAndWriteTheirMembersAndTakeDefaultsFromTheInitializers) {
@@ -75,6 +77,19 @@ TEST(ParamTable, RowsReadAndWriteTheirMembersAndTakeDefaultsFromTheInitializers)
   EXPECT_EQ(kKnobs.name(kKnobs.rows[3]), "sec.knobs.sub.angle");
   EXPECT_EQ(kKnobs.name(refresh), "test::Knobs::refresh");
   EXPECT_FALSE(refresh.in_job());
+}
+
+TEST(ParamTable, IntMembersAreIntegerRowsClampedToTheRangeOfInt) {
+  Knobs k;
+  const auto& axis = kKnobs.rows[4];
+  EXPECT_TRUE(axis.is_integer());
+  EXPECT_EQ(axis.default_value(), 2.0);
+  axis.set(k, 1.0);
+  EXPECT_EQ(k.axis, 1);
+  axis.set(k, 1e12);
+  EXPECT_EQ(k.axis, std::numeric_limits<int>::max());
+  k.stiffness = 1.0;
+  EXPECT_EQ(error_of(k), "test::Knobs::axis = 2147483647: must be in [0, 2]");
 }
 
 TEST(ParamTable, CheckNamesTheFirstKeyOutOfRangeWithValueAndRule) {

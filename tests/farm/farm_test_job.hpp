@@ -67,6 +67,7 @@ inline CoupledConfig triaxial_job(const std::string& dir, std::int64_t max_steps
   c.job_text = "# farm test job: single-cell triaxial, ElasticMicro\n[run]\nmax_steps = " +
                std::to_string(max_steps) + "\n";
   c.output.dir = dir;
+  c.output.every = 1;  // a results row every step: the tests compare every step (job default: 10)
   c.output.log_every_s = 1e9;
   c.checkpoint.at_end = false;
   c.balance.threshold = 1.0;  // rebalance whenever METIS finds a better split

@@ -55,7 +55,7 @@ TEST_P(RigidMotion, RotationKeepsPrestressObjective) {
   cfg.grid = {Vec3(-2, -2, -1), Vec3::Constant(0.25), common::Vec3i(16, 16, 8)};
   cfg.shape = GetParam();
   cfg.dt = 1e-3;
-  cfg.pic_fraction = 1.0;
+  cfg.flip = 0.0;  // PIC
   Mat3 s0;
   s0 << -100e3, 20e3, 5e3, 20e3, -50e3, 0, 5e3, 0, -80e3;
   mpm::LinearElastic mat(1e7, 0.3, 1000.0, s0);

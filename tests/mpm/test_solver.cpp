@@ -46,7 +46,7 @@ TEST(Solver, CheckpointContinuesBitForBit) {
   for (auto scheme : {mpm::StressUpdate::usf, mpm::StressUpdate::musl}) {
     mpm::SolverConfig cfg = small_config(mpm::ShapeKind::ugimp);
     cfg.stress_update = scheme;
-    cfg.pic_fraction = 0.05;
+    cfg.flip = 0.95;
     mpm::LinearElastic mat_a(1e5, 0.3, 1800.0);
     mpm::Solver a(cfg, small_block(cfg.grid), {&mat_a});
     a.add_constraint(mpm::face_constraint(cfg.grid, 2, -1, {true, true, true}));
@@ -174,10 +174,16 @@ TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
   mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
   cfg.damping = 1.5;
   expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
-                 {"damping = 1.5", "[0, 1)"});
+                 {"mpm.damping = 1.5", "[0, 1)"});
   cfg = small_config(mpm::ShapeKind::linear);
   cfg.cfl = 0.0;
-  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"cfl = 0", "dt = 0"});
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.cfl = 0", "(0, 1]"});
+  // The job key, not a C++ synonym (the job holds flip; the PIC share is 1 - flip).
+  cfg = small_config(mpm::ShapeKind::linear);
+  cfg.flip = -0.5;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.flip = -0.5", "[0, 1]"});
   cfg = small_config(mpm::ShapeKind::linear);
   mpm::MaterialPoints pts = small_block(cfg.grid);
   pts.material[0] = 1;
