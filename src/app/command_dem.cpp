@@ -77,6 +77,25 @@ void check_finite(const dem::Measures& m, const dem::Simulation& sim) {
   }
 }
 
+/// A drained triaxial test whose servo no longer holds the lateral stresses is stopped: its curve
+/// would be another test's (dem.loading.lateral_tolerance).
+void check_lateral_control(const common::Mat3& stress, double confining, double tol, double eps_a,
+                           const dem::Simulation& sim) {
+  if (eps_a <= 1e-3) return;  // the servo picks up the lateral rate first
+  for (int a = 0; a < 2; ++a) {
+    const double sig = -stress(a, a);
+    const double err = std::abs(sig - confining) / confining;
+    if (err > tol) {
+      throw common::NumericalError(fmt::format(
+          "DEM step {} (t = {:.6g} s, eps_a = {:.4g}): the lateral stress control failed: "
+          "sigma_{} = {:.4g} Pa against the confining pressure {:.4g} Pa ({:.1f} % off, "
+          "dem.loading.lateral_tolerance = {}): the servo cannot follow this loading rate; lower "
+          "dem.loading.inertial_number",
+          sim.steps(), sim.time(), eps_a, a == 0 ? "xx" : "yy", sig, confining, 100.0 * err, tol));
+    }
+  }
+}
+
 }  // namespace
 
 int command_dem(const Options& o, const Comm& comm) {
@@ -125,6 +144,7 @@ int command_dem(const Options& o, const Comm& comm) {
     test.eps_end = job.number("dem.loading.axial_strain");
     test.check_every = every;
     test.max_steps = max_steps;
+    const double lateral_tol = job.number("dem.loading.lateral_tolerance");
     spdlog::info(
         "triaxial: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
         "1/s, to eps_a = {}, lateral stress {:.4g} Pa; about {:.3g} DEM steps",
@@ -136,6 +156,7 @@ int command_dem(const Options& o, const Comm& comm) {
           const dem::Measures m = dem::measure(s);
           check_finite(m, s);
           series.add(row(s, m, ref));
+          check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s);
           progress.update(
               now.eps_a, s.steps(),
               fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v, m.void_ratio),

@@ -72,6 +72,12 @@ void add_dem_sections(Schema& s) {
         "Lateral stress held by the servo (triaxial), or target (isotropic).")
       .unit(Q::Pressure)
       .in(0, std::nullopt, true);
+  s.add("dem.loading.lateral_tolerance", Type::Float,
+        "A triaxial test stops (exit 3) when a lateral stress strays further than this fraction "
+        "from the confining pressure, once the axial strain passes 0.1 % (the servo's start): a "
+        "curve whose control failed is never written as if it held.")
+      .in(0, std::nullopt, true)
+      .or_default(0.05);
   s.add("dem.loading.velocity_gradient", Type::FloatList,
         "Imposed velocity gradient L, row-major (strain_path).")
       .unit(Q::Rate)
