@@ -63,17 +63,19 @@ constexpr SeriesSpec kSeries[] = {
     {"means/q", false, 0, '-', "Pa", "mean over RVEs of the von Mises q"},
 };
 
-/// Fixed-length string attribute `name` of `obj`, replacing one of that name.
+/// UTF-8 variable-length string attribute `name` of `obj`, replacing one of that name (h5py
+/// returns it as str, a fixed-length one as bytes).
 void put_attr(hid_t obj, const char* name, const std::string& value) {
   if (H5Aexists(obj, name) > 0) check(H5Adelete(obj, name), std::string("delete ") + name);
   Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
-  check(H5Tset_size(type.get(), std::max<std::size_t>(1, value.size())), "H5Tset_size");
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
   Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
   Handle a(check(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
                  std::string("create attribute ") + name),
            H5Aclose);
-  const std::string v = value.empty() ? std::string(1, '\0') : value;
-  check(H5Awrite(a.get(), type.get(), v.data()), std::string("write attribute ") + name);
+  const char* v = value.c_str();
+  check(H5Awrite(a.get(), type.get(), &v), std::string("write attribute ") + name);
 }
 
 void put_attr(hid_t obj, const char* name, std::int64_t value) {

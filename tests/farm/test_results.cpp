@@ -123,16 +123,20 @@ TEST(Results, RowsWrittenInBlocksReadBackInOrder) {
   EXPECT_EQ(csv_rows(dir), rows);
 }
 
-/// String attribute `name` of object `obj` of `file` ("" when missing).
+/// Variable-length string attribute `name` of object `obj` of `file` ("" when missing).
 std::string string_attr(hid_t file, const char* obj, const char* name) {
   if (H5Aexists_by_name(file, obj, name, H5P_DEFAULT) <= 0) return "";
   const hid_t a = H5Aopen_by_name(file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-  const hid_t t = H5Aget_type(a);
-  std::string v(H5Tget_size(t), '\0');
-  H5Aread(a, t, v.data());
+  const hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  char* text = nullptr;
+  std::string v;
+  if (H5Aread(a, t, &text) >= 0 && text != nullptr) v = text;
+  H5free_memory(text);
   H5Tclose(t);
   H5Aclose(a);
-  return v.substr(0, v.find('\0'));
+  return v;
 }
 
 // Every dataset says what it is (unit, description); the file says its format and version.
