@@ -23,32 +23,104 @@ using h5::Handle;
 struct SeriesSpec {
   const char* name;
   bool integer;
-  int per_item;  ///< values per RVE or point (0: scalar per row)
-  char over;     ///< 'r' RVEs, 'p' points, '-' none
+  int per_item;             ///< values per RVE or point (0: scalar per row)
+  char over;                ///< 'r' RVEs, 'p' points, '-' none
+  const char* unit;         ///< attribute "unit" ("-": dimensionless, "": a count or bits)
+  const char* description;  ///< attribute "description"
 };
 
+// Sign conventions: stress tensors are Cauchy, tension positive; p, q and the strains of
+// /means are compression positive (root attribute "conventions", docs/farm.md "Outputs").
 constexpr SeriesSpec kSeries[] = {
-    {"time", false, 0, '-'},
-    {"step", true, 0, '-'},
-    {"rve/stress", false, 9, 'r'},
-    {"rve/p", false, 1, 'r'},
-    {"rve/q", false, 1, 'r'},
-    {"rve/void_ratio", false, 1, 'r'},
-    {"rve/z", false, 1, 'r'},
-    {"rve/t_p", false, 1, 'r'},
-    {"rve/dem_steps", true, 1, 'r'},
-    {"rve/guards", true, 1, 'r'},
-    {"points/x", false, 3, 'p'},
-    {"points/stress", false, 9, 'p'},
-    {"points/p", false, 1, 'p'},
-    {"points/q", false, 1, 'p'},
-    {"points/void_ratio", false, 1, 'p'},
-    {"points/z", false, 1, 'p'},
-    {"means/eps_ax", false, 0, '-'},
-    {"means/eps_v", false, 0, '-'},
-    {"means/p", false, 0, '-'},
-    {"means/q", false, 0, '-'},
+    {"time", false, 0, '-', "s", "MPM time of the row"},
+    {"step", true, 0, '-', "", "MPM step of the row"},
+    {"rve/stress", false, 9, 'r', "Pa",
+     "Cauchy stress of every RVE (order of /rve/id), row-major 3x3 [row, rve, 9], TENSION "
+     "positive"},
+    {"rve/p", false, 1, 'r', "Pa", "mean stress p = -tr(sigma)/3, compression positive"},
+    {"rve/q", false, 1, 'r', "Pa",
+     "von Mises deviatoric stress q = sqrt(3/2 s:s), s = sigma + p I (always >= 0)"},
+    {"rve/void_ratio", false, 1, 'r', "-", "void ratio e = V_voids / V_solids"},
+    {"rve/z", false, 1, 'r', "-", "coordination number 2 Nc / N (0 for continuum models)"},
+    {"rve/t_p", false, 1, 'r', "s", "quasi-static time of the step, eq. (11)"},
+    {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
+    {"rve/guards", true, 1, 'r', "", "guard bits (dem::RveGuard, docs/dem.md)"},
+    {"points/x", false, 3, 'p', "m",
+     "position of every material point (order of /points/id) [row, point, xyz]"},
+    {"points/stress", false, 9, 'p', "Pa",
+     "Cauchy stress of every point, row-major 3x3 [row, point, 9], TENSION positive"},
+    {"points/p", false, 1, 'p', "Pa", "p of the point's RVE (/rve/p), compression positive"},
+    {"points/q", false, 1, 'p', "Pa", "q of the point's RVE (/rve/q), von Mises"},
+    {"points/void_ratio", false, 1, 'p', "-", "void ratio of the point's RVE"},
+    {"points/z", false, 1, 'p', "-", "coordination number of the point's RVE"},
+    {"means/eps_ax", false, 0, '-', "-",
+     "axial strain 1 - mean_p F_aa (a = output.axial_axis of the job), compression positive; "
+     "NOT logarithmic: -ln(1 - eps_ax) is the logarithmic strain"},
+    {"means/eps_v", false, 0, '-', "-",
+     "volumetric strain 1 - sum_p V_p / sum_p V0_p, compression positive; NOT logarithmic: "
+     "-ln(1 - eps_v) is the logarithmic strain"},
+    {"means/p", false, 0, '-', "Pa", "mean over RVEs of p, compression positive"},
+    {"means/q", false, 0, '-', "Pa", "mean over RVEs of the von Mises q"},
 };
+
+/// UTF-8 variable-length string attribute `name` of `obj`, replacing one of that name (h5py
+/// returns it as str, a fixed-length one as bytes).
+void put_attr(hid_t obj, const char* name, const std::string& value) {
+  if (H5Aexists(obj, name) > 0) check(H5Adelete(obj, name), std::string("delete ") + name);
+  Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
+  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+  Handle a(check(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                 std::string("create attribute ") + name),
+           H5Aclose);
+  const char* v = value.c_str();
+  check(H5Awrite(a.get(), type.get(), &v), std::string("write attribute ") + name);
+}
+
+void put_attr(hid_t obj, const char* name, std::int64_t value) {
+  if (H5Aexists(obj, name) > 0) check(H5Adelete(obj, name), std::string("delete ") + name);
+  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+  Handle a(check(H5Acreate2(obj, name, H5T_NATIVE_INT64, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                 std::string("create attribute ") + name),
+           H5Aclose);
+  check(H5Awrite(a.get(), H5T_NATIVE_INT64, &value), std::string("write attribute ") + name);
+}
+
+/// File access of the writer: without HDF5's file lock, so that h5py, h5dump or ParaView can open
+/// results.h5 while a run writes it (with the lock they fail with errno 11, EAGAIN). Two runs
+/// never write one directory: the output directory's own lock (app/output_dir.hpp) refuses it.
+Handle writer_access() {
+  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+#if H5_VERSION_GE(1, 10, 7)
+  check(H5Pset_file_locking(fapl.get(), 0, 1), "H5Pset_file_locking");
+#endif
+  return fapl;
+}
+
+/// Attributes of results.h5: what the file is (root) and what every dataset holds.
+void describe(hid_t file) {
+  put_attr(file, "format", std::string(ResultsWriter::kFormat));
+  put_attr(file, "format_version", ResultsWriter::kFormatVersion);
+  put_attr(file, "software", std::string("mpmxdem"));
+  put_attr(file, "software_version", std::string(MPMXDEM_SOFTWARE_VERSION));
+  put_attr(file, "conventions",
+           std::string("SI units (attribute unit of every dataset; '-' dimensionless, '' a "
+                       "count). Stress tensors: Cauchy, TENSION positive, row-major 3x3. p, q "
+                       "and the strains of /means: COMPRESSION positive. p = -tr(sigma)/3, "
+                       "q = sqrt(3/2 s:s) (von Mises). First dimension: one row per output "
+                       "step (/step, /time)."));
+  auto dataset = [&](const char* name, const char* unit, const char* description) {
+    Handle d(check(H5Dopen2(file, name, H5P_DEFAULT), std::string("open ") + name), H5Dclose);
+    put_attr(d.get(), "unit", std::string(unit));
+    put_attr(d.get(), "description", std::string(description));
+  };
+  dataset("rve/id", "", "RVE ids, ascending: the order of the RVE axis of every /rve series");
+  dataset("points/id", "",
+          "material point ids in the solver's slot order: the order of the point axis of "
+          "every /points series");
+  for (const SeriesSpec& s : kSeries) dataset(s.name, s.unit, s.description);
+}
 
 std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts) {
   std::vector<hsize_t> d;
@@ -140,7 +212,7 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
   if (restart_step >= 0 && std::filesystem::exists(path)) {
-    file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+    file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, writer_access().get()), H5Fclose);
     if (!file_.valid()) throw common::InputError("output " + path + ": cannot reopen as HDF5");
     Handle sd(H5Dopen2(file_.get(), "/step", H5P_DEFAULT), H5Dclose);
     if (!sd.valid()) throw common::InputError("output " + path + ": dataset /step is missing");
@@ -171,9 +243,11 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     const auto mp = read_rows<double>(file_.get(), "/means/p", keep);
     const auto mq = read_rows<double>(file_.get(), "/means/q", keep);
     for (hsize_t t = 0; t < keep; ++t) means_.push_back({ea[t], ev[t], mp[t], mq[t]});
+    describe(file_.get());  // a file of an earlier version gets them; software_version: this one
     return;
   }
-  file_ = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  file_ =
+      Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, writer_access().get()), H5Fclose);
   if (!file_.valid()) throw common::InputError("output " + path + ": cannot create");
   write_static(file_.get(), "/rve/id", rve_ids_);
   write_static(file_.get(), "/points/id", point_ids_);
@@ -208,6 +282,7 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
         H5Dclose);
     series_[s.name] = std::move(se);
   }
+  describe(file_.get());
 }
 
 ResultsWriter::~ResultsWriter() {
@@ -251,6 +326,8 @@ void ResultsWriter::write_pending() {
   rows_ += pending_;
   pending_ = 0;
   pending_bytes_ = 0;
+  // On disk after every block: a reader that opens the file now sees every row written so far.
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush results.h5");
 }
 
 void ResultsWriter::append(std::int64_t step, double time,
@@ -310,8 +387,11 @@ void ResultsWriter::append(std::int64_t step, double time,
 }
 
 void ResultsWriter::flush(bool indexes) {
-  write_pending();
-  H5Fflush(file_.get(), H5F_SCOPE_LOCAL);
+  if (pending_ > 0) {
+    write_pending();  // flushes results.h5
+  } else {
+    check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush results.h5");
+  }
   // points.xmf and means.csv are rewritten whole (atomic rename): O(rows), 0.4 s at 13,000 rows
   // on these machines. Unless asked for, at most 1 / kIndexShare times their last cost apart.
   const auto now = std::chrono::steady_clock::now();
@@ -334,18 +414,18 @@ void ResultsWriter::write_xdmf() const {
     std::string head;  ///< text before the row index
     std::string tail;  ///< text after it
   };
+  // Xdmf3's hyperslab form "file:/dataset|start:stride:count:dims", which ParaView's default
+  // reader (Xdmf3) reads; a HyperSlab DataItem with an XML selection (XDMF 2's form) gave it
+  // empty grids (ParaView 5.11, issue 19). ParaView's legacy "XDMF Reader" does not read it.
   auto slab = [&](const char* ds, int per) {
     const std::string dims = per > 1 ? fmt::format("{} {}", m, per) : fmt::format("{}", m);
     Slab s;
     s.head = fmt::format(
-        "<DataItem ItemType=\"HyperSlab\" Dimensions=\"{}\" Type=\"HyperSlab\">"
-        "<DataItem Dimensions=\"3 {}\" Format=\"XML\">",
-        dims, per > 1 ? 3 : 2);
-    s.tail = (per > 1 ? fmt::format(" 0 0 1 1 1 1 {} {}", m, per) : fmt::format(" 0 1 1 1 {}", m)) +
-             fmt::format(
-                 "</DataItem><DataItem Dimensions=\"{} {}\" NumberType=\"Float\" "
-                 "Precision=\"8\" Format=\"HDF\">results.h5:/{}</DataItem></DataItem>",
-                 nt, dims, ds);
+        "<DataItem Dimensions=\"{}\" NumberType=\"Float\" Precision=\"8\" "
+        "Format=\"HDF\">results.h5:/{}|",
+        dims, ds);
+    s.tail = per > 1 ? fmt::format(" 0 0:1 1 1:1 {0} {1}:{2} {0} {1}</DataItem>", m, per, nt)
+                     : fmt::format(" 0:1 1:1 {0}:{1} {0}</DataItem>", m, nt);
     return s;
   };
   const Slab x = slab("points/x", 3);
@@ -387,9 +467,10 @@ void ResultsWriter::write_xdmf() const {
 void ResultsWriter::write_csv() const {
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
-  fmt::format_to(it,
-                 "# sample means over RVEs / points, compression positive; eps_ax = 1 - mean F_aa, "
-                 "eps_v = 1 - sum V / sum V0\nstep,time_s,eps_ax,eps_v,p_mean_Pa,q_mean_Pa\n");
+  // The first line is the header (pandas, csv.DictReader, numpy.genfromtxt(names=True) and
+  // ParaView's CSV reader take it so); units are the names' suffixes (_s, _Pa; strains are [-]).
+  // Definitions and sign conventions: the attributes of /means/* in results.h5, docs/farm.md.
+  fmt::format_to(it, "{}\n", kMeansCsvHeader);
   for (std::size_t t = 0; t < steps_.size(); ++t) {
     const std::array<double, 4>& m = means_[t];
     fmt::format_to(it, "{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", steps_[t], times_[t], m[0],

@@ -55,6 +55,11 @@ class ResultsWriter {
   static constexpr std::int64_t kRowsPerWrite = 64;
   static constexpr std::size_t kBytesPerWrite = 8u << 20;
   static constexpr double kIndexShare = 0.005;  ///< wall-time share of index rewrites [-]
+  /// Root attributes "format" and "format_version" of results.h5 (the layout of docs/farm.md).
+  static constexpr const char* kFormat = "mpmxdem results";
+  static constexpr std::int64_t kFormatVersion = 1;
+  /// First line of means.csv: the column names, units as suffixes (strains are [-]).
+  static constexpr const char* kMeansCsvHeader = "step,time_s,eps_ax,eps_v,p_mean_Pa,q_mean_Pa";
 
  private:
   struct Series;

@@ -42,11 +42,16 @@ std::vector<double> read_all(const std::string& file, const std::string& name) {
   return v;
 }
 
+// Data rows of means.csv; its first line must be the header (what pandas.read_csv takes as such).
 int csv_rows(const std::string& dir) {
   std::ifstream csv(dir + "/means.csv");
   int lines = 0;
-  for (std::string l; std::getline(csv, l);) ++lines;
-  return lines - 2;  // two header lines
+  std::string first;
+  for (std::string l; std::getline(csv, l);) {
+    if (lines++ == 0) first = l;
+  }
+  EXPECT_EQ(first, farm::ResultsWriter::kMeansCsvHeader);
+  return lines - 1;
 }
 
 // Three RVEs (ids 1, 5, 9); the points come in another order (9, 1, 5).
@@ -118,6 +123,60 @@ TEST(Results, RowsWrittenInBlocksReadBackInOrder) {
   EXPECT_EQ(csv_rows(dir), rows);
 }
 
+/// Variable-length string attribute `name` of object `obj` of `file` ("" when missing).
+std::string string_attr(hid_t file, const char* obj, const char* name) {
+  if (H5Aexists_by_name(file, obj, name, H5P_DEFAULT) <= 0) return "";
+  const hid_t a = H5Aopen_by_name(file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  char* text = nullptr;
+  std::string v;
+  if (H5Aread(a, t, &text) >= 0 && text != nullptr) v = text;
+  H5free_memory(text);
+  H5Tclose(t);
+  H5Aclose(a);
+  return v;
+}
+
+// Every dataset says what it is (unit, description); the file says its format and version.
+TEST(Results, EveryDatasetIsDescribed) {
+  const std::string dir = scratch("attributes");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    smp.append(w, 0);
+  }
+  const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(string_attr(f, "/", "format"), farm::ResultsWriter::kFormat);
+  std::int64_t version = 0;
+  const hid_t va = H5Aopen_by_name(f, "/", "format_version", H5P_DEFAULT, H5P_DEFAULT);
+  H5Aread(va, H5T_NATIVE_INT64, &version);
+  H5Aclose(va);
+  EXPECT_EQ(version, farm::ResultsWriter::kFormatVersion);
+  EXPECT_FALSE(string_attr(f, "/", "software_version").empty());
+  EXPECT_NE(string_attr(f, "/", "conventions").find("TENSION positive"), std::string::npos);
+  std::vector<std::string> names;
+  H5Ovisit(
+      f, H5_INDEX_NAME, H5_ITER_INC,
+      [](hid_t, const char* name, const H5O_info_t* info, void* out) -> herr_t {
+        if (info->type == H5O_TYPE_DATASET)
+          static_cast<std::vector<std::string>*>(out)->push_back(name);
+        return 0;
+      },
+      &names);
+  EXPECT_EQ(names.size(), 22u);
+  for (const std::string& n : names) {
+    EXPECT_FALSE(string_attr(f, n.c_str(), "description").empty()) << n;
+    EXPECT_EQ(H5Aexists_by_name(f, n.c_str(), "unit", H5P_DEFAULT), 1) << n;
+  }
+  EXPECT_EQ(string_attr(f, "rve/stress", "unit"), "Pa");
+  EXPECT_EQ(string_attr(f, "points/x", "unit"), "m");
+  EXPECT_EQ(string_attr(f, "means/eps_ax", "unit"), "-");
+  H5Fclose(f);
+}
+
 // A progress-line flush (indexes = false) writes the indexes the first time; a forced flush
 // (checkpoint, end of run) always brings them up to date. results.h5 has every row after either.
 TEST(Results, ForcedFlushRewritesTheIndexes) {
@@ -133,7 +192,7 @@ TEST(Results, ForcedFlushRewritesTheIndexes) {
   std::ifstream xmf(dir + "/points.xmf");
   const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("step_190"), std::string::npos);
-  EXPECT_NE(text.find("Dimensions=\"20 3 3\""), std::string::npos);  // all rows of the datasets
+  EXPECT_NE(text.find(":20 3 3</DataItem>"), std::string::npos);  // all rows of the datasets
   // Rewritten atomically (common::write_file_atomic): nothing is left staged.
   EXPECT_FALSE(fs::exists(dir + "/points.xmf.tmp"));
   EXPECT_FALSE(fs::exists(dir + "/means.csv.tmp"));
