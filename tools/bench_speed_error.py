@@ -197,7 +197,7 @@ def main():
             packing = REF_PACKING if n == 1000 else packings.get(n)
             d, wall = run_dem(a.exe, a.work, n, inertia, a.strain, packing)
             packings.setdefault(n, REF_PACKING if n == 1000 else os.path.join(d, "prepared_packing.txt"))
-            rows.append(("DEM", n, inertia, wall, wall, series_of_csv(os.path.join(d, "dem_series.csv")), ""))
+            rows.append(("DEM", n, inertia, wall, wall, series_of_csv(os.path.join(d, "dem_series.csv"), q_column=True), ""))
             print(f"pure DEM   N = {n:5d} I = {inertia:g}: {wall:8.1f} s", flush=True)
     per_unit = None  # MPM x DEM wall seconds per (N / I), from the cells run so far
     for n in sizes:
@@ -207,14 +207,14 @@ def main():
             if est <= a.budget_s:
                 d, steps, t, wall = run_mpm(a.exe, a.work, n, inertia, a.strain, packing, a.shape, a.ranks)
                 note = ""
-                series = series_of_run(d)
+                series = series_of_run(d, von_mises_mean=True)
             else:
                 end_time = a.strain / platen_velocity(inertia)
                 d, steps, t, wall = run_mpm(a.exe, a.work, n, inertia, a.strain, packing, a.shape, a.ranks,
                                             max_steps=600)
                 wall = wall / steps * (steps * end_time / t)  # per-step cost times the steps to the end
                 src = reuse.get((n, inertia))
-                series = series_of_run(src) if src else None
+                series = series_of_run(src, von_mises_mean=True) if src else None
                 note = (f"time extrapolated from {steps} MPM steps" +
                         (f"; errors from the full run {os.path.relpath(src, REPO)}" if src else "; errors not measured"))
             per_unit = max(per_unit or 0.0, wall * inertia / n)
@@ -222,7 +222,7 @@ def main():
             print(f"MPM x DEM  N = {n:5d} I = {inertia:g}: {wall:8.1f} s {note}", flush=True)
 
     if a.reference:
-        ref, ref_label = series_of_csv(a.reference), os.path.relpath(os.path.abspath(a.reference), REPO)
+        ref, ref_label = series_of_csv(a.reference, q_column=True), os.path.relpath(os.path.abspath(a.reference), REPO)
     else:
         ref = next(r[5] for r in rows if r[0] == "DEM" and r[1] == sizes[-1] and r[2] == inertias[0])
         ref_label = f"pure DEM, N = {sizes[-1]}, I = {inertias[0]:g} (this matrix)"

@@ -6,8 +6,14 @@ Usage (Debian's python3-matplotlib and python3-h5py; use /usr/bin/python3):
 
   --run DIR   an `mpmxdem run` output directory (means.csv, results.h5): sample means, and
               per-RVE principal stresses, coordination number and axial over lateral stress
+              (an `mpmxdem dem` directory is plotted as its dem_series.csv)
   --csv FILE  a series with columns eps_a, eps_v, q (and p): `mpmxdem dem` (dem_series.csv),
               triax_dem, or YADE's yade_triax_*.csv
+q is sigma_a - sigma_r in every figure (the paper's q; from sig_a and sig_r where a series has
+them, from the mean RVE stress of a run); --summary prints the mean von Mises q of the RVEs
+(means.csv), the figure docs/validation.md quotes. A series whose lateral stress strays more than
+5 % from its start (after 0.1 % axial strain) is plotted with a warning: its control failed.
+One colour per RVE in every panel of the RVE figure.
 Writes FIG_PREFIX_q_epsv.png (fig. 1: q and eps_v against eps_ax, every source) and, for each
 --run, FIG_PREFIX_rves_<n>.png (fig. 2). Compression positive throughout. Strains are logarithmic, -ln(stretch), as in the DEM series;
 the MPM means (1 - F_zz, 1 - V/V0) are converted. The MPM cell is fixed, so the platen of eq. 13
@@ -40,16 +46,50 @@ def read_csv(path):
     return {name: data[:, i] for i, name in enumerate(head)}
 
 
-def series_of_csv(path):
+LATERAL_TOLERANCE = 0.05  # as `mpmxdem dem`'s dem.loading.lateral_tolerance default
+
+
+def series_of_csv(path, label=None, q_column=False):
+    """eps_a, eps_v and q = sigma_a - sigma_r (the paper's q; YADE's `q` column is that, while
+    the `q` of dem_series.csv is the von Mises q, shear included: both files carry sig_a, sig_r).
+    q_column: the file's own `q` column instead (tools/bench_speed_error.py, whose figures in
+    docs/benchmarks.md were computed so)."""
+    label = label or path
     d = read_csv(path)
-    return d["eps_a"], d["eps_v"], d["q"]
+    q = d["sig_a"] - d["sig_r"] if "sig_a" in d and "sig_r" in d and not q_column else d["q"]
+    if "sxx" in d and "syy" in d:
+        # A test whose servo lost the lateral stress is another test: say so, loudly.
+        late = d["eps_a"] > 1e-3
+        lateral = np.stack([-d["sxx"], -d["syy"]])
+        target = lateral[:, 0].mean()
+        if late.any() and target > 0:
+            worst = np.max(np.abs(lateral[:, late] - target)) / target
+            if worst > LATERAL_TOLERANCE:
+                print(f"WARNING: {label}: the lateral stress strays {100 * worst:.0f} % from "
+                      f"{target / 1e3:.0f} kPa: its control failed, the curve is not a drained "
+                      "triaxial test at that confinement", file=sys.stderr)
+    return d["eps_a"], d["eps_v"], q
 
 
-def series_of_run(directory):
-    # means.csv holds eps_ax = 1 - F_zz and eps_v = 1 - V/V0; the DEM series (mpmxdem dem,
-    # triax_dem, YADE) hold logarithmic strains -ln(L/L0), -ln(V/V0): convert to those.
+def series_of_run(directory, von_mises_mean=False):
+    """Sample means of an `mpmxdem run` directory. means.csv holds eps_ax = 1 - F_zz and
+    eps_v = 1 - V/V0; the DEM series (mpmxdem dem, triax_dem, YADE) hold logarithmic strains
+    -ln(L/L0), -ln(V/V0): converted to those. q = sigma_a - sigma_r of the mean RVE stress
+    (results.h5), as in the DEM series; q_mean_Pa of means.csv is the mean von Mises q."""
+    import h5py
+
     d = read_csv(os.path.join(directory, "means.csv"))
-    return -np.log1p(-d["eps_ax"]), -np.log1p(-d["eps_v"]), d["q_mean_Pa"]
+    if von_mises_mean:
+        return -np.log1p(-d["eps_ax"]), -np.log1p(-d["eps_v"]), d["q_mean_Pa"]
+    with h5py.File(os.path.join(directory, "results.h5"), "r") as f:
+        mean = -f["rve/stress"][:].reshape(len(f["time"]), -1, 3, 3).mean(axis=1)
+    q = mean[:, 2, 2] - 0.5 * (mean[:, 0, 0] + mean[:, 1, 1])
+    return -np.log1p(-d["eps_ax"]), -np.log1p(-d["eps_v"]), q
+
+
+def is_dem_directory(path):
+    return os.path.isfile(os.path.join(path, "dem_series.csv")) and not os.path.isfile(
+        os.path.join(path, "means.csv"))
 
 
 def plot_means(sources, prefix):
@@ -57,7 +97,7 @@ def plot_means(sources, prefix):
     for label, (eps, epsv, q) in sources:
         ax_q.plot(100 * eps, q / 1e3, label=label)
         ax_v.plot(100 * eps, 100 * epsv, label=label)
-    ax_q.set_ylabel("q [kPa]")
+    ax_q.set_ylabel("q = sigma_a - sigma_r [kPa]")
     ax_v.set_ylabel("eps_v [%] (compression positive)")
     ax_v.set_xlabel("axial strain eps_ax [%]")
     for ax in (ax_q, ax_v):
@@ -81,12 +121,14 @@ def plot_rves(directory, label, prefix, index):
     lateral = 0.5 * (stress[:, :, 0, 0] + stress[:, :, 1, 1])
     fig, axes = plt.subplots(3, 1, figsize=(7, 10), sharex=True)
     for k, rve in enumerate(ids):
+        color = f"C{k % 10}"  # one colour per RVE in every panel
         for c, style in zip(range(3), ("-", "--", ":")):
-            axes[0].plot(100 * eps, principal[:, k, c] / 1e3, style, lw=0.8, label=f"RVE {rve}" if c == 2 else None)
-        axes[1].plot(100 * eps, z[:, k], lw=0.8)
+            axes[0].plot(100 * eps, principal[:, k, c] / 1e3, style, color=color, lw=0.8,
+                         label=f"RVE {rve}" if c == 2 else None)
+        axes[1].plot(100 * eps, z[:, k], color=color, lw=0.8)
         # An RVE that lost its contacts has no lateral stress: leave those rows out of the ratio.
         ratio = np.where(lateral[:, k] > 1e3, stress[:, k, 2, 2] / np.maximum(lateral[:, k], 1e3), np.nan)
-        axes[2].plot(100 * eps, ratio, lw=0.8)
+        axes[2].plot(100 * eps, ratio, color=color, lw=0.8)
     axes[0].set_ylabel("principal stresses [kPa]")
     axes[1].set_ylabel("coordination number Z")
     axes[2].set_ylabel("sigma_zz / mean lateral (lateral > 1 kPa)")
@@ -105,9 +147,10 @@ def summary(directory, label):
     """Numbers of docs/validation.md: peak q, q and eps_v at 10/20/30 %, lateral stress per RVE."""
     import h5py
 
-    eps, epsv, q = series_of_run(directory)
+    # The q of docs/validation.md: the mean over RVEs of their von Mises q (means.csv).
+    eps, epsv, q = series_of_run(directory, von_mises_mean=True)
     k = int(np.argmax(q))
-    print(f"{label}: peak q {q[k] / 1e3:.1f} kPa at eps_ax {100 * eps[k]:.2f} %")
+    print(f"{label}: peak q (mean von Mises q of the RVEs) {q[k] / 1e3:.1f} kPa at eps_ax {100 * eps[k]:.2f} %")
     for e in (0.10, 0.20, 0.30):
         if eps[-1] >= e - 0.002:  # the last row may stop just short of the target
             at = min(e, eps[-1])
@@ -136,14 +179,23 @@ def main():
     if not a.run and not a.csv:
         ap.error("give at least one --run or --csv")
     sources = []
+    runs = []
     for arg in a.csv:
         path, label = split_label(arg)
-        sources.append((label, series_of_csv(path)))
+        sources.append((label, series_of_csv(path, label)))
     for arg in a.run:
         path, label = split_label(arg)
-        sources.append((label, series_of_run(path)))
+        if is_dem_directory(path):  # an `mpmxdem dem` output: its series, no RVEs
+            print(f"{path}: an `mpmxdem dem` output; plotting its dem_series.csv", file=sys.stderr)
+            sources.append((label, series_of_csv(os.path.join(path, "dem_series.csv"), label)))
+        elif not os.path.isfile(os.path.join(path, "means.csv")):
+            ap.error(f"--run {path}: neither an `mpmxdem run` output (means.csv, results.h5) nor "
+                     "an `mpmxdem dem` output (dem_series.csv)")
+        else:
+            sources.append((label, series_of_run(path)))
+            runs.append(arg)
     plot_means(sources, a.out)
-    for i, arg in enumerate(a.run):
+    for i, arg in enumerate(runs):
         path, label = split_label(arg)
         plot_rves(path, label, a.out, i)
         if a.summary:
