@@ -40,6 +40,29 @@ std::vector<double> numbers(const std::string& path, long line, const std::strin
   return v;
 }
 
+/// Where the cell directive of `line` starts: "CELL ..." / "HSIZE ..." as they are, or written as
+/// a comment ("# CELL ...", the form write_packing uses, so that YADE's ymport.text reads the
+/// spheres and skips the cell) when the rest is a number list. npos for a comment or a sphere.
+std::size_t cell_directive(const std::string& line, std::size_t first) {
+  auto keyword_at = [&](std::size_t at) {
+    return line.compare(at, 4, "CELL") == 0 || line.compare(at, 5, "HSIZE") == 0;
+  };
+  if (line[first] != '#') return keyword_at(first) ? first : std::string::npos;
+  const auto at = line.find_first_not_of(" \t", first + 1);
+  if (at == std::string::npos || !keyword_at(at)) return std::string::npos;
+  // A comment that happens to start with the word (e.g. "# CELL sizes in m") stays a comment.
+  std::istringstream is(line.substr(at + (line.compare(at, 4, "CELL") == 0 ? 4 : 5)));
+  std::string tok;
+  std::size_t n = 0;
+  while (is >> tok) {
+    double d = 0.0;
+    const auto res = std::from_chars(tok.data(), tok.data() + tok.size(), d);
+    if (res.ec != std::errc() || res.ptr != tok.data() + tok.size()) return std::string::npos;
+    ++n;
+  }
+  return n == 3 || n == 9 ? at : std::string::npos;
+}
+
 }  // namespace
 
 Packing read_packing(const std::string& path) {
@@ -53,8 +76,12 @@ Packing read_packing(const std::string& path) {
   long ln = 0;
   while (std::getline(in, line)) {
     ++ln;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
+    auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    if (line[first] == '#') {
+      first = cell_directive(line, first);
+      if (first == std::string::npos) continue;
+    }
     if (line.compare(first, 4, "CELL") == 0) {
       const auto v = numbers(path, ln, line.substr(first + 4), 3);
       for (double d : v) {
@@ -194,8 +221,10 @@ void write_packing(const std::string& path, const Packing& pk, const std::string
   std::fprintf(f, "# mpmxdem packing, N %zu\n", pk.r.size());
   if (!comment.empty()) std::fprintf(f, "# %s\n", comment.c_str());
   const auto& h = pk.cell.h;
-  std::fprintf(f, "CELL %.17g %.17g %.17g\n", h.col(0).norm(), h.col(1).norm(), h.col(2).norm());
-  std::fprintf(f, "HSIZE");
+  // The cell lines are written as comments: YADE's ymport.text reads the file as it is.
+  std::fprintf(f, "# CELL %.17g %.17g %.17g\n", h.col(0).norm(), h.col(1).norm(),
+               h.col(2).norm());
+  std::fprintf(f, "# HSIZE");
   for (int a = 0; a < 3; ++a) {
     for (int b = 0; b < 3; ++b) std::fprintf(f, " %.17g", h(a, b));
   }

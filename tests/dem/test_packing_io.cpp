@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 #include "common/errors.hpp"
 #include "dem/loading.hpp"
@@ -34,6 +35,35 @@ TEST(PackingIo, RoundTripIsExact) {
     EXPECT_EQ(back.r[i], pk.r[i]);
   }
   std::remove(path.c_str());
+}
+
+// The cell lines may be comments (what write_packing writes, so that YADE's ymport.text reads the
+// file as it is); a comment that only starts with the word stays a comment.
+TEST(PackingIo, CellLinesWrittenAsCommentsAreRead) {
+  const std::string path = testing::TempDir() + "/dem_commented_cell.txt";
+  {
+    std::ofstream f(path);
+    f << "# CELL sizes in m\n#  CELL 2 3 4\n# HSIZE 2 0 0 0 3 0 0 0 4.5\n# x y z r\n"
+         "0.5 0.5 0.5 0.5\n1.5 1.5 2.5 0.5\n";
+  }
+  const dem::Packing pk = dem::read_packing(path);
+  EXPECT_EQ(pk.cell.h(2, 2), 4.5);  // HSIZE wins over CELL
+  EXPECT_EQ(pk.cell.h(1, 1), 3.0);
+  EXPECT_EQ(pk.r.size(), 2u);
+  std::ifstream written;
+  const std::string out = testing::TempDir() + "/dem_written.txt";
+  dem::write_packing(out, pk, "test");
+  written.open(out);
+  std::string line;
+  while (std::getline(written, line)) {
+    if (line.empty()) continue;
+    // every line is a comment or "x y z r": nothing YADE's text import would choke on
+    if (line[0] != '#') {
+      std::istringstream is(line);
+      double v[4];
+      EXPECT_TRUE(is >> v[0] >> v[1] >> v[2] >> v[3]) << line;
+    }
+  }
 }
 
 TEST(PackingIo, BadLineNamesFileAndLine) {
