@@ -222,8 +222,7 @@ void write_packing(const std::string& path, const Packing& pk, const std::string
   if (!comment.empty()) std::fprintf(f, "# %s\n", comment.c_str());
   const auto& h = pk.cell.h;
   // The cell lines are written as comments: YADE's ymport.text reads the file as it is.
-  std::fprintf(f, "# CELL %.17g %.17g %.17g\n", h.col(0).norm(), h.col(1).norm(),
-               h.col(2).norm());
+  std::fprintf(f, "# CELL %.17g %.17g %.17g\n", h.col(0).norm(), h.col(1).norm(), h.col(2).norm());
   std::fprintf(f, "# HSIZE");
   for (int a = 0; a < 3; ++a) {
     for (int b = 0; b < 3; ++b) std::fprintf(f, " %.17g", h(a, b));
