@@ -22,11 +22,6 @@
 
 namespace app {
 
-void bcast_error(std::string& error, const Comm& comm) {
-  farm::bcast_string(comm.comm, error);
-  if (!error.empty()) throw common::InputError(error);
-}
-
 void agree(const Comm& comm, const std::function<void()>& f) {
   farm::ErrorKind kind = farm::ErrorKind::none;
   std::string message;

@@ -18,9 +18,6 @@ struct Comm {
   int size = 1;
 };
 
-/// Broadcasts rank 0's error text; when it is not empty, every rank throws it as an InputError.
-void bcast_error(std::string& error, const Comm& comm);
-
 /// Collective: runs `f` on every rank; an exception on any rank becomes the same exception (type
 /// and message of the lowest failing rank) on every rank, so no rank is left waiting in a later
 /// collective. Use it for every step before the farm's collective phase that can fail.
