@@ -67,7 +67,9 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   run->add_option(
       "--restart", o.restart,
       "Continue from this checkpoint file (HDF5), on any number of ranks, bit for bit; --out\n"
-      "should be the run's directory (results.h5 is cut back to the checkpoint's step)");
+      "should be the run's directory (results.h5 is cut back to the checkpoint's step).\n"
+      "`latest`: the newest valid checkpoint of --out, or the beginning when it has none yet\n"
+      "(one command line for every link of a chain of batch jobs: jobs/slurm/)");
   run->add_option("--max-steps", o.max_steps,
                   "Stop after this many MPM steps in total, restarts included (trials, tests); a "
                   "checkpoint\n"

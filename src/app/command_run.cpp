@@ -16,14 +16,25 @@
 #include "app/coupled_setup.hpp"
 #include "app/mpm_setup.hpp"
 #include "app/restart_check.hpp"
+#include "app/restart_latest.hpp"
 #include "common/errors.hpp"
 #include "farm/driver.hpp"
 #include "farm/mpi_util.hpp"
 
 namespace app {
 
-int command_run(const Options& o, const Comm& comm) {
-  const Job job = load_job_collective(o.job, comm);
+int command_run(const Options& given, const Comm& comm) {
+  const Job job = load_job_collective(given.job, comm);
+  Options o = given;
+  if (o.restart == kRestartLatest) {
+    // Resolved once, on rank 0, so that every rank continues from the same file.
+    on_root(comm, [&] { o.restart = latest_checkpoint(output_path(o)); });
+    farm::bcast_string(comm.comm, o.restart);
+    spdlog::info("--restart latest: {}", o.restart.empty()
+                                             ? "no checkpoint in " + output_path(o).string() +
+                                                   " yet: starting from the beginning"
+                                             : "continuing from " + o.restart);
+  }
   if (!job.has_section("mpm")) {
     throw common::InputError(fmt::format(
         "{}: `run` needs an [mpm] section (a pure DEM job runs with `mpmxdem dem`)", job.file()));
