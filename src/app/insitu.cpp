@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <set>
 
 #include "app/job.hpp"
 #include "app/mpm_setup.hpp"
