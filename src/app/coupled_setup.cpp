@@ -4,13 +4,21 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
+#include <map>
 #include <memory>
 #include <set>
+#include <utility>
 
 #include "app/dem_setup.hpp"
+#include "app/insitu.hpp"
 #include "app/mpm_setup.hpp"
 #include "app/schema_params.hpp"
+#include "common/errors.hpp"
+#include "dem/element_test.hpp"
+#include "dem/measures.hpp"
+#include "dem/stress_target.hpp"
 #include "farm/dem_micro.hpp"
 #include "farm/elastic_micro.hpp"
 
@@ -45,31 +53,105 @@ dem::RveParams rve_params(const Job& job) {
   return p;
 }
 
-/// Every DEM RVE of a rank starts as a copy of one prepared sample, made on first use: the
-/// preparation (equilibration or compaction) runs once per rank, not once per RVE.
-struct DemPrototype {
+/// The DEM RVEs of a rank, made on first use: the prepared sample of each sample of the pool
+/// (the preparation of [dem.sample]), and one RVE per (group, sample) that the rank's points
+/// need, brought by the tensor servo to the group's target (app/insitu.hpp). Every RVE of a
+/// point is a copy of its (group, sample) RVE. With the defaults (prepared bodies, one sample)
+/// this is the one prepared sample of before, unchanged.
+struct DemPool {
   Job job;
   dem::RveParams params;
-  std::unique_ptr<dem::Rve> rve;
+  InsituPlan plan;
+  std::map<std::int64_t, dem::Simulation> samples;
+  std::map<std::pair<std::int32_t, std::int64_t>, std::unique_ptr<dem::Rve>> rves;
 
-  const dem::Rve& get() {
-    if (!rve) {
-      dem::Simulation sim = prepared_sample(job);
-      const dem::Packing pk{sim.cell(), sim.spheres().x, sim.spheres().r};
-      params.d50 = dem_d50(job, pk);
-      rve = std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params));
-      spdlog::info("RVE prototype: {} spheres, d50 = {:.4g} m, I = {:.3g}, p_floor = {:.4g} Pa",
-                   rve->num_spheres(), params.d50, params.inertial_number, params.p_floor);
+  const dem::Simulation& sample(std::int64_t k) {
+    auto it = samples.find(k);
+    if (it == samples.end()) {
+      dem::Simulation sim = prepared_sample(job, k);
+      if (samples.empty()) {
+        const dem::Packing pk{sim.cell(), sim.spheres().x, sim.spheres().r};
+        params.d50 = dem_d50(job, pk);  // of the PSD for a pool (the same for every sample)
+      }
+      it = samples.emplace(k, std::move(sim)).first;
     }
-    return *rve;
+    return it->second;
+  }
+
+  const dem::Rve& get(std::int64_t id) {
+    const std::int32_t g = plan.group_of(id);
+    const std::int64_t k = sample_of(id, plan.options.samples);
+    const auto key = std::make_pair(g, k);
+    auto it = rves.find(key);
+    if (it != rves.end()) return *it->second;
+    dem::Simulation sim = sample(k);
+    if (g >= 0) prepare_group(sim, g, k);
+    const auto& rve =
+        *rves.emplace(key,
+                      std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params)))
+             .first->second;
+    if (rves.size() == 1) {
+      spdlog::info("RVE prototype: {} spheres, d50 = {:.4g} m, I = {:.3g}, p_floor = {:.4g} Pa",
+                   rve.num_spheres(), params.d50, params.inertial_number, params.p_floor);
+    }
+    return rve;
+  }
+
+  /// Brings a copy of sample k to the target of group g (tensor servo) and logs the cost.
+  void prepare_group(dem::Simulation& sim, std::int32_t g, std::int64_t k) const {
+    dem::StressTarget t;
+    t.stress = plan.groups.target[static_cast<std::size_t>(g)];
+    t.stress_tol = plan.options.stress_tolerance;
+    t.unbalanced_tol = job.number("dem.preparation.unbalanced_force");
+    // The quasi-static rate bound of the preparation, at the target's pressure.
+    t.max_rate = dem::strain_rate(job.number("dem.preparation.inertial_number"), params.d50,
+                                  job.number("dem.material.density"), -t.stress.trace() / 3.0);
+    const auto start = std::chrono::steady_clock::now();
+    std::int64_t steps = 0;
+    try {
+      steps = dem::reach_stress(sim, t);
+    } catch (const common::NumericalError& e) {
+      throw common::NumericalError(
+          fmt::format("in-situ preparation of group {} (sample {}): {}", g, k, e.what()));
+    }
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const dem::Measures m = dem::measure(sim);
+    spdlog::info(
+        "in-situ preparation: group {} ({} points), sample {}: {} DEM steps, {:.2f} s; target {}, "
+        "reached {}, e = {:.4f}, unbalanced {:.3g}",
+        g, plan.groups.count[static_cast<std::size_t>(g)], k, steps, wall, stress_text(t.stress),
+        stress_text(m.stress), m.void_ratio, m.unbalanced);
   }
 };
 
+/// The plan in the log (every rank computes it; rank 0 writes it).
+void log_plan(const InsituPlan& plan) {
+  const std::size_t n = plan.ids.size();
+  const auto prepared =
+      static_cast<std::size_t>(std::count(plan.group.begin(), plan.group.end(), -1));
+  if (prepared == n && plan.options.samples == 1) return;  // today's single prepared sample
+  spdlog::info(
+      "in-situ initial states: {} DEM points, {} as prepared, {} in {} group(s) of targets "
+      "(tolerance {:g}), {} floored to p = {:.4g} Pa; {} sample(s): {} preparation(s)",
+      n, prepared, n - prepared, plan.groups.target.size(), plan.options.group_tolerance,
+      plan.floored, plan.options.pressure_floor, plan.options.samples, plan.preparations());
+  constexpr std::size_t kShown = 40;
+  for (std::size_t g = 0; g < plan.groups.target.size() && g < kShown; ++g) {
+    spdlog::info("  group {}: {} points, target {}", g, plan.groups.count[g],
+                 stress_text(plan.groups.target[g]));
+  }
+  if (plan.groups.target.size() > kShown)
+    spdlog::info("  ... {} more groups", plan.groups.target.size() - kShown);
+}
+
 farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
-                           const std::set<std::int64_t>& dem_ids) {
-  std::shared_ptr<DemPrototype> proto;
-  if (setup.has_dem)
-    proto = std::make_shared<DemPrototype>(DemPrototype{job, rve_params(job), nullptr});
+                           const std::set<std::int64_t>& dem_ids, InsituPlan plan) {
+  std::shared_ptr<DemPool> proto;
+  if (setup.has_dem) {
+    log_plan(plan);
+    proto = std::make_shared<DemPool>(DemPool{job, rve_params(job), std::move(plan), {}, {}});
+  }
   std::shared_ptr<farm::ElasticMicroParams> elastic;
   if (setup.has_elastic)
     elastic = std::make_shared<farm::ElasticMicroParams>(elastic_params(job, setup, dem_ids));
@@ -78,7 +160,8 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
   farm::MicroKind k;
   k.create = [proto, elastic, dem_ids,
               fail_guards](std::int64_t id) -> std::unique_ptr<farm::MicroModel> {
-    if (dem_ids.count(id) != 0) return std::make_unique<farm::DemMicro>(proto->get(), fail_guards);
+    if (dem_ids.count(id) != 0)
+      return std::make_unique<farm::DemMicro>(proto->get(id), fail_guards);
     return std::make_unique<farm::ElasticMicro>(id, *elastic);
   };
   k.load = [](const common::StateReader& r) -> std::unique_ptr<farm::MicroModel> {
@@ -93,12 +176,14 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
 farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
   MpmSetup setup = mpm_setup(job);
   farm::CoupledConfig c;
+  InsituPlan plan;
+  if (setup.has_dem) plan = insitu_plan(job, setup);  // before the materials are reset below
   std::set<std::int64_t> dem_ids;
   for (std::size_t i = 0; i < setup.points.size(); ++i) {
     if (setup.points.material[i] == kDemMaterial) dem_ids.insert(setup.points.id[i]);
     setup.points.material[i] = 0;  // the farm is the one material; it dispatches by point id
   }
-  c.micro = micro_kind(job, setup, dem_ids);
+  c.micro = micro_kind(job, setup, dem_ids, std::move(plan));
   c.solver = setup.config;
   c.points = std::move(setup.points);
   c.constraints = std::move(setup.constraints);

@@ -18,9 +18,11 @@ struct RunLimits {
 };
 
 /// The coupled run of `job`. DEM RVEs are built lazily, once per rank: the sample of
-/// [dem.sample] (a loaded packing re-equilibrated, or a generated cloud compacted) is prepared on
-/// the first call and every RVE of the rank starts as a copy of it. Throws common::InputError
-/// naming the job key when the job cannot be run.
+/// [dem.sample] (a loaded packing re-equilibrated, or a generated cloud compacted; one per sample
+/// of the pool of dem.initial_state.samples) is prepared on first use, and so is each in-situ
+/// group's RVE that the rank's points need (the sample brought to the group's target stress by
+/// dem::reach_stress, app/insitu.hpp); every RVE of the rank starts as a copy of its point's.
+/// Throws common::InputError naming the job key when the job cannot be run.
 [[nodiscard]] farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits);
 
 }  // namespace app

@@ -11,6 +11,7 @@
 
 #include "app/progress.hpp"
 #include "app/schema_params.hpp"
+#include "common/errors.hpp"
 #include "dem/element_test.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
@@ -38,8 +39,9 @@ dem::Preparation dem_preparation(const Job& job) {
   return p;
 }
 
-dem::Packing dem_packing(const Job& job, bool& generated) {
+dem::Packing dem_packing(const Job& job, bool& generated, std::int64_t sample) {
   if (job.has("dem.sample.packing")) {
+    MPMXDEM_CHECK(sample == 0, "a pool of samples is generated, not read");
     generated = false;
     std::filesystem::path path(job.text("dem.sample.packing"));
     if (path.is_relative()) path = std::filesystem::path(job.directory()) / path;
@@ -50,7 +52,7 @@ dem::Packing dem_packing(const Job& job, bool& generated) {
   psd.diameter = job.numbers("dem.sample.psd_diameters");
   psd.passing = job.numbers("dem.sample.psd_passing");
   return dem::make_cloud(psd, job.integer("dem.sample.spheres"), 0.3,
-                         static_cast<std::uint64_t>(job.integer("dem.sample.seed")));
+                         static_cast<std::uint64_t>(job.integer("dem.sample.seed") + sample));
 }
 
 double dem_d50(const Job& job, const dem::Packing& packing) {
@@ -79,9 +81,9 @@ double dem_d50(const Job& job, const dem::Packing& packing) {
   return rm.empty() ? 0.0 : 2.0 * rm.back().first;
 }
 
-dem::Simulation prepared_sample(const Job& job) {
+dem::Simulation prepared_sample(const Job& job, std::int64_t sample) {
   bool generated = false;
-  const dem::Packing packing = dem_packing(job, generated);
+  const dem::Packing packing = dem_packing(job, generated, sample);
   dem::Simulation sim = dem::make_simulation(packing, dem_material(job), dem_numerics(job));
   dem::Preparation prep = dem_preparation(job);
   // Strain-rate bound of the servo from the inertial number: I / t_ref, t_ref = d50 sqrt(rho / p).
@@ -108,7 +110,7 @@ dem::Simulation prepared_sample(const Job& job) {
   if (generated) {
     spdlog::info(
         "sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
-        packing.r.size(), job.integer("dem.sample.seed"), prep.target.pressure,
+        packing.r.size(), job.integer("dem.sample.seed") + sample, prep.target.pressure,
         prep.friction_comp_deg);
     steps = dem::prepare(sim, prep, observe);
   } else {

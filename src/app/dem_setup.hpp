@@ -13,13 +13,14 @@ namespace app {
 [[nodiscard]] dem::Numerics dem_numerics(const Job& job);
 [[nodiscard]] dem::Preparation dem_preparation(const Job& job);
 /// The packing of [dem.sample]: read (path relative to the job file) or generated as a cloud.
-/// `generated` tells which.
-[[nodiscard]] dem::Packing dem_packing(const Job& job, bool& generated);
+/// `generated` tells which. `sample` k > 0 (the pool of dem.initial_state.samples, generated
+/// clouds only) uses the seed dem.sample.seed + k.
+[[nodiscard]] dem::Packing dem_packing(const Job& job, bool& generated, std::int64_t sample = 0);
 /// Median diameter by mass d50 [m]: of the PSD table, or of the packing's spheres.
 [[nodiscard]] double dem_d50(const Job& job, const dem::Packing& packing);
 /// A prepared simulation: generated clouds are compacted (lowered friction, restored, then
 /// re-equilibrated); loaded packings are re-equilibrated at the preparation pressure (their
-/// tangential forces are not stored). Logs what it did.
-[[nodiscard]] dem::Simulation prepared_sample(const Job& job);
+/// tangential forces are not stored). Logs what it did. `sample`: see dem_packing.
+[[nodiscard]] dem::Simulation prepared_sample(const Job& job, std::int64_t sample = 0);
 
 }  // namespace app

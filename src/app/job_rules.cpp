@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "app/insitu.hpp"
 #include "app/job.hpp"
 #include "common/errors.hpp"
 
@@ -37,6 +38,7 @@ class Rules {
   void fail_missing(const std::string& path, const std::string& rule) {
     errors_.push_back(job_.missing_message(path, rule));
   }
+  void add(const std::string& message) { errors_.push_back(message); }
   [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
 
  private:
@@ -138,11 +140,7 @@ void mpm_rules(const Job& job, Rules& r) {
         break;
       }
     }
-    const std::string& m = job.text(base + "material");
-    if (m == "dem" && job.has(base + "initial_stress")) {
-      r.fail(base + "initial_stress",
-             "not used with material = \"dem\": the initial stress is the RVEs' own");
-    }
+    const std::string& m = job.text(base + "material");  // dem + initial_stress: insitu rules
     any_dem = any_dem || m == "dem";
     any_elastic = any_elastic || m == "elastic";
   }
@@ -260,6 +258,7 @@ void check_job_rules(const Job& job) {
   sample_rules(job, r);
   loading_rules(job, r);
   mpm_rules(job, r);
+  for (const std::string& e : check_insitu_rules(job)) r.add(e);
   if (!r.errors().empty()) throw common::InputError(fmt::format("{}", fmt::join(r.errors(), "\n")));
 }
 

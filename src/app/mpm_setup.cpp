@@ -60,6 +60,7 @@ MpmSetup mpm_setup(const Job& job) {
       throw common::InputError(
           job.message(base + "max", "the box holds no material point (it covers no whole cell)"));
     }
+    setup.body.resize(setup.points.size(), static_cast<std::int32_t>(b));
     if (job.has(base + "initial_stress")) {
       const common::Mat3 s0 = voigt_stress(job.numbers(base + "initial_stress"));
       for (std::size_t p = first; p < setup.points.size(); ++p) setup.points.stress[p] = s0;

@@ -19,6 +19,7 @@ inline constexpr std::int32_t kDemMaterial = 1;
 struct MpmSetup {
   mpm::SolverConfig config;
   mpm::MaterialPoints points;  ///< every body's points, stresses set to the body's initial stress
+  std::vector<std::int32_t> body;  ///< index b of mpm.body[b] of each point
   std::vector<mpm::VelocityConstraint> constraints;
   std::vector<mpm::TractionLoad> tractions;
   bool has_elastic = false;

@@ -154,6 +154,7 @@ const Schema& job_schema() {
     add_run_sections(s);
     add_dem_sections(s);
     add_mpm_sections(s);
+    add_insitu_sections(s);
     return s;
   }();
   return schema;

@@ -102,6 +102,8 @@ struct Schema {
 void add_run_sections(Schema& s);
 void add_dem_sections(Schema& s);
 void add_mpm_sections(Schema& s);
+/// In-situ initial states of DEM bodies (schema_insitu.cpp): after add_mpm_sections.
+void add_insitu_sections(Schema& s);
 
 /// docs/jobs.md, generated from the schema.
 [[nodiscard]] std::string schema_markdown(const Schema& s);
