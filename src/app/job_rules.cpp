@@ -183,6 +183,12 @@ void mpm_rules(const Job& job, Rules& r) {
                          "(mpm.grid.cells = [{}, {}, {}])",
                          "xyz"[a], n[0], n[1], n[2]));
     }
+    if (job.text("mpm.shape_function") != "linear") {
+      r.fail("mpm.plane_strain",
+             fmt::format("needs mpm.shape_function = \"linear\", not \"{}\" (uGIMP and "
+                         "B-spline stencils span 3 node planes, the one-cell-thick grid has 2)",
+                         job.text("mpm.shape_function")));
+    }
   }
   if (any_elastic && !job.has_section("mpm.elastic")) {
     r.fail_missing("mpm.elastic", "required section when a body has material = \"elastic\"");

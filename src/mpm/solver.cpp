@@ -52,6 +52,13 @@ void SolverConfig::validate() const {
                              " (mpm.grid.cells), not " +
                              std::to_string(grid.cells[plane_strain_axis]));
   }
+  if (plane_strain_axis >= 0 && shape != ShapeKind::linear) {
+    // uGIMP and B-spline stencils span 3 node planes: a one-cell-thick grid has 2.
+    throw common::InputError(std::string("mpm.plane_strain with mpm.shape_function = \"") +
+                             std::string(to_string(shape)) +
+                             "\": plane strain needs the linear shape functions (the other "
+                             "stencils span 3 node planes, the one-cell-thick grid has 2)");
+  }
 }
 
 Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials)
