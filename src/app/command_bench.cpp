@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "mpm/benchmark.hpp"
@@ -16,6 +18,21 @@ int command_bench(const Options& o, const Comm& comm) {
   if (o.bench == "mpm") {
     const std::int64_t points = o.bench_size > 0 ? o.bench_size : 100000;
     const int steps = o.bench_steps > 0 ? o.bench_steps : 20;
+    // The rank-0 cost per step of a scene with the issue-15 features on (docs/mpm.md).
+    const mpm::SceneFeatures features;
+    std::printf(
+        "# mpm scene: rank-0 MPM cost per step, elastic column, plane strain %s, mass scaling "
+        "%g, gravity %s, energy accounting on (friction and reactions: not yet in this build)\n",
+        features.plane_strain ? "on" : "off", features.mass_scaling,
+        features.gravity ? "on" : "off");
+    for (const std::int64_t n : o.bench_size > 0 ? std::vector<std::int64_t>{o.bench_size}
+                                                 : std::vector<std::int64_t>{1000, 10000, 100000}) {
+      for (int t = 1; t <= std::max(2, max_threads); t *= 2) {
+        std::printf("%s\n",
+                    mpm::to_string(mpm::run_scene_benchmark(n, t, steps, features)).c_str());
+        std::fflush(stdout);
+      }
+    }
     std::printf("# mpm: material-point updates per second, USF, elastic block under gravity\n");
     for (const char* shape : {"linear", "ugimp", "bspline2"}) {
       for (int t = 1; t <= std::max(2, max_threads); t *= 2) {

@@ -90,13 +90,21 @@ int command_run(const Options& given, const Comm& comm) {
       }
     });
     const double h = cfg.solver.grid.spacing.minCoeff();
-    if (job.has("mpm.dt") && wave_speed > 0.0 && job.number("mpm.dt") > h / wave_speed) {
+    // Mass scaling s: the inertia is s m, the wave speed c / sqrt(s) (mpm::Solver::stable_dt).
+    const double s = cfg.solver.mass_scaling;
+    const double c = s != 1.0 ? wave_speed / std::sqrt(s) : wave_speed;
+    if (job.has("mpm.dt") && c > 0.0 && job.number("mpm.dt") > h / c) {
       throw common::InputError(job.message(
-          "mpm.dt", fmt::format("above the stability limit h / c = {:.4g} s (smallest spacing h = "
-                                "{:.4g} m, largest wave speed of the materials c = {:.4g} m/s): "
-                                "the explicit step would blow up; lower it, or leave dt out to "
-                                "use the CFL step",
-                                h / wave_speed, h, wave_speed)));
+          "mpm.dt",
+          fmt::format("above the stability limit h / c = {:.4g} s (smallest spacing h = "
+                      "{:.4g} m, largest wave speed of the materials c = {:.4g} m/s{}): "
+                      "the explicit step would blow up; lower it, or leave dt out to "
+                      "use the CFL step",
+                      h / c, h, c,
+                      s != 1.0
+                          ? fmt::format(" with mpm.mass_scaling = {:.6g}: {:.4g} / sqrt({:.6g})", s,
+                                        wave_speed, s)
+                          : std::string())));
     }
   }
   const std::filesystem::path out = open_output(o, job, comm);

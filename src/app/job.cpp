@@ -279,6 +279,23 @@ class Validator {
         break;
       }
       case Type::Int: {
+        if (const auto* arr = node.as_array(); arr != nullptr && key.per_axis) {
+          // One integer per axis.
+          if (arr->size() != 3) {
+            return fail(fmt::format("must be an integer or a list of 3 integers, not {} entries",
+                                    arr->size()));
+          }
+          std::vector<std::int64_t> iv;
+          for (std::size_t k = 0; k < arr->size(); ++k) {
+            const auto* n = arr->get(k)->as_integer();
+            if (n == nullptr) return fail(fmt::format("entry {} must be an integer", k + 1));
+            if (!in_range(key, static_cast<double>(n->get())))
+              return fail(fmt::format("entry {}: {}", k + 1, range_rule(key)));
+            iv.push_back(n->get());
+          }
+          value = std::move(iv);
+          break;
+        }
         const auto* i = node.as_integer();
         if (i == nullptr) return fail("must be an integer");
         if (!in_range(key, static_cast<double>(i->get()))) return fail(range_rule(key));
@@ -448,6 +465,14 @@ const std::vector<double>& Job::numbers(const std::string& path) const {
 }
 const std::vector<std::int64_t>& Job::integers(const std::string& path) const {
   return get_as<std::vector<std::int64_t>>(entry(path), path);
+}
+std::array<std::int64_t, 3> Job::per_axis(const std::string& path) const {
+  const Entry& e = entry(path);
+  if (const auto* list = std::get_if<std::vector<std::int64_t>>(&e.value)) {
+    return {(*list)[0], (*list)[1], (*list)[2]};
+  }
+  const std::int64_t n = get_as<std::int64_t>(e, path);
+  return {n, n, n};
 }
 
 std::string Job::message(const std::string& path, const std::string& rule) const {

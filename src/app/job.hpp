@@ -2,6 +2,8 @@
 // the line it came from, so that later checks can still name file:line, key, value and rule.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <string_view>
@@ -41,6 +43,8 @@ class Job {
   [[nodiscard]] const std::string& text(const std::string& path) const;
   [[nodiscard]] const std::vector<double>& numbers(const std::string& path) const;
   [[nodiscard]] const std::vector<std::int64_t>& integers(const std::string& path) const;
+  /// A per-axis integer key (Key::or_per_axis): n as {n, n, n}, or the list of 3 as written.
+  [[nodiscard]] std::array<std::int64_t, 3> per_axis(const std::string& path) const;
 
   /// An InputError about key `path` ("file:line: path = value: rule"); for cross-key checks.
   [[nodiscard]] std::string message(const std::string& path, const std::string& rule) const;

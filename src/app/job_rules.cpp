@@ -159,7 +159,9 @@ void mpm_rules(const Job& job, Rules& r) {
       const auto& hi = job.numbers(base + "max");
       double cells = 1.0;
       for (int a = 0; a < 3; ++a) cells *= std::max(0.0, std::ceil((hi[a] - lo[a]) / h[a]));
-      points += cells * std::pow(static_cast<double>(job.integer(base + "points_per_cell")), 3);
+      const auto ppc = job.per_axis(base + "points_per_cell");
+      points += cells * static_cast<double>(ppc[0]) * static_cast<double>(ppc[1]) *
+                static_cast<double>(ppc[2]);
     }
     const double need = nodes * kBytesPerNode + points * kBytesPerPoint;
     const double mem = physical_memory_bytes();
@@ -168,6 +170,22 @@ void mpm_rules(const Job& job, Rules& r) {
              fmt::format("{:.3g} grid nodes and {:.3g} material points need about {:.3g} GB of "
                          "memory on rank 0, more than this machine's {:.3g} GB",
                          nodes, points, need / 1e9, mem / 1e9));
+    }
+  }
+  if (job.has("mpm.plane_strain")) {
+    // Plane strain holds the velocity along the thickness on every node: one cell through it.
+    const int a = job.text("mpm.plane_strain")[0] - 'x';
+    if (n[static_cast<std::size_t>(a)] != 1) {
+      r.fail("mpm.plane_strain",
+             fmt::format("the grid must have exactly 1 cell along the thickness axis {} "
+                         "(mpm.grid.cells = [{}, {}, {}])",
+                         "xyz"[a], n[0], n[1], n[2]));
+    }
+    if (job.text("mpm.shape_function") != "linear") {
+      r.fail("mpm.plane_strain",
+             fmt::format("needs mpm.shape_function = \"linear\", not \"{}\" (uGIMP and "
+                         "B-spline stencils span 3 node planes, the one-cell-thick grid has 2)",
+                         job.text("mpm.shape_function")));
     }
   }
   if (any_elastic && !job.has_section("mpm.elastic")) {

@@ -21,6 +21,11 @@ common::Mat3 voigt_stress(const std::vector<double>& s) {  // xx, yy, zz, yz, xz
   m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
   return m;
 }
+
+common::Vec3i points_per_cell(const Job& job, const std::string& key) {
+  const auto n = job.per_axis(key);
+  return {static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])};
+}
 }  // namespace
 
 MpmSetup mpm_setup(const Job& job) {
@@ -38,7 +43,8 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.damping_mode = job.text("mpm.damping_mode") == "component"
                          ? mpm::DampingMode::cundall_component
                          : mpm::DampingMode::cundall_vector;
-  fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold
+  fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold, ...
+  if (job.has("mpm.plane_strain")) cfg.plane_strain_axis = job.text("mpm.plane_strain")[0] - 'x';
   cfg.move_points = job.flag("mpm.move_points");
   setup.end_time = job.number("mpm.end_time");
 
@@ -49,10 +55,9 @@ MpmSetup mpm_setup(const Job& job) {
     const std::size_t first = setup.points.size();
     std::size_t added = 0;
     try {
-      added = mpm::fill_box(setup.points, cfg.grid, vec3(job.numbers(base + "min")),
-                            vec3(job.numbers(base + "max")),
-                            static_cast<int>(job.integer(base + "points_per_cell")),
-                            job.number(base + "density"), material);
+      added = mpm::fill_box(
+          setup.points, cfg.grid, vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")),
+          points_per_cell(job, base + "points_per_cell"), job.number(base + "density"), material);
     } catch (const common::InputError& e) {
       throw common::InputError(job.message(base + "max", e.what()));  // name the file, line and key
     }

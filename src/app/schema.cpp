@@ -65,7 +65,7 @@ std::string type_name(const Key& key) {
     case Type::Float:
       return "a number";
     case Type::Int:
-      return "an integer";
+      return key.per_axis ? "an integer or a list of 3 integers" : "an integer";
     case Type::Bool:
       return "true or false";
     case Type::String:

@@ -33,6 +33,7 @@ struct Key {
   bool required = false;
   std::optional<Value> fallback;     ///< default (numerical and output knobs only)
   std::vector<std::string> choices;  ///< allowed strings
+  bool per_axis = false;             ///< an Int that may also be a list of 3 (one per axis)
   std::string doc;                   ///< what the key means
 
   // Fluent builders keep the schema tables readable.
@@ -63,6 +64,11 @@ struct Key {
   }
   Key& one_of(std::vector<std::string> c) {
     choices = std::move(c);
+    return *this;
+  }
+  /// An Int key that also accepts a list of 3 integers, one per axis (Job::per_axis reads both).
+  Key& or_per_axis() {
+    per_axis = true;
     return *this;
   }
   Key& unit(Quantity q) {

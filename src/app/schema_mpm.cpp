@@ -27,7 +27,11 @@ void add_mpm_sections(Schema& s) {
         "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
       .one_of({"vector", "component"})
       .or_default(std::string("vector"));
-  add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold
+  add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
+  s.add("mpm.plane_strain", Type::String,
+        "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
+        "held at zero and the material sees no strain rate through it, docs/mpm.md). Absent: 3D.")
+      .one_of({"x", "y", "z"});
   s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.")
       .unit(Q::Time)
       .in(0, std::nullopt, true)
@@ -64,8 +68,9 @@ void add_mpm_sections(Schema& s) {
       .need();
   s.add("mpm.body[].points_per_cell", Type::Int,
         "Material points per cell along each axis, at the regular positions (k + 1/2) / n of the "
-        "cell.")
+        "cell: one count for every axis, or one per axis (e.g. [2, 1, 2] for plane strain).")
       .in(1, 8)
+      .or_per_axis()
       .need();
   s.add("mpm.body[].density", Type::Float, "Bulk density of the material (mass per unit volume).")
       .unit(Q::Density)

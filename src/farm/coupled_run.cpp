@@ -1,13 +1,16 @@
 // CoupledRun: the coupled run as an object (see header).
 #include "farm/coupled_run.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 #include <utility>
 
 #include "common/errors.hpp"
@@ -85,6 +88,7 @@ class Master {
   OutputSchedule output_;
   CheckpointSchedule checkpoints_;
   BalanceSchedule balance_;
+  mpm::QuasiStaticWatch quasi_static_;  ///< energy ratio of a mass-scaled run (docs/mpm.md)
 };
 
 /// The MPM solver around the farm, at the start state: the checkpoint's, or for a fresh run
@@ -118,16 +122,29 @@ Master::Master(const CoupledConfig& cfg, RveFarm& farm, const std::optional<Chec
       results_(cfg.output.dir, ids, solver_.points(), info ? info->step : -1),
       output_(cfg.output.every),
       checkpoints_(cfg.checkpoint, fault_abort_at, info ? info->step : -1, wall_now()),
-      balance_(cfg.balance, farm.size()) {}
+      balance_(cfg.balance, farm.size()),
+      quasi_static_(cfg.solver.quasi_static_ratio, cfg.solver.mass_scaling, cfg.end_time) {}
 
 void Master::run(RunSummary& sum) {
   const std::int64_t start_step = solver_.step_count();
   if (results_.rows() == 0) output();
   const double t0 = wall_now();
   ProgressSchedule progress_(cfg_.output.log_every_s, t0);
+  const double scaling = cfg_.solver.mass_scaling;
+  if (scaling != 1.0) {
+    spdlog::warn(
+        "mass scaling ON: mpm.mass_scaling = {:.6g}: the MPM inertia is {:.6g} x the real mass "
+        "(the weight is not), the CFL time step {:.4g} x larger; only for quasi-static scenes: a "
+        "kinetic / internal energy ratio above mpm.quasi_static_ratio = {:.3g} is warned",
+        scaling, scaling, std::sqrt(scaling), cfg_.solver.quasi_static_ratio);
+  }
   while (more()) {
     solver_.step();
     const std::int64_t s = solver_.step_count();
+    if (scaling > 1.0) {
+      const std::string w = quasi_static_.observe(s, solver_.time(), solver_.energies());
+      if (!w.empty()) spdlog::warn("{}", w);
+    }
     if (output_.due(s)) output();
     if (balance_.due(s)) balance(s);
     const double now = wall_now();
@@ -139,6 +156,13 @@ void Master::run(RunSummary& sum) {
     if (cfg_.on_step) cfg_.on_step(s, farm_.times());
   }
   sum.wall_s = wall_now() - t0;
+  const mpm::Energies e = solver_.energies();
+  spdlog::info("energies: E_kin {:.4g} J, W_int {:.4g} J, E_kin/W_int {:.3g} at the end{}",
+               e.kinetic, e.internal_work, e.ratio(),
+               scaling > 1.0
+                   ? fmt::format(", at most {:.3g} after the first {:.0f} % of the end time",
+                                 quasi_static_.max_ratio(), 100.0 * mpm::QuasiStaticWatch::kWarmUp)
+                   : std::string());
   if (output_.due_at_end(solver_.step_count(), results_.rows())) output();
   results_.flush();
   if (checkpoints_.due_at_end(solver_.step_count())) checkpoint(sum);
@@ -177,8 +201,12 @@ void Master::progress(std::int64_t step, double per_step) {
   results_.flush(false);  // the ParaView / CSV indexes within their time share
   const double left = eta_s(step, solver_.time(), cfg_.max_steps, cfg_.end_time, per_step);
   const SampleMeans m = sample_means(solver_.points(), farm_.reports(), cfg_.output.axial_axis);
-  spdlog::info("step {} t = {:.6g} s eps_ax = {:.4g} q = {:.4g} Pa ETA {} imbalance {:.3f}", step,
-               solver_.time(), m.eps_ax, m.q, format_duration(left), farm_.imbalance());
+  const mpm::Energies e = solver_.energies();
+  spdlog::info(
+      "step {} t = {:.6g} s eps_ax = {:.4g} q = {:.4g} Pa ETA {} imbalance {:.3f} E_kin/W_int "
+      "{:.3g} (E_kin {:.4g} J, W_int {:.4g} J)",
+      step, solver_.time(), m.eps_ax, m.q, format_duration(left), farm_.imbalance(), e.ratio(),
+      e.kinetic, e.internal_work);
 }
 
 }  // namespace

@@ -63,11 +63,13 @@ void MaterialPoints::validate() const {
 }
 
 std::size_t fill_box(MaterialPoints& points, const Grid& grid, const common::Vec3& lo,
-                     const common::Vec3& hi, int points_per_cell, double density,
+                     const common::Vec3& hi, const common::Vec3i& points_per_cell, double density,
                      std::int32_t material_id) {
-  if (points_per_cell < 1) {
-    throw common::InputError("mpm fill_box: points_per_cell = " + std::to_string(points_per_cell) +
-                             ": must be >= 1");
+  for (int d = 0; d < 3; ++d) {
+    if (points_per_cell[d] < 1) {
+      throw common::InputError("mpm fill_box: points_per_cell along axis " + std::to_string(d) +
+                               " = " + std::to_string(points_per_cell[d]) + ": must be >= 1");
+    }
   }
   if (!(density > 0.0)) {
     throw common::InputError("mpm fill_box: density = " + std::to_string(density) +
@@ -76,13 +78,13 @@ std::size_t fill_box(MaterialPoints& points, const Grid& grid, const common::Vec
   common::Vec3i n;
   for (int d = 0; d < 3; ++d) {
     const double cells = (hi[d] - lo[d]) / grid.spacing[d];
-    n[d] = static_cast<int>(std::lround(cells)) * points_per_cell;
+    n[d] = static_cast<int>(std::lround(cells)) * points_per_cell[d];
     if (n[d] < 1 || std::abs(cells - std::round(cells)) > 1e-9) {
       throw common::InputError("mpm fill_box: box extent along axis " + std::to_string(d) +
                                " must be a positive whole number of cells");
     }
   }
-  const common::Vec3 step = grid.spacing / points_per_cell;
+  const common::Vec3 step = grid.spacing.cwiseQuotient(points_per_cell.cast<double>());
   const double vol = step.prod();
   std::int64_t next =
       points.id.empty() ? 0 : *std::max_element(points.id.begin(), points.id.end()) + 1;
@@ -97,6 +99,13 @@ std::size_t fill_box(MaterialPoints& points, const Grid& grid, const common::Vec
     }
   }
   return added;
+}
+
+std::size_t fill_box(MaterialPoints& points, const Grid& grid, const common::Vec3& lo,
+                     const common::Vec3& hi, int points_per_cell, double density,
+                     std::int32_t material_id) {
+  return fill_box(points, grid, lo, hi, common::Vec3i::Constant(points_per_cell), density,
+                  material_id);
 }
 
 }  // namespace mpm

@@ -40,6 +40,25 @@ void SolverConfig::validate() const {
   grid.validate();
   common::check_ranges(kSolverConfig, *this);
   if (!gravity.allFinite()) throw common::InputError("mpm.gravity is not finite");
+  if (plane_strain_axis < -1 || plane_strain_axis > 2) {
+    throw common::InputError(
+        "mpm::SolverConfig::plane_strain_axis = " + std::to_string(plane_strain_axis) +
+        ": must be -1 (3D) or the thickness axis 0, 1 or 2");
+  }
+  if (plane_strain_axis >= 0 && grid.cells[plane_strain_axis] != 1) {
+    const char axis = static_cast<char>('x' + plane_strain_axis);
+    throw common::InputError(std::string("mpm.plane_strain = \"") + axis +
+                             "\": the grid must have exactly 1 cell along " + axis +
+                             " (mpm.grid.cells), not " +
+                             std::to_string(grid.cells[plane_strain_axis]));
+  }
+  if (plane_strain_axis >= 0 && shape != ShapeKind::linear) {
+    // uGIMP and B-spline stencils span 3 node planes: a one-cell-thick grid has 2.
+    throw common::InputError(std::string("mpm.plane_strain with mpm.shape_function = \"") +
+                             std::string(to_string(shape)) +
+                             "\": plane strain needs the linear shape functions (the other "
+                             "stencils span 3 node planes, the one-cell-thick grid has 2)");
+  }
 }
 
 Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials)
@@ -94,6 +113,8 @@ void Solver::add_traction(const TractionLoad& load) {
 double Solver::stable_dt(double& speed) const {
   double c = 0.0;
   for (const MaterialModel* m : materials_) c = std::max(c, m->wave_speed());
+  // Mass scaling: the inertia is s times the mass, the wave speed c / sqrt(s).
+  if (config_.mass_scaling != 1.0) c /= std::sqrt(config_.mass_scaling);
   double vmax = 0.0;
   for (const common::Vec3& v : points_.v) vmax = std::max(vmax, v.norm());
   speed = c + vmax;
@@ -137,14 +158,54 @@ void Solver::prepare_grid(std::int64_t step, double t) {
   bin_points(config_.grid, cache_, bins_);
   activate_nodes(config_.grid, cache_, bins_, fields_);
   p2g_mass_momentum(config_.grid, cache_, bins_, points_, config_.gravity, fields_);
+  scale_inertia(true);  // after P2G: the gravity force above keeps the real mass
   threshold_ = config_.mass_threshold * typical_nodal_mass(fields_);
   compute_nodal_velocity(threshold_, fields_);
   apply_velocity_constraints(config_.grid, constraints_, t, fields_);
+  hold_thickness_velocity();
+}
+
+void Solver::scale_inertia(bool with_mass) {
+  const double s = config_.mass_scaling;
+  if (s == 1.0) return;
+  for (const std::int64_t i : fields_.active) {
+    const auto u = static_cast<std::size_t>(i);
+    if (with_mass) fields_.mass[u] *= s;
+    fields_.momentum[u] *= s;
+  }
+}
+
+void Solver::hold_thickness_velocity() {
+  const int a = config_.plane_strain_axis;
+  if (a < 0) return;
+  // The fixed bit also keeps the held component out of the damping (eq. 8).
+  for (const std::int64_t i : fields_.active) {
+    const auto u = static_cast<std::size_t>(i);
+    fields_.velocity[u][a] = 0.0;
+    fields_.fixed[u] = static_cast<std::uint8_t>(fields_.fixed[u] | (1u << a));
+  }
+}
+
+void Solver::hold_thickness_acceleration() {
+  const int a = config_.plane_strain_axis;
+  if (a < 0) return;
+  for (const std::int64_t i : fields_.active)
+    fields_.acceleration[static_cast<std::size_t>(i)][a] = 0.0;
 }
 
 void Solver::update_stress(double dt) {
   const auto n = static_cast<std::int64_t>(points_.size());
   const common::Mat3 I = common::Mat3::Identity();
+  if (const int a = config_.plane_strain_axis; a >= 0) {
+    // Plane strain: no stretching or shearing through the thickness reaches the material, even
+    // when its out-of-plane shear stress makes the in-plane velocities vary through the cell.
+    for (common::Mat3& L : points_.L) {
+      L.row(a).setZero();
+      L.col(a).setZero();
+    }
+  }
+  // Internal work: trapezoidal rule on the stress power (old and new volume and stress).
+  const double power_start = stress_power(points_);
   // Kinematics: F <- (I + L dt) F, V <- det(I + L dt) V.
   for_each_index(n, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
@@ -160,6 +221,11 @@ void Solver::update_stress(double dt) {
                                  " (t = " + num_str(time_ + dt) + " s, dt = " + num_str(dt) +
                                  " s): " + e.what());
   }
+  internal_work_ += 0.5 * dt * (power_start + stress_power(points_));
+}
+
+Energies Solver::energies() const {
+  return {kinetic_energy(points_, config_.mass_scaling), internal_work_};
 }
 
 void Solver::update_material_stress(double dt) {
@@ -236,6 +302,7 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
+    hold_thickness_acceleration();
     // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
     g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
   } else {
@@ -245,10 +312,13 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
+    hold_thickness_acceleration();
     g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
     p2g_momentum(grid, cache_, bins_, points_, fields_);
+    scale_inertia(false);
     compute_nodal_velocity(threshold_, fields_);
     apply_velocity_constraints(grid, constraints_, t + dt, fields_);
+    hold_thickness_velocity();
     g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
     update_stress(dt);
     check_points(t + dt);
@@ -300,6 +370,7 @@ void unflatten(const std::vector<double>& d, std::vector<common::Mat3>& v) {
 void Solver::save(common::StateWriter& w) const {
   w.write("solver/step", std::vector<std::int64_t>{step_});
   w.write("solver/time", std::vector<double>{time_});
+  w.write("solver/internal_work", std::vector<double>{internal_work_});
   w.write("points/id", points_.id);
   w.write("points/x", flatten(points_.x));
   w.write("points/v", flatten(points_.v));
@@ -322,6 +393,14 @@ void Solver::load(const common::StateReader& r) {
   const std::vector<double> time = r.read_f64("solver/time");
   if (step.size() != 1 || time.size() != 1) {
     throw common::InputError("mpm checkpoint: solver/step and solver/time must hold one value");
+  }
+  // Absent from checkpoints written before the energy accounting: the work restarts from 0.
+  double work = 0.0;
+  if (r.has("solver/internal_work")) {
+    const std::vector<double> w = r.read_f64("solver/internal_work");
+    if (w.size() != 1)
+      throw common::InputError("mpm checkpoint: solver/internal_work must hold one value");
+    work = w[0];
   }
   MaterialPoints pts;
   const std::vector<std::int64_t> ids = r.read_i64("points/id");
@@ -364,6 +443,7 @@ void Solver::load(const common::StateReader& r) {
   points_ = std::move(pts);
   step_ = step[0];
   time_ = time[0];
+  internal_work_ = work;
 }
 
 }  // namespace mpm

@@ -8,6 +8,7 @@
 #include "common/param_table.hpp"
 #include "common/state_io.hpp"
 #include "mpm/boundary.hpp"
+#include "mpm/energy.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_solve.hpp"
 #include "mpm/material_model.hpp"
@@ -51,6 +52,17 @@ struct SolverConfig {
   /// Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run
   /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1.
   double max_volume_ratio = 10.0;
+  /// Plane strain (docs/mpm.md, "Plane strain"): the thickness axis 0, 1 or 2 (-1: 3D). The grid
+  /// must have exactly one cell along it; the nodal velocity along it is held at zero and the
+  /// thickness row and column of each point's L are zeroed before the material sees it.
+  int plane_strain_axis = -1;
+  /// Quasi-static mass scaling s >= 1 [-] (docs/mpm.md, "Mass scaling"): nodal masses and momenta
+  /// (the inertia) are s times the points' masses, gravity acts on the real mass; the CFL step
+  /// grows by sqrt(s). 1: off.
+  double mass_scaling = 1.0;
+  /// Kinetic energy over internal work above which a mass-scaled run is warned that it is no
+  /// longer quasi-static [-] (mpm/energy.hpp, QuasiStaticWatch).
+  double quasi_static_ratio = 0.01;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
@@ -73,7 +85,15 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
       "Nodes lighter than this fraction of the typical nodal mass are inactive."},
      {"max_volume_ratio", &SolverConfig::max_volume_ratio, common::Unit::Dimensionless,
       common::gt(1), common::Source::cpp_only,
-      "Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run."}});
+      "Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run."},
+     {"mass_scaling", &SolverConfig::mass_scaling, common::Unit::Dimensionless, common::ge(1),
+      common::Source::job_default,
+      "Quasi-static mass scaling: the inertia (not the weight) is multiplied by it, the time step "
+      "by its square root; 1 = off (docs/mpm.md, Mass scaling)."},
+     {"quasi_static_ratio", &SolverConfig::quasi_static_ratio, common::Unit::Dimensionless,
+      common::gt(0), common::Source::job_default,
+      "With mass_scaling > 1: the log warns once when the kinetic energy exceeds this fraction "
+      "of the internal work."}});
 
 /// Owns the points and the grid fields; materials are not owned and must outlive the solver.
 class Solver {
@@ -105,17 +125,20 @@ class Solver {
   [[nodiscard]] const SolverConfig& config() const { return config_; }
   [[nodiscard]] double time() const { return time_; }  ///< [s]
   [[nodiscard]] std::int64_t step_count() const { return step_; }
+  /// Kinetic energy (with the scaled inertia) and internal work since the start (mpm/energy.hpp).
+  [[nodiscard]] Energies energies() const;
   /// Loaded area of each traction load in the last step [m^2], in add_traction order.
   [[nodiscard]] const std::vector<double>& traction_areas() const { return traction_areas_; }
 
   /// Writes the MPM state as named fields (docs/mpm.md, "Checkpoint"): solver/step,
-  /// solver/time, points/id, points/x, points/v, points/mass, points/volume, points/volume0,
-  /// points/half_width0, points/stress, points/F, points/L, points/material,
+  /// solver/time, solver/internal_work, points/id, points/x, points/v, points/mass, points/volume,
+  /// points/volume0, points/half_width0, points/stress, points/F, points/L, points/material,
   /// loads/traction_<k>/point_slots. The materials'
   /// own state is written by their owner (e.g. LinearElastic::save).
   void save(common::StateWriter& writer) const;
   /// Restores what save wrote; a run continued from it is bit-for-bit the uninterrupted one.
-  /// Throws common::InputError on a missing field or inconsistent sizes.
+  /// Throws common::InputError on a missing field or inconsistent sizes. A checkpoint without
+  /// solver/internal_work (written before it existed) restarts the internal work from 0.
   void load(const common::StateReader& reader);
 
  private:
@@ -126,6 +149,11 @@ class Solver {
   void check_points(double t_end) const;
   /// The stable step h_min / (c + |v|_max) [s] and the speed used [m/s].
   [[nodiscard]] double stable_dt(double& speed) const;
+  /// Plane strain: holds the thickness component of the nodal velocity / acceleration.
+  void hold_thickness_velocity();
+  void hold_thickness_acceleration();
+  /// Mass scaling: multiplies the nodal momenta (and masses when `with_mass`) by s.
+  void scale_inertia(bool with_mass);
 
   SolverConfig config_;
   MaterialPoints points_;
@@ -140,6 +168,7 @@ class Solver {
   double threshold_ = 0.0;
   double time_ = 0.0;
   std::int64_t step_ = 0;
+  double internal_work_ = 0.0;  ///< sum over steps of the stress power times dt [J]
   // Per-material gather buffers (used when there is more than one material).
   std::vector<std::int64_t> gather_ids_;
   std::vector<common::Mat3> gather_L_;

@@ -1,6 +1,8 @@
 // Tests of grid.hpp and material_points.hpp: indexing, validation, regular filling.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/errors.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/material_points.hpp"
@@ -43,6 +45,38 @@ TEST(MaterialPoints, FillBoxPlacesPaperPositions) {
   }
   EXPECT_DOUBLE_EQ(mass, 1500.0);
   EXPECT_NO_THROW(pts.validate());
+}
+
+// Per-axis counts: [2, 1, 3] in a 2 x 1 x 1 box of cells 1 x 0.5 x 3 m: positions (k + 1/2) / n
+// of each cell per axis, half-widths spacing / (2 n) per axis, the box's mass conserved.
+TEST(MaterialPoints, FillBoxPerAxisCounts) {
+  mpm::Grid g{common::Vec3::Zero(), common::Vec3(1.0, 0.5, 3.0), common::Vec3i(2, 1, 1)};
+  mpm::MaterialPoints pts;
+  EXPECT_EQ(mpm::fill_box(pts, g, common::Vec3::Zero(), common::Vec3(2.0, 0.5, 3.0),
+                          common::Vec3i(2, 1, 3), 1000.0, 0),
+            2u * 2u * 1u * 3u);
+  double mass = 0.0;
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    const double fx = pts.x[p][0] - std::floor(pts.x[p][0]);
+    EXPECT_TRUE(fx == 0.25 || fx == 0.75) << pts.x[p][0];
+    EXPECT_EQ(pts.x[p][1], 0.25);
+    EXPECT_TRUE(pts.x[p][2] == 0.5 || pts.x[p][2] == 1.5 || pts.x[p][2] == 2.5) << pts.x[p][2];
+    EXPECT_EQ(pts.half_width0[p], common::Vec3(0.25, 0.25, 0.5));
+    EXPECT_DOUBLE_EQ(pts.volume[p], 0.5 * 0.5 * 1.0);
+    mass += pts.mass[p];
+  }
+  EXPECT_DOUBLE_EQ(mass, 1000.0 * 2.0 * 0.5 * 3.0);
+  // The scalar form is the per-axis form with equal counts (same points, same order).
+  mpm::MaterialPoints a;
+  mpm::MaterialPoints b;
+  mpm::fill_box(a, g, common::Vec3::Zero(), common::Vec3(2.0, 0.5, 3.0), 2, 1000.0, 0);
+  mpm::fill_box(b, g, common::Vec3::Zero(), common::Vec3(2.0, 0.5, 3.0), common::Vec3i(2, 2, 2),
+                1000.0, 0);
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_EQ(a.half_width0, b.half_width0);
+  EXPECT_THROW(mpm::fill_box(pts, g, common::Vec3::Zero(), common::Vec3(2.0, 0.5, 3.0),
+                             common::Vec3i(2, 0, 2), 1000.0, 0),
+               common::InputError);
 }
 
 TEST(MaterialPoints, ValidateRejectsDuplicateIdsAndBadMass) {
