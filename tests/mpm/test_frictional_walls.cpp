@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
+
+#include "common/state_store.hpp"
 
 #include "mpm/boundary.hpp"
 #include "mpm/linear_elastic.hpp"
@@ -216,6 +219,51 @@ TEST(Reactions, GateStopsActingAtUntil) {
   // The mover: 2 m/s over its active steps (holds no material: no reaction).
   EXPECT_NEAR(solver.constraint_displacements()[3][2], 2.0 * active_time, 1e-12);
   EXPECT_EQ(solver.reactions()[3], Vec3::Zero());
+}
+
+// A windowed constraint's displacement (state: saved as constraints/displacement) and a wall's
+// reaction continue bit for bit across save/load; an always-active one (v t, no state) too.
+TEST(Reactions, WindowedDisplacementContinuesAcrossCheckpoint) {
+  auto build = [](mpm::LinearElastic& mat) {
+    mpm::SolverConfig cfg;
+    cfg.grid = {Vec3::Zero(), Vec3::Constant(0.05), common::Vec3i(8, 2, 4)};
+    cfg.gravity = Vec3(3, 0, -10);
+    mpm::MaterialPoints pts;
+    mpm::fill_box(pts, cfg.grid, Vec3(0.1, 0, 0), Vec3(0.2, 0.1, 0.1), 2, 2000.0, 0);
+    auto s = std::make_unique<mpm::Solver>(cfg, pts, std::vector<mpm::MaterialModel*>{&mat});
+    mpm::VelocityConstraint base = mpm::face_constraint(cfg.grid, 2, -1, {false, false, false});
+    base.wall = {2, -1, 0.2, mpm::WallContact::no_penetration};
+    s->add_constraint(base);
+    mpm::VelocityConstraint mover{
+        Vec3(0.3, -1, -1), Vec3(0.4, 1, 1), {false, false, true}, Vec3(0, 0, 0.5), {}};
+    mover.from = 2e-3;
+    mover.until = 6e-3;
+    s->add_constraint(mover);
+    s->add_constraint(mpm::face_constraint(cfg.grid, 0, 1, {true, false, false}, Vec3(-0.1, 0, 0)));
+    return s;
+  };
+  mpm::LinearElastic mat_a(1e6, 0.3, 2000.0);
+  auto a = build(mat_a);
+  while (a->time() < 4e-3) a->step();
+  common::StateStore store;
+  a->save(store);
+  mat_a.save(store, "material/0/");
+  EXPECT_TRUE(store.has("constraints/displacement"));
+  const std::int64_t half = a->step_count();
+  a->run(half);
+  mpm::LinearElastic mat_b(1e6, 0.3, 2000.0);
+  auto b = build(mat_b);
+  b->load(store);
+  mat_b.load(store, "material/0/");
+  b->run(half);
+  ASSERT_EQ(a->time(), b->time());
+  EXPECT_GT(a->time(), 6e-3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(a->constraint_displacements()[k], b->constraint_displacements()[k]) << k;
+    EXPECT_EQ(a->reactions()[k], b->reactions()[k]) << k;
+  }
+  EXPECT_NEAR(a->constraint_displacements()[1][2], 0.5 * 4e-3, 0.5 * a->next_dt());
+  EXPECT_EQ(a->constraint_displacements()[2], Vec3(-0.1 * a->time(), 0, 0));
 }
 
 }  // namespace
