@@ -247,6 +247,11 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     for (const SeriesSpec& s : kSeries) {
       auto se = std::make_unique<Series>();
       se->set_layout(s, n, m);
+      if (std::string(s.name) == "points/volume" &&
+          H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
+        create_nan_series(s, keep);  // added after format 1's first files (issue 15)
+        continue;
+      }
       se->dset = Handle(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), H5Dclose);
       if (!se->dset.valid()) {
         throw common::InputError("output " + path + ": dataset /" + std::string(s.name) +
@@ -315,6 +320,18 @@ void ResultsWriter::create_series(const SeriesSpec& s) {
   series_[s.name] = std::move(se);
 }
 
+void ResultsWriter::create_nan_series(const SeriesSpec& s, std::uint64_t keep) {
+  create_series(s);
+  Series& se = *series_.at(s.name);
+  std::vector<hsize_t> dims{keep};
+  dims.insert(dims.end(), se.row.begin(), se.row.end());
+  check(H5Dset_extent(se.dset.get(), dims.data()), std::string("extend ") + s.name);
+  if (keep == 0) return;
+  const std::vector<double> nan(keep * se.row_bytes / 8, std::numeric_limits<double>::quiet_NaN());
+  check(H5Dwrite(se.dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, nan.data()),
+        std::string("write ") + s.name);
+}
+
 void ResultsWriter::open_constraints(std::uint64_t keep) {
   if (constraint_names_.empty()) return;
   const std::size_t nc = constraint_names_.size();
@@ -322,15 +339,7 @@ void ResultsWriter::open_constraints(std::uint64_t keep) {
     if (H5Lexists(file_.get(), "constraints", H5P_DEFAULT) <= 0 ||
         H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
       // A file of an earlier version: the rows before the restart have no constraint data (NaN).
-      create_series(s);
-      Series& se = *series_.at(s.name);
-      const std::vector<hsize_t> dims{keep, nc, 3};
-      check(H5Dset_extent(se.dset.get(), dims.data()), std::string("extend ") + s.name);
-      if (keep > 0) {
-        const std::vector<double> nan(keep * nc * 3, std::numeric_limits<double>::quiet_NaN());
-        check(H5Dwrite(se.dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, nan.data()),
-              std::string("write ") + s.name);
-      }
+      create_nan_series(s, keep);
     } else {
       auto se = std::make_unique<Series>();
       se->set_layout(s, rve_ids_.size(), point_ids_.size(), nc);

@@ -73,6 +73,9 @@ class ResultsWriter {
  private:
   struct Series;
   void create_series(const SeriesSpec& spec);
+  /// A series missing from a file being continued (written by an earlier version): created
+  /// with `keep` rows of NaN.
+  void create_nan_series(const SeriesSpec& spec, std::uint64_t keep);
   void open_constraints(std::uint64_t keep);
   void describe_constraints();
   void stage_row(const std::string& name, const void* data);

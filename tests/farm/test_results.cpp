@@ -5,6 +5,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -308,6 +309,45 @@ TEST(Results, NoConstraintsNoConstraintOutputs) {
   const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   EXPECT_EQ(H5Lexists(f, "constraints", H5P_DEFAULT), 0);
   H5Fclose(f);
+}
+
+// A results.h5 written before constraints were recorded, continued by a run that records them:
+// the kept rows get NaN, the new rows their values; reactions.csv has every row. The same for
+// /points/volume.
+TEST(Results, RestartOfAnOlderFileFillsConstraintRowsWithNaN) {
+  const std::string dir = scratch("constraints_old_file");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    for (int r = 0; r < 5; ++r) smp.append(w, r);
+  }
+  {  // /points/volume came with /constraints (issue 15): an older file has neither.
+    const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(H5Ldelete(f, "points/volume", H5P_DEFAULT), 0);
+    H5Fclose(f);
+  }
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, 20, {"platen"});
+    EXPECT_EQ(w.rows(), 3);
+    const std::vector<common::Mat3> stress(3, common::Mat3::Identity());
+    w.append(30, 1.5, stress, smp.reports(3), smp.points, farm::SampleMeans{},
+             {common::Vec3(1, 2, 3)}, {common::Vec3(0, 0, -1)});
+    w.flush();
+  }
+  const std::vector<double> reaction = read_all(dir + "/results.h5", "/constraints/reaction");
+  ASSERT_EQ(reaction.size(), 4u * 3);
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_TRUE(std::isnan(reaction[i])) << i;
+  EXPECT_EQ(reaction[9], 1.0);
+  EXPECT_EQ(reaction[11], 3.0);
+  const std::vector<double> volume = read_all(dir + "/results.h5", "/points/volume");
+  ASSERT_EQ(volume.size(), 4u * 3);
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_TRUE(std::isnan(volume[i])) << i;
+  EXPECT_EQ(volume[9], 1.0);  // the sample's points have volume 1
+  std::ifstream csv(dir + "/reactions.csv");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(csv, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_EQ(lines[4], "30,1.5,1,2,3,0,0,-1");
 }
 
 }  // namespace
