@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+
 #include "app/schema_params.hpp"
 #include "common/errors.hpp"
 
@@ -25,6 +28,59 @@ common::Mat3 voigt_stress(const std::vector<double>& s) {  // xx, yy, zz, yz, xz
 common::Vec3i points_per_cell(const Job& job, const std::string& key) {
   const auto n = job.per_axis(key);
   return {static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])};
+}
+
+/// The frictional wall, time window and name keys of one [[mpm.velocity]] (`base` ends in '.').
+void velocity_extras(const Job& job, const std::string& base, mpm::VelocityConstraint& c) {
+  const bool face = job.has(base + "face");
+  if (job.has(base + "normal") && !job.has(base + "friction")) {
+    throw common::InputError(
+        job.message(base + "normal", "only used with friction (a frictional wall's side)"));
+  }
+  if (job.has(base + "contact") && !job.has(base + "friction")) {
+    throw common::InputError(job.message(
+        base + "contact", "only used with friction (give friction = 0 for a smooth wall)"));
+  }
+  if (job.has(base + "friction")) {
+    if (face && job.has(base + "normal")) {
+      throw common::InputError(
+          job.message(base + "normal", "not used with face: the face is the wall's side"));
+    }
+    if (!face && !job.has(base + "normal")) {
+      throw common::InputError(
+          job.message(base + "friction",
+                      "a frictional box or node needs normal (the side of the material "
+                      "the wall lies on, e.g. normal = \"z+\" for a top platen)"));
+    }
+    int axis = 0;
+    int side = 0;
+    face_axis_side(job.text(base + (face ? "face" : "normal")), axis, side);
+    const std::string n_key = base + std::string(1, static_cast<char>('x' + axis));
+    if (!job.has(n_key)) {
+      throw common::InputError(
+          job.message(base + "friction",
+                      fmt::format("a frictional wall needs its normal velocity {} (e.g. {} = 0.0)",
+                                  n_key, static_cast<char>('x' + axis))));
+    }
+    const bool no_pen = job.has(base + "contact") && job.text(base + "contact") == "no_penetration";
+    c.wall = {axis, side, job.number(base + "friction"),
+              no_pen ? mpm::WallContact::no_penetration : mpm::WallContact::fixed};
+  }
+  if (job.has(base + "from")) c.from = job.number(base + "from");
+  if (job.has(base + "until")) c.until = job.number(base + "until");
+  if (job.has(base + "from") && job.has(base + "until") && !(c.until > c.from)) {
+    throw common::InputError(job.message(base + "until", "must be after from"));
+  }
+  if (job.has(base + "name")) {
+    const std::string& name = job.text(base + "name");
+    const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) != 0 || ch == '_' || ch == '-';
+    });
+    if (!ok) {
+      throw common::InputError(
+          job.message(base + "name", "must be letters, digits, _ or - (a CSV column name)"));
+    }
+  }
 }
 }  // namespace
 
@@ -86,18 +142,29 @@ MpmSetup mpm_setup(const Job& job) {
         v[a] = job.number(key);
       }
     }
+    mpm::VelocityConstraint c;
     if (job.has(base + "face")) {
       int axis = 0;
       int side = 0;
       face_axis_side(job.text(base + "face"), axis, side);
-      setup.constraints.push_back(mpm::face_constraint(cfg.grid, axis, side, fixed, v));
+      c = mpm::face_constraint(cfg.grid, axis, side, fixed, v);
     } else if (job.has(base + "node")) {
-      setup.constraints.push_back(
-          mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v));
+      c = mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v);
     } else {
-      setup.constraints.push_back(
-          {vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")), fixed, v, {}});
+      c.lo = vec3(job.numbers(base + "min"));
+      c.hi = vec3(job.numbers(base + "max"));
+      c.fixed = fixed;
+      c.velocity = v;
     }
+    velocity_extras(job, base, c);
+    c.name = job.has(base + "name") ? job.text(base + "name") : fmt::format("velocity_{}", i);
+    for (const mpm::VelocityConstraint& other : setup.constraints) {
+      if (other.name == c.name) {
+        throw common::InputError(job.message(
+            base + "name", "names the constraint of another [[mpm.velocity]]: names are unique"));
+      }
+    }
+    setup.constraints.push_back(std::move(c));
   }
   for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {
     const std::string base = fmt::format("mpm.traction[{}].", i);

@@ -110,6 +110,28 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.velocity[].x", Type::Float, "Imposed x velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].y", Type::Float, "Imposed y velocity; absent: free.").unit(Q::Velocity);
   s.add("mpm.velocity[].z", Type::Float, "Imposed z velocity; absent: free.").unit(Q::Velocity);
+  s.add("mpm.velocity[].friction", Type::Float,
+        "Coulomb friction coefficient: the nodes form a rigid wall moving at (x, y, z) (absent "
+        "components 0; the normal one must be given), tangential slip resisted up to friction "
+        "times the normal force (0: smooth, large: rough). docs/mpm.md, Frictional boundaries.")
+      .in(0, std::nullopt);
+  s.add("mpm.velocity[].normal", Type::String,
+        "Side of the material a frictional box or node wall lies on (a face gives its own).")
+      .one_of({"x-", "x+", "y-", "y+", "z-", "z+"});
+  s.add("mpm.velocity[].contact", Type::String,
+        "Normal behaviour of a frictional wall: fixed (normal velocity imposed) or "
+        "no_penetration (the material may leave the wall); absent: fixed.")
+      .one_of({"fixed", "no_penetration"});
+  s.add("mpm.velocity[].from", Type::Float, "Time from which the constraint acts; absent: 0.")
+      .unit(Q::Time)
+      .in(0, std::nullopt);
+  s.add("mpm.velocity[].until", Type::Float,
+        "Time from which the constraint stops acting (e.g. a gate removed); absent: never.")
+      .unit(Q::Time)
+      .in(0, std::nullopt, true);
+  s.add("mpm.velocity[].name", Type::String,
+        "Name of the constraint in reactions.csv and results.h5 (letters, digits, _ and -); "
+        "absent: velocity_<index>.");
 
   s.add("mpm.traction[]", Type::TableList,
         "A pressure on a face of the material, applied on its current area.");

@@ -62,7 +62,8 @@ class Master {
   void output() {
     results_.append(solver_.step_count(), solver_.time(), farm_.stresses(), farm_.reports(),
                     solver_.points(),
-                    sample_means(solver_.points(), farm_.reports(), cfg_.output.axial_axis));
+                    sample_means(solver_.points(), farm_.reports(), cfg_.output.axial_axis),
+                    solver_.reactions(), solver_.constraint_displacements());
   }
   void checkpoint(RunSummary& sum);
   void balance(std::int64_t step);
@@ -119,7 +120,8 @@ Master::Master(const CoupledConfig& cfg, RveFarm& farm, const std::optional<Chec
       ids_(ids),
       solver_(start_solver(cfg, farm, info, mpm_state)),
       index_(ids, solver_.points().id),
-      results_(cfg.output.dir, ids, solver_.points(), info ? info->step : -1),
+      results_(cfg.output.dir, ids, solver_.points(), info ? info->step : -1,
+               solver_.constraint_names()),
       output_(cfg.output.every),
       checkpoints_(cfg.checkpoint, fault_abort_at, info ? info->step : -1, wall_now()),
       balance_(cfg.balance, farm.size()),

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
@@ -15,19 +17,19 @@
 
 namespace farm {
 
+struct SeriesSpec {  // declared in results.hpp
+  const char* name;
+  bool integer;
+  int per_item;             ///< values per RVE or point (0: scalar per row)
+  char over;                ///< 'r' RVEs, 'p' points, 'c' constraints, '-' none
+  const char* unit;         ///< attribute "unit" ("-": dimensionless, "": a count or bits)
+  const char* description;  ///< attribute "description"
+};
+
 namespace {
 
 using h5::check;
 using h5::Handle;
-
-struct SeriesSpec {
-  const char* name;
-  bool integer;
-  int per_item;             ///< values per RVE or point (0: scalar per row)
-  char over;                ///< 'r' RVEs, 'p' points, '-' none
-  const char* unit;         ///< attribute "unit" ("-": dimensionless, "": a count or bits)
-  const char* description;  ///< attribute "description"
-};
 
 // Sign conventions: stress tensors are Cauchy, tension positive; p, q and the strains of
 // /means are compression positive (root attribute "conventions", docs/farm.md "Outputs").
@@ -49,6 +51,7 @@ constexpr SeriesSpec kSeries[] = {
      "position of every material point (order of /points/id) [row, point, xyz]"},
     {"points/stress", false, 9, 'p', "Pa",
      "Cauchy stress of every point, row-major 3x3 [row, point, 9], TENSION positive"},
+    {"points/volume", false, 1, 'p', "m^3", "current volume of every point (J V0)"},
     {"points/p", false, 1, 'p', "Pa", "p of the point's RVE (/rve/p), compression positive"},
     {"points/q", false, 1, 'p', "Pa", "q of the point's RVE (/rve/q), von Mises"},
     {"points/void_ratio", false, 1, 'p', "-", "void ratio of the point's RVE"},
@@ -61,6 +64,18 @@ constexpr SeriesSpec kSeries[] = {
      "-ln(1 - eps_v) is the logarithmic strain"},
     {"means/p", false, 0, '-', "Pa", "mean over RVEs of p, compression positive"},
     {"means/q", false, 0, '-', "Pa", "mean over RVEs of the von Mises q"},
+};
+
+// Velocity constraints (mpm::Solver::reactions), written when the run has any; their names are
+// the attribute "names" of /constraints, in order.
+constexpr SeriesSpec kConstraintSeries[] = {
+    {"constraints/reaction", false, 3, 'c', "N",
+     "force each velocity constraint exerts ON the material in the row's step, sum over its "
+     "nodes of m (a after it - a before it) [row, constraint, xyz] (order: attribute names of "
+     "/constraints)"},
+    {"constraints/displacement", false, 3, 'c', "m",
+     "displacement of each constraint: integral of its prescribed velocity over the time it was "
+     "active [row, constraint, xyz]"},
 };
 
 /// UTF-8 variable-length string attribute `name` of `obj`, replacing one of that name (h5py
@@ -122,10 +137,12 @@ void describe(hid_t file) {
   for (const SeriesSpec& s : kSeries) dataset(s.name, s.unit, s.description);
 }
 
-std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts) {
+std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts,
+                              std::size_t n_con) {
   std::vector<hsize_t> d;
   if (s.over == 'r') d.push_back(n_rve);
   if (s.over == 'p') d.push_back(n_pts);
+  if (s.over == 'c') d.push_back(n_con);
   if (s.per_item > 1) d.push_back(static_cast<hsize_t>(s.per_item));
   return d;
 }
@@ -168,8 +185,9 @@ struct ResultsWriter::Series {
   hid_t type = H5T_NATIVE_DOUBLE;
   std::size_t row_bytes = 0;  ///< one row's values (8 bytes each)
   std::vector<char> pending;  ///< rows appended but not written yet, in order
-  void set_layout(const SeriesSpec& spec, std::size_t n_rve, std::size_t n_pts) {
-    row = row_dims(spec, n_rve, n_pts);
+  void set_layout(const SeriesSpec& spec, std::size_t n_rve, std::size_t n_pts,
+                  std::size_t n_con = 0) {
+    row = row_dims(spec, n_rve, n_pts, n_con);
     type = spec.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
     row_bytes = 8;
     for (const hsize_t r : row) row_bytes *= static_cast<std::size_t>(r);
@@ -203,8 +221,12 @@ SampleMeans sample_means(const mpm::MaterialPoints& points, const std::vector<Mi
 }
 
 ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int64_t>& rve_ids,
-                             const mpm::MaterialPoints& points, std::int64_t restart_step)
-    : dir_(dir), rve_ids_(rve_ids), point_ids_(points.id) {
+                             const mpm::MaterialPoints& points, std::int64_t restart_step,
+                             std::vector<std::string> constraint_names)
+    : dir_(dir),
+      rve_ids_(rve_ids),
+      point_ids_(points.id),
+      constraint_names_(std::move(constraint_names)) {
   h5::silence_errors();
   const PointIndex index(rve_ids_, point_ids_);  // every point has an RVE (checked)
   for (std::size_t p = 0; p < index.size(); ++p) rve_of_point_.push_back(index.rve_of(p));
@@ -225,6 +247,11 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     for (const SeriesSpec& s : kSeries) {
       auto se = std::make_unique<Series>();
       se->set_layout(s, n, m);
+      if (std::string(s.name) == "points/volume" &&
+          H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
+        create_nan_series(s, keep);  // added after format 1's first files (issue 15)
+        continue;
+      }
       se->dset = Handle(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), H5Dclose);
       if (!se->dset.valid()) {
         throw common::InputError("output " + path + ": dataset /" + std::string(s.name) +
@@ -243,7 +270,9 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     const auto mp = read_rows<double>(file_.get(), "/means/p", keep);
     const auto mq = read_rows<double>(file_.get(), "/means/q", keep);
     for (hsize_t t = 0; t < keep; ++t) means_.push_back({ea[t], ev[t], mp[t], mq[t]});
+    open_constraints(keep);
     describe(file_.get());  // a file of an earlier version gets them; software_version: this one
+    describe_constraints();
     return;
   }
   file_ =
@@ -251,38 +280,118 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   if (!file_.valid()) throw common::InputError("output " + path + ": cannot create");
   write_static(file_.get(), "/rve/id", rve_ids_);
   write_static(file_.get(), "/points/id", point_ids_);
-  for (const SeriesSpec& s : kSeries) {
-    auto se = std::make_unique<Series>();
-    se->set_layout(s, n, m);
-    std::vector<hsize_t> dims{0};
-    std::vector<hsize_t> maxd{H5S_UNLIMITED};
-    // Chunks of many rows (up to kRowsPerWrite, at most ~1 MB): one chunk per row made every
-    // block write and every H5Fflush touch thousands of chunks in a long run.
-    const hsize_t rows_per_chunk =
-        s.over == '-' ? 256
-                      : std::clamp<hsize_t>((1u << 20) / std::max<std::size_t>(se->row_bytes, 1), 1,
-                                            static_cast<hsize_t>(kRowsPerWrite));
-    std::vector<hsize_t> chunk{rows_per_chunk};
-    for (hsize_t r : se->row) {
-      dims.push_back(r);
-      maxd.push_back(r);
-      chunk.push_back(std::max<hsize_t>(1, r));
-    }
-    Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxd.data()),
-                       "H5Screate_simple"),
-                 H5Sclose);
-    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
-    check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk");
-    Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
-    H5Pset_create_intermediate_group(lcpl.get(), 1);
-    se->dset = Handle(
-        check(H5Dcreate2(file_.get(), s.name, s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
-                         space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
-              std::string("create ") + s.name),
-        H5Dclose);
-    series_[s.name] = std::move(se);
+  for (const SeriesSpec& s : kSeries) create_series(s);
+  if (!constraint_names_.empty()) {
+    for (const SeriesSpec& s : kConstraintSeries) create_series(s);
   }
   describe(file_.get());
+  describe_constraints();
+}
+
+void ResultsWriter::create_series(const SeriesSpec& s) {
+  auto se = std::make_unique<Series>();
+  se->set_layout(s, rve_ids_.size(), point_ids_.size(), constraint_names_.size());
+  std::vector<hsize_t> dims{0};
+  std::vector<hsize_t> maxd{H5S_UNLIMITED};
+  // Chunks of many rows (up to kRowsPerWrite, at most ~1 MB): one chunk per row made every
+  // block write and every H5Fflush touch thousands of chunks in a long run.
+  const hsize_t rows_per_chunk =
+      s.over == '-' ? 256
+                    : std::clamp<hsize_t>((1u << 20) / std::max<std::size_t>(se->row_bytes, 1), 1,
+                                          static_cast<hsize_t>(kRowsPerWrite));
+  std::vector<hsize_t> chunk{rows_per_chunk};
+  for (hsize_t r : se->row) {
+    dims.push_back(r);
+    maxd.push_back(r);
+    chunk.push_back(std::max<hsize_t>(1, r));
+  }
+  Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxd.data()),
+                     "H5Screate_simple"),
+               H5Sclose);
+  Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+  check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk");
+  Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  se->dset =
+      Handle(check(H5Dcreate2(file_.get(), s.name, s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
+                              space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
+                   std::string("create ") + s.name),
+             H5Dclose);
+  series_[s.name] = std::move(se);
+}
+
+void ResultsWriter::create_nan_series(const SeriesSpec& s, std::uint64_t keep) {
+  create_series(s);
+  Series& se = *series_.at(s.name);
+  std::vector<hsize_t> dims{keep};
+  dims.insert(dims.end(), se.row.begin(), se.row.end());
+  check(H5Dset_extent(se.dset.get(), dims.data()), std::string("extend ") + s.name);
+  if (keep == 0) return;
+  const std::vector<double> nan(keep * se.row_bytes / 8, std::numeric_limits<double>::quiet_NaN());
+  check(H5Dwrite(se.dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, nan.data()),
+        std::string("write ") + s.name);
+}
+
+void ResultsWriter::open_constraints(std::uint64_t keep) {
+  if (constraint_names_.empty()) return;
+  const std::size_t nc = constraint_names_.size();
+  for (const SeriesSpec& s : kConstraintSeries) {
+    if (H5Lexists(file_.get(), "constraints", H5P_DEFAULT) <= 0 ||
+        H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
+      // A file of an earlier version: the rows before the restart have no constraint data (NaN).
+      create_nan_series(s, keep);
+    } else {
+      auto se = std::make_unique<Series>();
+      se->set_layout(s, rve_ids_.size(), point_ids_.size(), nc);
+      se->dset = Handle(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), H5Dclose);
+      Handle fs(H5Dget_space(se->dset.get()), H5Sclose);
+      hsize_t d[3] = {0, 0, 0};
+      if (H5Sget_simple_extent_ndims(fs.get()) != 3 ||
+          (H5Sget_simple_extent_dims(fs.get(), d, nullptr), d[1] != nc)) {
+        throw common::InputError("output results.h5: /" + std::string(s.name) + " does not hold " +
+                                 std::to_string(nc) +
+                                 " constraints (the job's [[mpm.velocity]] changed?)");
+      }
+      const std::vector<hsize_t> dims{keep, nc, 3};
+      check(H5Dset_extent(se->dset.get(), dims.data()), std::string("truncate ") + s.name);
+      series_[s.name] = std::move(se);
+    }
+  }
+  // The kept rows, for reactions.csv.
+  auto read = [&](const char* name) {
+    std::vector<double> v(keep * nc * 3);
+    if (keep > 0) {
+      check(H5Dread(series_.at(name)->dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                    v.data()),
+            std::string("read ") + name);
+    }
+    return v;
+  };
+  const std::vector<double> r = read("constraints/reaction");
+  const std::vector<double> u = read("constraints/displacement");
+  for (std::size_t t = 0; t < keep; ++t) {
+    std::vector<double> row;
+    for (std::size_t k = 0; k < nc; ++k) {
+      for (std::size_t a = 0; a < 3; ++a) row.push_back(r[(t * nc + k) * 3 + a]);
+      for (std::size_t a = 0; a < 3; ++a) row.push_back(u[(t * nc + k) * 3 + a]);
+    }
+    constraint_rows_.push_back(std::move(row));
+  }
+}
+
+void ResultsWriter::describe_constraints() {
+  if (constraint_names_.empty()) return;
+  for (const SeriesSpec& s : kConstraintSeries) {
+    Handle d(check(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), std::string("open ") + s.name),
+             H5Dclose);
+    put_attr(d.get(), "unit", std::string(s.unit));
+    put_attr(d.get(), "description", std::string(s.description));
+  }
+  Handle g(check(H5Gopen2(file_.get(), "constraints", H5P_DEFAULT), "open /constraints"), H5Gclose);
+  put_attr(g.get(), "names", fmt::format("{}", fmt::join(constraint_names_, ",")));
+  put_attr(g.get(), "description",
+           std::string("velocity constraints ([[mpm.velocity]] of the job, in order); names: "
+                       "comma-separated, the columns of reactions.csv"));
 }
 
 ResultsWriter::~ResultsWriter() {
@@ -333,8 +442,29 @@ void ResultsWriter::write_pending() {
 void ResultsWriter::append(std::int64_t step, double time,
                            const std::vector<common::Mat3>& rve_stress,
                            const std::vector<MicroReport>& reports,
-                           const mpm::MaterialPoints& points, const SampleMeans& means) {
+                           const mpm::MaterialPoints& points, const SampleMeans& means,
+                           const std::vector<common::Vec3>& reactions,
+                           const std::vector<common::Vec3>& displacements) {
   MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
+  if (!constraint_names_.empty()) {
+    const std::size_t nc = constraint_names_.size();
+    MPMXDEM_CHECK(reactions.size() == nc && displacements.size() == nc,
+                  "one reaction and one displacement per constraint");
+    std::vector<double> r(3 * nc);
+    std::vector<double> u(3 * nc);
+    std::vector<double> row;
+    for (std::size_t k = 0; k < nc; ++k) {
+      for (int a = 0; a < 3; ++a) {
+        r[3 * k + static_cast<std::size_t>(a)] = reactions[k][a];
+        u[3 * k + static_cast<std::size_t>(a)] = displacements[k][a];
+      }
+      row.insert(row.end(), {reactions[k][0], reactions[k][1], reactions[k][2]});
+      row.insert(row.end(), {displacements[k][0], displacements[k][1], displacements[k][2]});
+    }
+    stage_row("constraints/reaction", r.data());
+    stage_row("constraints/displacement", u.data());
+    constraint_rows_.push_back(std::move(row));
+  }
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
   auto mat9 = [](const common::Mat3& a, double* out) { common::row_major_out(out) = a; };
@@ -373,6 +503,7 @@ void ResultsWriter::append(std::int64_t step, double time,
   stage_row("points/x", x.data());
   for (std::size_t p = 0; p < m; ++p) mat9(points.stress[p], buf.data() + 9 * p);
   stage_row("points/stress", buf.data());
+  stage_row("points/volume", points.volume.data());
   stage_row("means/eps_ax", &means.eps_ax);
   stage_row("means/eps_v", &means.eps_v);
   stage_row("means/p", &means.p);
@@ -405,65 +536,6 @@ void ResultsWriter::flush(bool indexes) {
   index_cost_s_ = std::chrono::duration<double>(index_written_ - now).count();
 }
 
-void ResultsWriter::write_xdmf() const {
-  // Formatted with fmt and the row-invariant text prepared once: rewriting the index of a long
-  // run (13,000 rows) with iostreams took 0.4 s per flush.
-  const std::size_t m = point_ids_.size();
-  const std::int64_t nt = rows_;
-  struct Slab {
-    std::string head;  ///< text before the row index
-    std::string tail;  ///< text after it
-  };
-  // Xdmf3's hyperslab form "file:/dataset|start:stride:count:dims", which ParaView's default
-  // reader (Xdmf3) reads; a HyperSlab DataItem with an XML selection (XDMF 2's form) gave it
-  // empty grids (ParaView 5.11, issue 19). ParaView's legacy "XDMF Reader" does not read it.
-  auto slab = [&](const char* ds, int per) {
-    const std::string dims = per > 1 ? fmt::format("{} {}", m, per) : fmt::format("{}", m);
-    Slab s;
-    s.head = fmt::format(
-        "<DataItem Dimensions=\"{}\" NumberType=\"Float\" Precision=\"8\" "
-        "Format=\"HDF\">results.h5:/{}|",
-        dims, ds);
-    s.tail = per > 1 ? fmt::format(" 0 0:1 1 1:1 {0} {1}:{2} {0} {1}</DataItem>", m, per, nt)
-                     : fmt::format(" 0:1 1:1 {0}:{1} {0}</DataItem>", m, nt);
-    return s;
-  };
-  const Slab x = slab("points/x", 3);
-  const Slab stress = slab("points/stress", 9);
-  const char* scalars[] = {"p", "q", "void_ratio", "z"};
-  std::vector<Slab> sc;
-  for (const char* a : scalars) sc.push_back(slab((std::string("points/") + a).c_str(), 1));
-  const std::string id_attr = fmt::format(
-      "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
-      "Dimensions=\"{}\" NumberType=\"Int\" Precision=\"8\" "
-      "Format=\"HDF\">results.h5:/points/id</DataItem></Attribute>\n",
-      m);
-  fmt::memory_buffer out;
-  auto it = std::back_inserter(out);
-  fmt::format_to(it,
-                 "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
-                 "<Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-  for (std::int64_t t = 0; t < nt; ++t) {
-    const auto tu = static_cast<std::size_t>(t);
-    fmt::format_to(it,
-                   "<Grid Name=\"step_{}\" GridType=\"Uniform\">\n<Time Value=\"{:.17g}\"/>\n"
-                   "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\"/>\n"
-                   "<Geometry GeometryType=\"XYZ\">{}{}{}</Geometry>\n"
-                   "<Attribute Name=\"stress\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
-                   "</Attribute>\n",
-                   steps_[tu], times_[tu], m, x.head, t, x.tail, stress.head, t, stress.tail);
-    for (std::size_t a = 0; a < sc.size(); ++a) {
-      fmt::format_to(it,
-                     "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"
-                     "</Attribute>\n",
-                     scalars[a], sc[a].head, t, sc[a].tail);
-    }
-    fmt::format_to(it, "{}</Grid>\n", id_attr);
-  }
-  fmt::format_to(it, "</Grid>\n</Domain>\n</Xdmf>\n");
-  common::write_file_atomic(std::filesystem::path(dir_) / "points.xmf", fmt::to_string(out));
-}
-
 void ResultsWriter::write_csv() const {
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
@@ -477,6 +549,21 @@ void ResultsWriter::write_csv() const {
                    m[1], m[2], m[3]);
   }
   common::write_file_atomic(std::filesystem::path(dir_) / "means.csv", fmt::to_string(out));
+  if (constraint_names_.empty()) return;
+  // reactions.csv: the same rows; per constraint its reaction [N] and displacement [m].
+  fmt::memory_buffer rc;
+  auto ri = std::back_inserter(rc);
+  fmt::format_to(ri, "step,time_s");
+  for (const std::string& n : constraint_names_) {
+    fmt::format_to(ri, ",{0}_rx_N,{0}_ry_N,{0}_rz_N,{0}_ux_m,{0}_uy_m,{0}_uz_m", n);
+  }
+  fmt::format_to(ri, "\n");
+  for (std::size_t t = 0; t < steps_.size() && t < constraint_rows_.size(); ++t) {
+    fmt::format_to(ri, "{},{:.17g}", steps_[t], times_[t]);
+    for (const double v : constraint_rows_[t]) fmt::format_to(ri, ",{:.17g}", v);
+    fmt::format_to(ri, "\n");
+  }
+  common::write_file_atomic(std::filesystem::path(dir_) / "reactions.csv", fmt::to_string(rc));
 }
 
 }  // namespace farm

@@ -28,13 +28,18 @@ struct SampleMeans {
 [[nodiscard]] SampleMeans sample_means(const mpm::MaterialPoints& points,
                                        const std::vector<MicroReport>& reports, int axial_axis);
 
+struct SeriesSpec;  ///< one dataset of results.h5 (results.cpp)
+
 class ResultsWriter {
  public:
   /// Creates `dir`/results.h5, or, when restart_step >= 0 and the file exists, reopens it and
   /// drops the rows after restart_step (so a restarted run's file equals the uninterrupted one).
   /// rve_ids: ascending; the points' ids and order must stay those of `points`.
+  /// constraint_names (mpm::Solver::constraint_names): when not empty, /constraints/reaction and
+  /// /constraints/displacement are written and reactions.csv beside means.csv.
   ResultsWriter(const std::string& dir, const std::vector<std::int64_t>& rve_ids,
-                const mpm::MaterialPoints& points, std::int64_t restart_step);
+                const mpm::MaterialPoints& points, std::int64_t restart_step,
+                std::vector<std::string> constraint_names = {});
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
@@ -42,10 +47,14 @@ class ResultsWriter {
   /// One output row. rve_stress/reports by RVE index (ascending ids). Rows are kept in memory
   /// and written in blocks (kRowsPerWrite rows or kBytesPerWrite bytes), by flush() and by the
   /// destructor (a run that stops on an error keeps its completed rows).
+  /// reactions, displacements: one per constraint name (mpm::Solver::reactions and
+  /// constraint_displacements) [N], [m]; ignored without constraint names.
   void append(std::int64_t step, double time, const std::vector<common::Mat3>& rve_stress,
               const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
-              const SampleMeans& means);
-  /// Writes the pending rows, flushes results.h5 and rewrites points.xmf and means.csv (atomic
+              const SampleMeans& means, const std::vector<common::Vec3>& reactions = {},
+              const std::vector<common::Vec3>& displacements = {});
+  /// Writes the pending rows, flushes results.h5 and rewrites points.xmf, means.csv and
+  /// reactions.csv (atomic
   /// rename each). With `indexes` false the two are rewritten only if the time since their last
   /// rewrite is at least their cost over kIndexShare (progress lines of long runs).
   void flush(bool indexes = true);
@@ -63,6 +72,12 @@ class ResultsWriter {
 
  private:
   struct Series;
+  void create_series(const SeriesSpec& spec);
+  /// A series missing from a file being continued (written by an earlier version): created
+  /// with `keep` rows of NaN.
+  void create_nan_series(const SeriesSpec& spec, std::uint64_t keep);
+  void open_constraints(std::uint64_t keep);
+  void describe_constraints();
   void stage_row(const std::string& name, const void* data);
   void write_pending();
   void write_xdmf() const;
@@ -79,7 +94,9 @@ class ResultsWriter {
   std::size_t pending_bytes_ = 0;
   std::vector<std::int64_t> steps_;  ///< of every row (written or pending)
   std::vector<double> times_;
-  std::vector<std::array<double, 4>> means_;               ///< eps_ax, eps_v, p, q of every row
+  std::vector<std::array<double, 4>> means_;  ///< eps_ax, eps_v, p, q of every row
+  std::vector<std::string> constraint_names_;
+  std::vector<std::vector<double>> constraint_rows_;  ///< per row: rx ry rz ux uy uz per constraint
   std::chrono::steady_clock::time_point index_written_{};  ///< last rewrite of xmf + csv
   double index_cost_s_ = 0.0;                              ///< its duration [s]
 };

@@ -48,6 +48,19 @@ ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c) {
   if (m > 2)
     throw common::InputError("mpm constraint: mirror_axis = " + std::to_string(m) +
                              ": must be -1 or 0..2");
+  if (c.has_wall()) {
+    if (c.wall.axis > 2 || (c.wall.side != -1 && c.wall.side != 1) || !(c.wall.mu >= 0.0)) {
+      throw common::InputError("mpm constraint: wall axis = " + std::to_string(c.wall.axis) +
+                               ", side = " + std::to_string(c.wall.side) +
+                               ", friction = " + std::to_string(c.wall.mu) +
+                               ": axis must be 0..2, side -1 or +1 and friction >= 0");
+    }
+    if (m >= 0) throw common::InputError("mpm constraint: a wall cannot have a mirror");
+  }
+  if (!(c.from < c.until)) {
+    throw common::InputError("mpm constraint: from = " + std::to_string(c.from) + " s, until = " +
+                             std::to_string(c.until) + " s: from must be before until");
+  }
   double plane_index = 0.0;
   if (m >= 0) {
     plane_index = (c.mirror_plane - grid.origin[m]) / grid.spacing[m];
@@ -86,16 +99,39 @@ common::Vec3 prescribed(const Grid& grid, const VelocityConstraint& c, std::int6
                         double t) {
   return c.field ? c.field(grid.node_position(node), t) : c.velocity;
 }
+
+/// Whether a node may be touched this step (it holds mass, or it is in a stencil).
+bool node_active(const GridFields& fields, std::size_t u) { return fields.is_active[u] != 0; }
 }  // namespace
+
+common::Vec3 prescribed_velocity(const VelocityConstraint& c, double t) {
+  common::Vec3 v = c.field ? c.field(0.5 * (c.lo + c.hi), t) : c.velocity;
+  if (!c.has_wall()) {
+    for (int d = 0; d < 3; ++d) {
+      if (!c.fixed[static_cast<std::size_t>(d)]) v[d] = 0.0;
+    }
+  }
+  return v;
+}
 
 void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
                                 double t, GridFields& fields) {
   for (const ResolvedConstraint& c : cs) {
+    if (!c.spec.active_at(t)) continue;
     for (std::size_t k = 0; k < c.nodes.size(); ++k) {
       const std::int64_t i = c.nodes[k];
       const auto u = static_cast<std::size_t>(i);
-      if (!fields.is_active[u]) continue;
+      if (!node_active(fields, u)) continue;
       common::Vec3 v = prescribed(grid, c.spec, i, t);
+      if (c.spec.has_wall()) {
+        // Momentum-stage correction of the projected velocity (enters L and the PIC share).
+        const WallCorrection w = apply_wall_friction(fields.velocity[u], v, c.spec.wall);
+        if (w.in_contact) {
+          fields.velocity[u] = w.velocity;
+          fields.fixed[u] = static_cast<std::uint8_t>(fields.fixed[u] | (1u << c.spec.wall.axis));
+        }
+        continue;
+      }
       if (!c.mirror.empty() && c.mirror[k] >= 0) {
         const auto mi = static_cast<std::size_t>(c.mirror[k]);
         v = 2.0 * v - (fields.is_active[mi] ? fields.velocity[mi] : v);
@@ -111,24 +147,41 @@ void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedCons
 }
 
 void apply_acceleration_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
-                                    double t, double dt, GridFields& fields) {
-  for (const ResolvedConstraint& c : cs) {
+                                    double t, double dt, GridFields& fields,
+                                    std::vector<common::Vec3>* reactions) {
+  if (reactions != nullptr) reactions->assign(cs.size(), common::Vec3::Zero());
+  for (std::size_t ci = 0; ci < cs.size(); ++ci) {
+    const ResolvedConstraint& c = cs[ci];
+    if (!c.spec.active_at(t)) continue;
+    common::Vec3 reaction = common::Vec3::Zero();
     for (std::size_t k = 0; k < c.nodes.size(); ++k) {
       const std::int64_t i = c.nodes[k];
       const auto u = static_cast<std::size_t>(i);
-      if (!fields.is_active[u]) continue;
-      common::Vec3 a = common::Vec3::Zero();
-      if (c.spec.field)
-        a = (c.spec.field(grid.node_position(i), t + dt) - c.spec.field(grid.node_position(i), t)) /
-            dt;
-      if (!c.mirror.empty() && c.mirror[k] >= 0) {
-        const auto mi = static_cast<std::size_t>(c.mirror[k]);
-        a = 2.0 * a - (fields.is_active[mi] ? fields.acceleration[mi] : a);
+      if (!node_active(fields, u)) continue;
+      const common::Vec3 a_before = fields.acceleration[u];
+      if (c.spec.has_wall()) {
+        // Contact on the trial velocity V(t) + a dt against the wall's velocity at t + dt.
+        const common::Vec3 v_wall = prescribed(grid, c.spec, i, t + dt);
+        const WallCorrection w =
+            apply_wall_friction(fields.velocity[u] + dt * a_before, v_wall, c.spec.wall);
+        if (w.in_contact) fields.acceleration[u] = (w.velocity - fields.velocity[u]) / dt;
+      } else {
+        common::Vec3 a = common::Vec3::Zero();
+        if (c.spec.field)
+          a = (c.spec.field(grid.node_position(i), t + dt) -
+               c.spec.field(grid.node_position(i), t)) /
+              dt;
+        if (!c.mirror.empty() && c.mirror[k] >= 0) {
+          const auto mi = static_cast<std::size_t>(c.mirror[k]);
+          a = 2.0 * a - (fields.is_active[mi] ? fields.acceleration[mi] : a);
+        }
+        for (int d = 0; d < 3; ++d) {
+          if (c.spec.fixed[static_cast<std::size_t>(d)]) fields.acceleration[u][d] = a[d];
+        }
       }
-      for (int d = 0; d < 3; ++d) {
-        if (c.spec.fixed[static_cast<std::size_t>(d)]) fields.acceleration[u][d] = a[d];
-      }
+      reaction += fields.mass[u] * (fields.acceleration[u] - a_before);
     }
+    if (reactions != nullptr) (*reactions)[ci] = reaction;
   }
 }
 

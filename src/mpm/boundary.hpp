@@ -6,8 +6,11 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <string>
 #include <vector>
 
+#include "mpm/friction.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/shape_function.hpp"
@@ -33,6 +36,23 @@ struct VelocityConstraint {
   /// velocity on the plane is then exactly V.
   int mirror_axis = -1;
   double mirror_plane = 0.0;  ///< [m]
+  /// Optional frictional wall (docs/mpm.md, "Frictional boundaries and reactions"): when
+  /// wall.axis is 0..2 (see has_wall), the nodes are on a rigid wall moving at `velocity` (all
+  /// three components; `fixed` is not used) with Coulomb friction (apply_wall_friction).
+  /// No mirror.
+  WallFriction wall{-1, -1, 0.0, WallContact::fixed};
+  /// Active for from <= t < until, t the start time of a step [s] (defaults: always). An
+  /// inactive constraint leaves its nodes free (e.g. a gate removed at `until`).
+  double from = -std::numeric_limits<double>::infinity();
+  double until = std::numeric_limits<double>::infinity();
+  std::string name{};  ///< name in the outputs; empty: "constraint_<k>" (k: add_constraint order)
+
+  [[nodiscard]] bool has_wall() const { return wall.axis >= 0; }
+  [[nodiscard]] bool active_at(double t) const { return from <= t && t < until; }
+  [[nodiscard]] bool has_window() const {
+    return from > -std::numeric_limits<double>::infinity() ||
+           until < std::numeric_limits<double>::infinity();
+  }
 };
 
 /// The grid's boundary node plane on one side: a box selecting those nodes.
@@ -52,13 +72,24 @@ struct ResolvedConstraint {
 };
 ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c);
 
-/// Sets the prescribed components of the active constrained nodes' velocity at time t [s].
+/// Sets the prescribed components of the active constrained nodes' velocity at time t [s], for
+/// the constraints active at t. A wall applies its friction law to the projected velocity
+/// V(t) (Bardenhagen's momentum-stage correction) and flags its normal component as prescribed
+/// where the node is in contact.
 void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
                                 double t, GridFields& fields);
 /// Sets the prescribed components of the active constrained nodes' acceleration:
-/// (V(t + dt) - V(t)) / dt [m/s^2].
+/// (V(t + dt) - V(t)) / dt [m/s^2], for the constraints active at t. A wall applies its friction
+/// law to the trial velocity V(t) + a dt and sets a = (v_corrected - V(t)) / dt.
+/// When `reactions` is given it is resized to cs.size() and holds, per constraint, the force it
+/// exerts on the material sum_i m_i (a_i after - a_i before) [N] over its nodes, constraints
+/// applied in order (a node in several constraints counts in each for what that one changed).
 void apply_acceleration_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
-                                    double t, double dt, GridFields& fields);
+                                    double t, double dt, GridFields& fields,
+                                    std::vector<common::Vec3>* reactions = nullptr);
+/// The velocity a constraint prescribes at time t [s], for its displacement: `velocity`, or the
+/// field at the centre of its box; plain constraints: zero on the free components [m/s].
+[[nodiscard]] common::Vec3 prescribed_velocity(const VelocityConstraint& c, double t);
 
 /// A load on one face of the material: pressure and/or traction over the face's CURRENT area.
 /// The face is made of the facets of the points whose initial domain touched the material's

@@ -91,7 +91,34 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
 }
 
 void Solver::add_constraint(const VelocityConstraint& constraint) {
-  constraints_.push_back(resolve(config_.grid, constraint));
+  ResolvedConstraint r = resolve(config_.grid, constraint);
+  if (r.spec.name.empty()) r.spec.name = "constraint_" + std::to_string(constraints_.size());
+  for (const ResolvedConstraint& c : constraints_) {
+    if (c.spec.name == r.spec.name) {
+      throw common::InputError("mpm constraint: name '" + r.spec.name + "' is used twice");
+    }
+  }
+  constraints_.push_back(std::move(r));
+  reactions_.push_back(common::Vec3::Zero());
+  displacements_.push_back(common::Vec3::Zero());
+}
+
+std::vector<std::string> Solver::constraint_names() const {
+  std::vector<std::string> out;
+  for (const ResolvedConstraint& c : constraints_) out.push_back(c.spec.name);
+  return out;
+}
+
+void Solver::advance_displacements(double t, double dt) {
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    const VelocityConstraint& c = constraints_[k].spec;
+    if (!c.has_window() && !c.field) {
+      // Always active at a constant velocity: exactly v t, no state to checkpoint.
+      displacements_[k] = prescribed_velocity(c, t + dt) * (t + dt);
+    } else if (c.active_at(t)) {
+      displacements_[k] += 0.5 * dt * (prescribed_velocity(c, t) + prescribed_velocity(c, t + dt));
+    }
+  }
 }
 
 void Solver::add_traction(const TractionLoad& load) {
@@ -301,7 +328,7 @@ void Solver::step() {
     p2g_internal_force(grid, cache_, bins_, points_, fields_);
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
-    apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
+    apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
     // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
     g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
@@ -311,7 +338,7 @@ void Solver::step() {
     p2g_internal_force(grid, cache_, bins_, points_, fields_);
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
-    apply_acceleration_constraints(grid, constraints_, t, dt, fields_);
+    apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
     g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
     p2g_momentum(grid, cache_, bins_, points_, fields_);
@@ -323,6 +350,7 @@ void Solver::step() {
     update_stress(dt);
     check_points(t + dt);
   }
+  advance_displacements(t, dt);
   time_ = t + dt;
   ++step_;
 }
@@ -386,6 +414,11 @@ void Solver::save(common::StateWriter& w) const {
   for (std::size_t k = 0; k < traction_points_.size(); ++k) {
     w.write("loads/traction_" + std::to_string(k) + "/point_slots", traction_points_[k]);
   }
+  // Only what cannot be recomputed: the displacements of windowed or field constraints.
+  const bool windows = std::any_of(constraints_.begin(), constraints_.end(), [](const auto& c) {
+    return c.spec.has_window() || c.spec.field;
+  });
+  if (windows) w.write("constraints/displacement", flatten(displacements_));
 }
 
 void Solver::load(const common::StateReader& r) {
@@ -439,11 +472,23 @@ void Solver::load(const common::StateReader& r) {
       }
     }
   }
+  // Constraint displacements: saved for windowed or field constraints; absent (an older
+  // checkpoint, or none of those), each is v t of its constant velocity.
+  std::vector<common::Vec3> disp(constraints_.size(), common::Vec3::Zero());
+  if (r.has("constraints/displacement")) {
+    unflatten(read_sized(r, "constraints/displacement", 3 * constraints_.size()), disp);
+  } else {
+    for (std::size_t k = 0; k < constraints_.size(); ++k) {
+      const VelocityConstraint& c = constraints_[k].spec;
+      if (!c.has_window() && !c.field) disp[k] = prescribed_velocity(c, time[0]) * time[0];
+    }
+  }
   traction_points_ = std::move(facets);
   points_ = std::move(pts);
   step_ = step[0];
   time_ = time[0];
   internal_work_ = work;
+  displacements_ = std::move(disp);
 }
 
 }  // namespace mpm

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/param_table.hpp"
@@ -102,7 +103,8 @@ class Solver {
   /// configuration, bad points, or a point whose material index has no model.
   Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials);
 
-  /// Velocity constraint on a node set (resolved once, here).
+  /// Velocity constraint on a node set (resolved once, here). An empty name becomes
+  /// "constraint_<k>", k its index in add_constraint order; names must be unique (InputError).
   void add_constraint(const VelocityConstraint& constraint);
   /// Pressure/traction on a face of the material (recomputed every step from the current area).
   /// The face's facets are the points on that face of the material NOW (call before stepping);
@@ -129,6 +131,17 @@ class Solver {
   [[nodiscard]] Energies energies() const;
   /// Loaded area of each traction load in the last step [m^2], in add_traction order.
   [[nodiscard]] const std::vector<double>& traction_areas() const { return traction_areas_; }
+  /// Force each constraint exerted ON the material in the last step [N], in add_constraint order:
+  /// sum over its nodes of m_i (a_i after it - a_i before it) (zero while inactive; docs/mpm.md,
+  /// "Frictional boundaries and reactions").
+  [[nodiscard]] const std::vector<common::Vec3>& reactions() const { return reactions_; }
+  /// Displacement of each constraint [m]: the integral of its prescribed velocity over the time
+  /// it was active (prescribed_velocity; trapezoidal per step).
+  [[nodiscard]] const std::vector<common::Vec3>& constraint_displacements() const {
+    return displacements_;
+  }
+  /// Names of the constraints, in add_constraint order.
+  [[nodiscard]] std::vector<std::string> constraint_names() const;
 
   /// Writes the MPM state as named fields (docs/mpm.md, "Checkpoint"): solver/step,
   /// solver/time, solver/internal_work, points/id, points/x, points/v, points/mass, points/volume,
@@ -147,6 +160,7 @@ class Solver {
   void update_material_stress(double dt);
   void add_external_loads();
   void check_points(double t_end) const;
+  void advance_displacements(double t, double dt);
   /// The stable step h_min / (c + |v|_max) [s] and the speed used [m/s].
   [[nodiscard]] double stable_dt(double& speed) const;
   /// Plane strain: holds the thickness component of the nodal velocity / acceleration.
@@ -159,6 +173,8 @@ class Solver {
   MaterialPoints points_;
   std::vector<MaterialModel*> materials_;
   std::vector<ResolvedConstraint> constraints_;
+  std::vector<common::Vec3> reactions_;      ///< [N], per constraint, last step
+  std::vector<common::Vec3> displacements_;  ///< [m], per constraint
   std::vector<TractionLoad> tractions_;
   std::vector<std::vector<std::int64_t>> traction_points_;  ///< facet point slots per load
   std::vector<double> traction_areas_;

@@ -50,6 +50,38 @@ pressure = "100 kPa"
 face = "y+"
 pressure = "100 kPa"
 )";
+// The frictional-wall, window and name keys of [[mpm.velocity]] map onto the constraint.
+TEST(MpmSetup, FrictionalWallWindowAndName) {
+  std::string job = kJob;
+  job += R"(
+[[mpm.velocity]]
+min = [0.0, 0.0, 1.0]
+max = [1.0, 1.0, 1.0]
+z = 0.0
+x = "1 mm/s"
+friction = 0.4
+normal = "z+"
+contact = "no_penetration"
+from = 0.1
+until = "500 ms"
+name = "lid"
+)";
+  const auto setup = app::mpm_setup(app::Job::parse(job, "job.toml"));
+  const mpm::VelocityConstraint& lid = setup.constraints.back();
+  EXPECT_EQ(lid.name, "lid");
+  EXPECT_EQ(setup.constraints[0].name, "velocity_0");
+  EXPECT_TRUE(lid.has_wall());
+  EXPECT_EQ(lid.wall.axis, 2);
+  EXPECT_EQ(lid.wall.side, 1);
+  EXPECT_EQ(lid.wall.mu, 0.4);
+  EXPECT_EQ(lid.wall.contact, mpm::WallContact::no_penetration);
+  EXPECT_EQ(lid.from, 0.1);
+  EXPECT_DOUBLE_EQ(lid.until, 0.5);
+  EXPECT_DOUBLE_EQ(lid.velocity[0], 1e-3);
+  EXPECT_FALSE(setup.constraints[0].has_wall());
+  EXPECT_FALSE(setup.constraints[0].has_window());
+}
+
 }  // namespace
 
 TEST(MpmSetup, PaperSingleCellSetUp) {

@@ -5,6 +5,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -166,7 +167,7 @@ TEST(Results, EveryDatasetIsDescribed) {
         return 0;
       },
       &names);
-  EXPECT_EQ(names.size(), 22u);
+  EXPECT_EQ(names.size(), 23u);
   for (const std::string& n : names) {
     EXPECT_FALSE(string_attr(f, n.c_str(), "description").empty()) << n;
     EXPECT_EQ(H5Aexists_by_name(f, n.c_str(), "unit", H5P_DEFAULT), 1) << n;
@@ -244,6 +245,109 @@ TEST(Results, RestartKeepsRowsUpToTheCheckpointAndAppends) {
   const std::vector<double> step = read_all(dir + "/results.h5", "/step");
   ASSERT_EQ(step.size(), 60u);
   for (std::size_t r = 0; r < 60; ++r) EXPECT_EQ(step[r], 10.0 * static_cast<double>(r));
+}
+
+// Constraints: /constraints/reaction and /displacement [rows, nc, 3] with their unit and
+// description, the names as an attribute, reactions.csv with its header and one row per output
+// row; a restart truncates and continues them (values read back exactly: 17 digits).
+TEST(Results, ConstraintSeriesAndReactionsCsvContinueOnRestart) {
+  const std::string dir = scratch("constraints");
+  const Sample smp;
+  const std::vector<std::string> names{"base", "platen"};
+  auto append = [&](farm::ResultsWriter& w, int r) {
+    const std::vector<common::Mat3> stress(3, common::Mat3::Identity());
+    const std::vector<common::Vec3> reactions{common::Vec3(r, 0, 1), common::Vec3(0, 0, -0.1 * r)};
+    const std::vector<common::Vec3> disp{common::Vec3::Zero(), common::Vec3(0, 0, -1e-3 * r)};
+    w.append(10 * r, 0.5 * r, stress, smp.reports(r), smp.points, farm::SampleMeans{}, reactions,
+             disp);
+  };
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1, names);
+    for (int r = 0; r < 100; ++r) append(w, r);
+  }
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, 500, names);
+    EXPECT_EQ(w.rows(), 51);
+    for (int r = 51; r < 60; ++r) append(w, r);
+    w.flush();
+  }
+  const std::vector<double> reaction = read_all(dir + "/results.h5", "/constraints/reaction");
+  const std::vector<double> disp = read_all(dir + "/results.h5", "/constraints/displacement");
+  ASSERT_EQ(reaction.size(), 60u * 2 * 3);
+  ASSERT_EQ(disp.size(), 60u * 2 * 3);
+  for (std::size_t r = 0; r < 60; ++r) {
+    EXPECT_EQ(reaction[6 * r + 0], static_cast<double>(r));
+    EXPECT_EQ(reaction[6 * r + 5], -0.1 * static_cast<double>(r));
+    EXPECT_EQ(disp[6 * r + 5], -1e-3 * static_cast<double>(r));
+  }
+  const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(string_attr(f, "constraints", "names"), "base,platen");
+  EXPECT_EQ(string_attr(f, "constraints/reaction", "unit"), "N");
+  EXPECT_EQ(string_attr(f, "constraints/displacement", "unit"), "m");
+  EXPECT_FALSE(string_attr(f, "constraints/reaction", "description").empty());
+  H5Fclose(f);
+  std::ifstream csv(dir + "/reactions.csv");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(csv, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 61u);
+  EXPECT_EQ(lines[0],
+            "step,time_s,base_rx_N,base_ry_N,base_rz_N,base_ux_m,base_uy_m,base_uz_m,platen_rx_N,"
+            "platen_ry_N,platen_rz_N,platen_ux_m,platen_uy_m,platen_uz_m");
+  EXPECT_EQ(lines[4], "30,1.5,3,0,1,0,0,0,0,0,-0.30000000000000004,0,0,-0.0030000000000000001");
+}
+
+// Without constraint names nothing of the kind is written (the file of a run without any).
+TEST(Results, NoConstraintsNoConstraintOutputs) {
+  const std::string dir = scratch("no_constraints");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    smp.append(w, 0);
+  }
+  EXPECT_FALSE(fs::exists(dir + "/reactions.csv"));
+  const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_EQ(H5Lexists(f, "constraints", H5P_DEFAULT), 0);
+  H5Fclose(f);
+}
+
+// A results.h5 written before constraints were recorded, continued by a run that records them:
+// the kept rows get NaN, the new rows their values; reactions.csv has every row. The same for
+// /points/volume.
+TEST(Results, RestartOfAnOlderFileFillsConstraintRowsWithNaN) {
+  const std::string dir = scratch("constraints_old_file");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    for (int r = 0; r < 5; ++r) smp.append(w, r);
+  }
+  {  // /points/volume came with /constraints (issue 15): an older file has neither.
+    const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(H5Ldelete(f, "points/volume", H5P_DEFAULT), 0);
+    H5Fclose(f);
+  }
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, 20, {"platen"});
+    EXPECT_EQ(w.rows(), 3);
+    const std::vector<common::Mat3> stress(3, common::Mat3::Identity());
+    w.append(30, 1.5, stress, smp.reports(3), smp.points, farm::SampleMeans{},
+             {common::Vec3(1, 2, 3)}, {common::Vec3(0, 0, -1)});
+    w.flush();
+  }
+  const std::vector<double> reaction = read_all(dir + "/results.h5", "/constraints/reaction");
+  ASSERT_EQ(reaction.size(), 4u * 3);
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_TRUE(std::isnan(reaction[i])) << i;
+  EXPECT_EQ(reaction[9], 1.0);
+  EXPECT_EQ(reaction[11], 3.0);
+  const std::vector<double> volume = read_all(dir + "/results.h5", "/points/volume");
+  ASSERT_EQ(volume.size(), 4u * 3);
+  for (std::size_t i = 0; i < 9; ++i) EXPECT_TRUE(std::isnan(volume[i])) << i;
+  EXPECT_EQ(volume[9], 1.0);  // the sample's points have volume 1
+  std::ifstream csv(dir + "/reactions.csv");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(csv, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_EQ(lines[4], "30,1.5,1,2,3,0,0,-1");
 }
 
 }  // namespace

@@ -1,0 +1,74 @@
+// points.xmf of ResultsWriter: the XDMF 3 index of results.h5's point series for ParaView (see
+// results.hpp and docs/farm.md, "Outputs").
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "common/atomic_file.hpp"
+#include "farm/results.hpp"
+
+namespace farm {
+
+void ResultsWriter::write_xdmf() const {
+  // Formatted with fmt and the row-invariant text prepared once: rewriting the index of a long
+  // run (13,000 rows) with iostreams took 0.4 s per flush.
+  const std::size_t m = point_ids_.size();
+  const std::int64_t nt = rows_;
+  struct Slab {
+    std::string head;  ///< text before the row index
+    std::string tail;  ///< text after it
+  };
+  // Xdmf3's hyperslab form "file:/dataset|start:stride:count:dims", which ParaView's default
+  // reader (Xdmf3) reads; a HyperSlab DataItem with an XML selection (XDMF 2's form) gave it
+  // empty grids (ParaView 5.11, issue 19). ParaView's legacy "XDMF Reader" does not read it.
+  auto slab = [&](const char* ds, int per) {
+    const std::string dims = per > 1 ? fmt::format("{} {}", m, per) : fmt::format("{}", m);
+    Slab s;
+    s.head = fmt::format(
+        "<DataItem Dimensions=\"{}\" NumberType=\"Float\" Precision=\"8\" "
+        "Format=\"HDF\">results.h5:/{}|",
+        dims, ds);
+    s.tail = per > 1 ? fmt::format(" 0 0:1 1 1:1 {0} {1}:{2} {0} {1}</DataItem>", m, per, nt)
+                     : fmt::format(" 0:1 1:1 {0}:{1} {0}</DataItem>", m, nt);
+    return s;
+  };
+  const Slab x = slab("points/x", 3);
+  const Slab stress = slab("points/stress", 9);
+  const char* scalars[] = {"p", "q", "void_ratio", "z"};
+  std::vector<Slab> sc;
+  for (const char* a : scalars) sc.push_back(slab((std::string("points/") + a).c_str(), 1));
+  const std::string id_attr = fmt::format(
+      "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
+      "Dimensions=\"{}\" NumberType=\"Int\" Precision=\"8\" "
+      "Format=\"HDF\">results.h5:/points/id</DataItem></Attribute>\n",
+      m);
+  fmt::memory_buffer out;
+  auto it = std::back_inserter(out);
+  fmt::format_to(it,
+                 "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+                 "<Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (std::int64_t t = 0; t < nt; ++t) {
+    const auto tu = static_cast<std::size_t>(t);
+    fmt::format_to(it,
+                   "<Grid Name=\"step_{}\" GridType=\"Uniform\">\n<Time Value=\"{:.17g}\"/>\n"
+                   "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\"/>\n"
+                   "<Geometry GeometryType=\"XYZ\">{}{}{}</Geometry>\n"
+                   "<Attribute Name=\"stress\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
+                   "</Attribute>\n",
+                   steps_[tu], times_[tu], m, x.head, t, x.tail, stress.head, t, stress.tail);
+    for (std::size_t a = 0; a < sc.size(); ++a) {
+      fmt::format_to(it,
+                     "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"
+                     "</Attribute>\n",
+                     scalars[a], sc[a].head, t, sc[a].tail);
+    }
+    fmt::format_to(it, "{}</Grid>\n", id_attr);
+  }
+  fmt::format_to(it, "</Grid>\n</Domain>\n</Xdmf>\n");
+  common::write_file_atomic(std::filesystem::path(dir_) / "points.xmf", fmt::to_string(out));
+}
+
+}  // namespace farm
