@@ -119,7 +119,8 @@ int command_inspect(const Options& o, const Comm& comm) {
   }
   // Everything that can be refused is refused before the first file is written.
   bool all = false;
-  const std::vector<std::int64_t> chosen = dem_rves(info, selected_rves(info, o.rve, all), all);
+  const std::vector<std::int64_t> asked = selected_rves(info, o.rve, all);
+  const std::vector<std::int64_t> chosen = dem_rves(info, asked, all);
   const fs::path dir(o.vtk);
   if (!o.vtk.empty()) {
     check_vtk_dir(info, dir);
