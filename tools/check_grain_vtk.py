@@ -18,6 +18,7 @@ bundles its own HDF5). For each RVE, both readers must show:
             normal_force = contacts/normal_force, shear_force = contacts/shear_force,
             rolling_moment = contacts/rolling_moment, force = contacts/force
   cell      one hexahedron with the corners H [0,1]^3; stress = the RVE's stress field
+  series    DIR/rve_<id>.pvd lists the view at the checkpoint's time (attribute /time), once
 Exit status: 0 every check passed, 1 a check failed, 77 h5py (or, with --paraview, ParaView) is
 missing (CTest's skip code). Use /usr/bin/python3 (Debian's python3-h5py, python3-paraview).
 """
@@ -77,7 +78,20 @@ def read_checkpoint(path, h5py, np):
             out[name] = f["/rve/fields/" + name][start:start + counts[k]]
         return out
 
-    return int(f.attrs["step"]), ids, rve
+    return int(f.attrs["step"]), float(f.attrs["time"]), ids, rve
+
+
+def check_series(path, vtm, time):
+    """DIR/rve_<id>.pvd (xml.etree; ParaView's PVD reader with --paraview) lists `vtm` once, at
+    the checkpoint's time (17 digits: exactly)."""
+    import xml.etree.ElementTree as ET
+
+    expect(os.path.exists(path), f"{path}: missing (the time series of the RVE)")
+    root = ET.parse(path).getroot()
+    expect(root.get("type") == "Collection", f"{path}: not a VTK collection")
+    found = [float(d.get("timestep")) for d in root.iter("DataSet")
+             if d.get("file") == os.path.basename(vtm)]
+    expect(found == [time], f"{path}: {os.path.basename(vtm)} listed at {found}, expected [{time}]")
 
 
 # ------------------------------------------------------------------ readers of the views
@@ -278,7 +292,7 @@ def main():
     import numpy as np
 
     try:
-        step, ids, rve = read_checkpoint(a.checkpoint, h5py, np)
+        step, time, ids, rve = read_checkpoint(a.checkpoint, h5py, np)
         views = []
         for path in sorted(glob.glob(os.path.join(a.dir, "rve_*_step_*.vtm"))):
             m = re.fullmatch(r"rve_(\d+)_step_(\d+)\.vtm", os.path.basename(path))
@@ -291,6 +305,7 @@ def main():
         expect(not leftovers, f"{a.dir}: staged files left behind: {leftovers}")
         for rid, path in sorted(views):
             ck = rve(rid)
+            check_series(os.path.join(a.dir, f"rve_{rid}.pvd"), path, time)
             n, nc, across = check_view(read_xml(path, np), ck, path + " (xml.etree)", np)
             readers = "xml.etree"
             if a.paraview:

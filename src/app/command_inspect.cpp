@@ -4,10 +4,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -98,6 +103,22 @@ void check_vtk_dir(const farm::CheckpointInfo& info, const fs::path& dir) {
   }
 }
 
+std::string series_name(std::int64_t id) { return fmt::format("rve_{}.pvd", id); }
+
+/// The entries of an existing time series (none when the file does not exist).
+std::vector<dem::VtkSeriesEntry> read_series(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return {};
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) {
+    throw common::InputError(fmt::format("--vtk: cannot read the time series '{}': {}",
+                                         path.string(), std::strerror(errno)));
+  }
+  return dem::read_vtk_series(text.str(), path.string());
+}
+
 std::string summary(std::int64_t id, const dem::Simulation& sim) {
   const dem::Measures m = dem::measure(sim);
   return fmt::format(
@@ -122,8 +143,17 @@ int command_inspect(const Options& o, const Comm& comm) {
   const std::vector<std::int64_t> asked = selected_rves(info, o.rve, all);
   const std::vector<std::int64_t> chosen = dem_rves(info, asked, all);
   const fs::path dir(o.vtk);
+  std::map<std::int64_t, std::vector<dem::VtkSeriesEntry>> series;  // RVE id -> rve_<id>.pvd
   if (!o.vtk.empty()) {
     check_vtk_dir(info, dir);
+    for (std::int64_t k : chosen) {
+      const std::int64_t id = info.ids[static_cast<std::size_t>(k)];
+      try {
+        series[id] = read_series(dir / series_name(id));
+      } catch (const common::InputError& e) {
+        throw common::InputError(fmt::format("checkpoint {}: {}", info.path, e.what()));
+      }
+    }
     create_output_dir(dir);
   }
 
@@ -142,8 +172,10 @@ int command_inspect(const Options& o, const Comm& comm) {
         const dem::Simulation sim = dem::load_simulation(states[j]);
         out += summary(id, sim);
         if (o.vtk.empty()) continue;
-        for (dem::VtkFile& f : dem::vtk_view(sim, fmt::format("rve_{}_step_{}", id, info.step)))
-          files.push_back(std::move(f));
+        const std::string stem = fmt::format("rve_{}_step_{}", id, info.step);
+        for (dem::VtkFile& f : dem::vtk_view(sim, stem)) files.push_back(std::move(f));
+        series[id] = dem::merge_vtk_series(std::move(series[id]), {info.time, stem + ".vtm"});
+        files.push_back({series_name(id), dem::vtk_series(series[id])});
       } catch (const common::InputError& e) {
         throw common::InputError(
             fmt::format("checkpoint {}: RVE id {}: {}", info.path, id, e.what()));
@@ -152,7 +184,10 @@ int command_inspect(const Options& o, const Comm& comm) {
     if (!files.empty()) dem::write_vtk_files(dir, files);
   }
   if (!o.vtk.empty()) {
-    out += fmt::format("  open in ParaView: {}/rve_<id>_step_{}.vtm\n", dir.string(), info.step);
+    out += fmt::format(
+        "  open in ParaView: {0}/rve_<id>_step_{1}.vtm (this step), {0}/rve_<id>.pvd (every step "
+        "written into {0})\n",
+        dir.string(), info.step);
   }
   std::fputs(out.c_str(), stdout);
   return 0;

@@ -1,6 +1,7 @@
 // VTK XML (ASCII) views of a periodic cell: see vtk_export.hpp and docs/dem.md.
 #include "dem/vtk_export.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -254,6 +255,62 @@ std::vector<VtkFile> vtk_view(const Simulation& sim, const std::string& stem) {
           {stem + "_contacts.vtp", contacts_file(sim, xw)},
           {stem + "_cell.vtu", cell_file(sim)},
           {stem + ".vtm", multiblock_file(stem)}};
+}
+
+std::string vtk_series(const std::vector<VtkSeriesEntry>& entries) {
+  std::string out = header("Collection");
+  out += "  <Collection>\n";
+  for (const VtkSeriesEntry& e : entries) {
+    MPMXDEM_CHECK(e.file.find_first_of("\"<>&") == std::string::npos,
+                  "vtk_series: file name '" + e.file + "'");
+    out += "    <DataSet timestep=\"";
+    put(out, e.time);
+    out += "\" part=\"0\" file=\"" + e.file + "\"/>\n";
+  }
+  out += "  </Collection>\n</VTKFile>\n";
+  return out;
+}
+
+std::vector<VtkSeriesEntry> read_vtk_series(const std::string& text, const std::string& what) {
+  const auto bad = [&what](const std::string& why) {
+    return common::InputError(what + ": not a time series written by mpmxdem inspect (" + why +
+                              "); remove it or choose another directory");
+  };
+  if (text.find("<VTKFile type=\"Collection\"") == std::string::npos ||
+      text.find("</Collection>") == std::string::npos) {
+    throw bad("no VTKFile of type Collection");
+  }
+  const auto attribute = [&](std::size_t from, std::size_t to, const std::string& name) {
+    const std::size_t a = text.find(" " + name + "=\"", from);
+    if (a == std::string::npos || a > to) throw bad("a DataSet without " + name);
+    const std::size_t b = a + name.size() + 3;
+    const std::size_t e = text.find('"', b);
+    if (e == std::string::npos || e > to) throw bad("a DataSet without " + name);
+    return text.substr(b, e - b);
+  };
+  std::vector<VtkSeriesEntry> out;
+  for (std::size_t at = text.find("<DataSet"); at != std::string::npos;
+       at = text.find("<DataSet", at + 1)) {
+    const std::size_t end = text.find("/>", at);
+    if (end == std::string::npos) throw bad("an unterminated DataSet");
+    VtkSeriesEntry e;
+    const std::string t = attribute(at, end, "timestep");
+    const auto res = std::from_chars(t.data(), t.data() + t.size(), e.time);
+    if (res.ec != std::errc() || res.ptr != t.data() + t.size()) throw bad("timestep '" + t + "'");
+    e.file = attribute(at, end, "file");
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::vector<VtkSeriesEntry> merge_vtk_series(std::vector<VtkSeriesEntry> entries,
+                                             const VtkSeriesEntry& add) {
+  std::erase_if(entries, [&add](const VtkSeriesEntry& e) { return e.file == add.file; });
+  entries.push_back(add);
+  std::sort(entries.begin(), entries.end(), [](const VtkSeriesEntry& a, const VtkSeriesEntry& b) {
+    return a.time != b.time ? a.time < b.time : a.file < b.file;
+  });
+  return entries;
 }
 
 void write_vtk_files(const std::filesystem::path& dir, const std::vector<VtkFile>& files) {

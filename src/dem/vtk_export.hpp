@@ -35,6 +35,23 @@ struct VtkFile {
 /// Forces and moments are those of the last force computation. @pre stem is a plain file name.
 [[nodiscard]] std::vector<VtkFile> vtk_view(const Simulation& sim, const std::string& stem);
 
+/// One entry of a time series: the time and the file (a view's .vtm) shown at that time.
+struct VtkSeriesEntry {
+  double time = 0.0;  ///< [s]
+  std::string file;   ///< relative to the series file
+};
+
+/// A ParaView data collection (.pvd) of `entries`: ParaView opens it as one dataset with a time
+/// per entry. Entries are written in the order given.
+[[nodiscard]] std::string vtk_series(const std::vector<VtkSeriesEntry>& entries);
+/// The entries of a collection written by vtk_series. Throws common::InputError naming `what`
+/// (the file) when the text is not such a collection.
+[[nodiscard]] std::vector<VtkSeriesEntry> read_vtk_series(const std::string& text,
+                                                          const std::string& what);
+/// `entries` with `add` put in: an entry of the same file is replaced; sorted by time, then file.
+[[nodiscard]] std::vector<VtkSeriesEntry> merge_vtk_series(std::vector<VtkSeriesEntry> entries,
+                                                           const VtkSeriesEntry& add);
+
 /// Writes `files` into the existing directory `dir`, all or nothing: every file is staged
 /// (common::staging_path) first; if one cannot be staged, the staged ones are removed and
 /// nothing is published; then each is published (common::publish_file).

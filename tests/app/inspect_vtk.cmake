@@ -29,12 +29,14 @@ foreach(f IN ITEMS "RVE 2 " "RVE 5 " "spheres," "contacts;" "Z without rattlers"
 endforeach()
 file(GLOB two RELATIVE "${DIR}/two" "${DIR}/two/*")
 list(SORT two)
-set(expected rve_2_step_6.vtm rve_2_step_6_cell.vtu rve_2_step_6_contacts.vtp
-    rve_2_step_6_spheres.vtp rve_5_step_6.vtm rve_5_step_6_cell.vtu rve_5_step_6_contacts.vtp
-    rve_5_step_6_spheres.vtp)
+set(expected rve_2.pvd rve_2_step_6.vtm rve_2_step_6_cell.vtu rve_2_step_6_contacts.vtp
+    rve_2_step_6_spheres.vtp rve_5.pvd rve_5_step_6.vtm rve_5_step_6_cell.vtu
+    rve_5_step_6_contacts.vtp rve_5_step_6_spheres.vtp)
 if(NOT "${two}" STREQUAL "${expected}")
   message(FATAL_ERROR "inspect --vtk wrote:\n${two}\nexpected:\n${expected}")
 endif()
+# The same view again: the time series keeps one entry for it (check_grain_vtk.py checks).
+run_ok("${EXE}" inspect "${ckpt}" --rve 2 --vtk "${DIR}/two")
 run_ok("${EXE}" inspect "${ckpt}" --rve all --vtk "${DIR}/all")
 file(GLOB all "${DIR}/all/*.vtm")
 list(LENGTH all n_all)
@@ -77,6 +79,13 @@ execute_process(COMMAND "${EXE}" inspect "${ckpt}" --rve 1 --rve 1000000 --vtk "
                 RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
 expect_failure("${rc}" "${err}" 2 "--rve 1000000")
 expect_unchanged("${DIR}/two" "${before}" "a refused inspect")
+# A time series that this program did not write is not overwritten.
+file(WRITE "${DIR}/foreign/rve_4.pvd" "<something else/>\n")
+snapshot("${DIR}/foreign" before)
+execute_process(COMMAND "${EXE}" inspect "${ckpt}" --rve 4 --vtk "${DIR}/foreign"
+                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+expect_failure("${rc}" "${err}" 2 "${DIR}/foreign/rve_4.pvd: not a time series written by")
+expect_unchanged("${DIR}/foreign" "${before}" "a refused inspect")
 execute_process(COMMAND "${EXE}" inspect "${ckpt}" --vtk "${DIR}/norve"
                 RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
 expect_failure("${rc}" "${err}" 2 "--vtk requires --rve")

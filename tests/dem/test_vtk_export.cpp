@@ -266,4 +266,34 @@ TEST(VtkExport, WriterPublishesEverythingOrNothing) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(VtkExport, SeriesRoundTripsMergesAndRefusesForeignFiles) {
+  std::vector<dem::VtkSeriesEntry> e;
+  e = dem::merge_vtk_series(e, {2.5, "rve_1_step_20.vtm"});
+  e = dem::merge_vtk_series(e, {0.1 + 0.2, "rve_1_step_3.vtm"});
+  e = dem::merge_vtk_series(e, {2.75, "rve_1_step_20.vtm"});  // the same view again: replaced
+  ASSERT_EQ(e.size(), 2U);
+  EXPECT_EQ(e[0].file, "rve_1_step_3.vtm");  // sorted by time
+  EXPECT_EQ(e[1].time, 2.75);
+  const std::string text = dem::vtk_series(e);
+  EXPECT_EQ(xml_problem(text), "");
+  EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos);
+  const auto back = dem::read_vtk_series(text, "x.pvd");
+  ASSERT_EQ(back.size(), 2U);
+  EXPECT_EQ(back[0].time, 0.1 + 0.2);  // 17 digits: exact
+  EXPECT_EQ(back[0].file, "rve_1_step_3.vtm");
+  EXPECT_EQ(back[1].time, 2.75);
+  EXPECT_TRUE(dem::read_vtk_series(dem::vtk_series({}), "x.pvd").empty());
+  for (const std::string& bad :
+       {std::string("hello"), dem::vtk_series(e).replace(text.find("timestep=\"") + 10, 1, "x"),
+        std::string(text).erase(text.find(" file="), 6)}) {
+    try {
+      (void)dem::read_vtk_series(bad, "dir/rve_1.pvd");
+      ADD_FAILURE() << "accepted:\n" << bad;
+    } catch (const common::InputError& err) {
+      EXPECT_NE(std::string(err.what()).find("dir/rve_1.pvd: not a time series"), std::string::npos)
+          << err.what();
+    }
+  }
+}
+
 }  // namespace
