@@ -22,9 +22,13 @@ using common::Vec3;
 
 namespace {
 
-constexpr const char* kHeader =
-    "<?xml version=\"1.0\"?>\n<VTKFile type=\"{}\" version=\"1.0\" byte_order=\"LittleEndian\" "
-    "header_type=\"UInt64\">\n";
+/// The XML prolog and the opening VTKFile tag of a file of `type`.
+std::string header(std::string_view type) {
+  std::string h = "<?xml version=\"1.0\"?>\n<VTKFile type=\"";
+  h += type;
+  h += "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  return h;
+}
 
 /// Appends a double with 17 significant digits (round trip exact).
 void put(std::string& out, double v) {
@@ -37,12 +41,6 @@ void put(std::string& out, std::int64_t v) {
   std::array<char, 24> buf{};
   const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
   out.append(buf.data(), res.ptr);
-}
-
-std::string header(std::string_view type) {
-  std::string h = kHeader;
-  h.replace(h.find("{}"), 2, type);
-  return h;
 }
 
 /// One <DataArray> of n tuples of `comps` values; value(t, c) gives component c of tuple t.
