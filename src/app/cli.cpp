@@ -83,7 +83,8 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   auto* inspect =
       cli.add_subcommand("inspect",
                          "Describe a checkpoint (step, time, RVEs, ranks that wrote it) "
-                         "and verify its checksums");
+                         "and verify its checksums;\nwith --rve, measure DEM RVEs; with --vtk, "
+                         "write their grains and contacts for ParaView");
   inspect->add_option("checkpoint", o.job, "Checkpoint file (HDF5)")->required();
   auto* rve_opt =
       inspect
@@ -109,7 +110,8 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
           "--vtk", o.vtk,
           "Write the grain-scale views of the --rve RVEs into this directory (created if\n"
           "needed): spheres, contact network and periodic cell as VTK files for ParaView,\n"
-          "rve_<id>_step_<step>.vtm each (docs/dem.md, \"Grain-scale views\")")
+          "rve_<id>_step_<step>.vtm each, and rve_<id>.pvd: every step written there\n"
+          "(docs/dem.md, \"Grain-scale views\")")
       ->needs(rve_opt);
 
   auto* demc = cli.add_subcommand(
