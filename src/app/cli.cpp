@@ -85,8 +85,36 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   auto* inspect =
       cli.add_subcommand("inspect",
                          "Describe a checkpoint (step, time, RVEs, ranks that wrote it) "
-                         "and verify its checksums");
+                         "and verify its checksums;\nwith --rve, measure DEM RVEs; with --vtk, "
+                         "write their grains and contacts for ParaView");
   inspect->add_option("checkpoint", o.job, "Checkpoint file (HDF5)")->required();
+  auto* rve_opt =
+      inspect
+          ->add_option("--rve", o.rve,
+                       "Also measure the RVE of this point id (repeat for several; `all`: every "
+                       "DEM RVE):\np, q, void ratio, Z, Z without rattlers, unbalanced force, "
+                       "kinetic energy")
+          ->allow_extra_args(false)
+          ->check(CLI::Validator(
+              [](std::string& text) -> std::string {
+                if (text == "all") return "";
+                std::int64_t v = 0;
+                const char* end = text.data() + text.size();
+                const auto res = std::from_chars(text.data(), end, v);
+                if (res.ec != std::errc() || res.ptr != end || v < 0) {
+                  return "must be a point id (an integer >= 0) or 'all', not '" + clip(text) + "'";
+                }
+                return "";
+              },
+              "ID|all"));
+  inspect
+      ->add_option(
+          "--vtk", o.vtk,
+          "Write the grain-scale views of the --rve RVEs into this directory (created if\n"
+          "needed): spheres, contact network and periodic cell as VTK files for ParaView,\n"
+          "rve_<id>_step_<step>.vtm each, and rve_<id>.pvd: every step written there\n"
+          "(docs/dem.md, \"Grain-scale views\")")
+      ->needs(rve_opt);
 
   auto* demc = cli.add_subcommand(
       "dem", "Run a pure DEM job: prepare a sample, then the loading of [dem.loading]");
@@ -111,14 +139,16 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
 
   cli.add_subcommand("schema", "Print the job-file reference (Markdown) generated from the schema");
 
-  // An empty output directory (CLI11 would call it a missing value).
+  // An empty output directory (CLI11 would call it a missing value, or take it as none).
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    const bool empty_out =
-        ((a == "-o" || a == "--out") && i + 1 < argc && argv[i + 1][0] == '\0') || a == "--out=";
-    if (empty_out) {
+    const bool next_empty = i + 1 < argc && argv[i + 1][0] == '\0';
+    const bool empty_out = ((a == "-o" || a == "--out") && next_empty) || a == "--out=";
+    const bool empty_vtk = (a == "--vtk" && next_empty) || a == "--vtk=";
+    if (empty_out || empty_vtk) {
       if (print) {
-        std::fputs("error: --out \"\": the output directory must not be an empty path\n", stderr);
+        std::fprintf(stderr, "error: %s \"\": the output directory must not be an empty path\n",
+                     empty_out ? "--out" : "--vtk");
       }
       exit_code = 2;
       return std::nullopt;

@@ -1,5 +1,5 @@
-// `mpmxdem run JOB` (a coupled MPM x DEM run through the RVE farm, or its restart) and
-// `mpmxdem inspect CKPT` (what a checkpoint holds).
+// `mpmxdem run JOB` (a coupled MPM x DEM run through the RVE farm, or its restart); `mpmxdem
+// inspect` is in command_inspect.cpp.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -130,12 +130,6 @@ int command_run(const Options& given, const Comm& comm) {
     spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv",
                  out.string());
   }
-  return 0;
-}
-
-int command_inspect(const Options& o, const Comm& comm) {
-  if (comm.rank != 0) return 0;
-  std::fputs(farm::describe(farm::inspect_checkpoint(o.job, true)).c_str(), stdout);
   return 0;
 }
 

@@ -395,6 +395,36 @@ std::vector<common::StateStore> read_checkpoint_rves(MPI_Comm comm, const Checkp
   return out;
 }
 
+std::vector<common::StateStore> read_checkpoint_rve_states(const CheckpointInfo& info,
+                                                           const std::vector<std::int64_t>& indices,
+                                                           const std::vector<std::string>& only) {
+  std::vector<common::StateStore> out(indices.size());
+  const h5::File r = h5::File::open(info.path, "checkpoint");
+  for (std::int64_t k : indices) {
+    MPMXDEM_CHECK(k >= 0 && static_cast<std::size_t>(k) < info.ids.size(),
+                  "RVE index " + std::to_string(k) + " of " + std::to_string(info.ids.size()));
+  }
+  for (const FieldSpec& f : parse_fields(info.rve_fields)) {
+    if (!only.empty() && std::find(only.begin(), only.end(), f.name) == only.end()) continue;
+    const auto counts = r.read<std::int64_t>("/rve/counts/" + f.name);
+    if (counts.size() != info.ids.size())
+      r.fail("dataset /rve/counts/" + f.name + " must have one entry per RVE");
+    const std::vector<std::uint64_t> offset = offsets_of(counts);
+    with_type(f.type, [&]<class T>(std::type_identity<T>) {
+      const std::vector<T> v = r.read<T>("/rve/fields/" + f.name);
+      if (v.size() < offset.back())
+        r.fail("dataset /rve/fields/" + f.name + " is shorter than its counts say");
+      for (std::size_t j = 0; j < indices.size(); ++j) {
+        const auto k = static_cast<std::size_t>(indices[j]);
+        if (counts[k] < 0) continue;  // absent in this RVE
+        out[j].write(f.name,
+                     std::span<const T>(v.data() + offset[k], static_cast<std::size_t>(counts[k])));
+      }
+    });
+  }
+  return out;
+}
+
 void verify_checkpoint(const std::string& path) {
   const CheckpointInfo info = read_checkpoint_info(path);
   (void)read_checkpoint_mpm(path);

@@ -67,6 +67,15 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
 [[nodiscard]] std::vector<common::StateStore> read_checkpoint_rves(
     MPI_Comm comm, const CheckpointInfo& info, const std::vector<std::int64_t>& local_indices);
 
+/// Serial: the states of the RVEs at `indices` (positions in info.ids, any order), for
+/// `mpmxdem inspect --rve`. Each RVE field is read whole, one at a time, and its checksum verified
+/// (the RVEs asked for are cut out of it); only the fields named in `only` when it is not empty
+/// (a cheap first look: "spheres/r"). Throws common::InputError naming the file and the dataset at
+/// fault.
+[[nodiscard]] std::vector<common::StateStore> read_checkpoint_rve_states(
+    const CheckpointInfo& info, const std::vector<std::int64_t>& indices,
+    const std::vector<std::string>& only = {});
+
 /// Serial: reads everything and verifies every checksum (for `mpmxdem inspect`).
 /// Throws common::InputError on the first problem.
 void verify_checkpoint(const std::string& path);
