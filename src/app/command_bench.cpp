@@ -22,9 +22,11 @@ int command_bench(const Options& o, const Comm& comm) {
     const mpm::SceneFeatures features;
     std::printf(
         "# mpm scene: rank-0 MPM cost per step, elastic column, plane strain %s, mass scaling "
-        "%g, gravity %s, energy accounting on (friction and reactions: not yet in this build)\n",
+        "%g, gravity %s, energy accounting on, %s\n",
         features.plane_strain ? "on" : "off", features.mass_scaling,
-        features.gravity ? "on" : "off");
+        features.gravity ? "on" : "off",
+        features.walls ? "rough base wall + gate removed half-way, reactions summed every step"
+                       : "base nodes held");
     for (const std::int64_t n : o.bench_size > 0 ? std::vector<std::int64_t>{o.bench_size}
                                                  : std::vector<std::int64_t>{1000, 10000, 100000}) {
       for (int t = 1; t <= std::max(2, max_threads); t *= 2) {

@@ -118,18 +118,36 @@ SceneBenchmarkResult run_scene_benchmark(std::int64_t num_points, int threads, i
   fill_box(points, cfg.grid, common::Vec3::Zero(), common::Vec3(nx, ny, nz) * h,
            features.plane_strain ? common::Vec3i(2, 1, 2) : common::Vec3i(2, 2, 2), density, 0);
   Solver solver(cfg, std::move(points), {&material});
-  // Base held (every node at or below z = 0). Friction and reactions: see SceneFeatures.
-  solver.add_constraint({common::Vec3::Constant(-1e3),
-                         common::Vec3(1e3, 1e3, 0.0),
-                         {true, true, true},
-                         common::Vec3::Zero(),
-                         {}});
+  // Base: held nodes (every node at or below z = 0), or a rigid rough wall on z = 0 and a gate
+  // on the x+ side removed half-way through the timed steps (SceneFeatures::walls).
+  if (features.walls) {
+    VelocityConstraint base{common::Vec3(-1e3, -1e3, 0.0), common::Vec3(1e3, 1e3, 0.0), {}, {}, {}};
+    base.wall = {2, -1, 10.0, WallContact::fixed};
+    base.name = "base";
+    solver.add_constraint(base);
+    const double x_gate = nx * h;
+    VelocityConstraint gate{common::Vec3(x_gate, -1e3, 0.0), common::Vec3(x_gate, 1e3, 1e3),
+                            {}, {}, {}};
+    gate.wall = {0, 1, 0.0, WallContact::no_penetration};
+    gate.until = (2 + steps / 2) * solver.next_dt();
+    gate.name = "gate";
+    solver.add_constraint(gate);
+  } else {
+    solver.add_constraint({common::Vec3::Constant(-1e3),
+                           common::Vec3(1e3, 1e3, 0.0),
+                           {true, true, true},
+                           common::Vec3::Zero(),
+                           {}});
+  }
   SceneBenchmarkResult r;
   with_threads(threads, [&] {
     auto step = [&] {
       solver.step();
       const Energies e = solver.energies();  // the coupled run's quasi-static watch
-      if (!std::isfinite(e.kinetic)) throw common::NumericalError("mpm scene benchmark: blow-up");
+      common::Vec3 total = common::Vec3::Zero();  // the reactions, as the results rows read them
+      for (const common::Vec3& f : solver.reactions()) total += f;
+      if (!std::isfinite(e.kinetic) || !total.allFinite())
+        throw common::NumericalError("mpm scene benchmark: blow-up");
     };
     step();
     step();

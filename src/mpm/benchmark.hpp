@@ -32,8 +32,10 @@ struct SceneFeatures {
   bool plane_strain = true;   ///< one-cell-thick grid (y), 2 x 1 x 2 points per cell
   double mass_scaling = 100;  ///< SolverConfig::mass_scaling (1: off)
   bool gravity = true;        ///< g = 9.81 m/s^2 along -z
-  // Frictional boundaries and constraint reactions (issue 15 items 2, 3) are added here when
-  // they exist: a rough base (friction on the z- face) and the base reaction summed each step.
+  /// A rigid rough base (Coulomb wall, mu = 10, on the node plane z = 0) instead of held nodes,
+  /// and a gate (a smooth wall on the column's x+ side, removed at half the timed steps); the
+  /// reactions of both are summed every step, as the coupled run records them.
+  bool walls = true;
 };
 
 /// One measurement of the scene benchmark.
