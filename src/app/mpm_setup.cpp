@@ -158,11 +158,21 @@ MpmSetup mpm_setup(const Job& job) {
     }
     velocity_extras(job, base, c);
     c.name = job.has(base + "name") ? job.text(base + "name") : fmt::format("velocity_{}", i);
-    for (const mpm::VelocityConstraint& other : setup.constraints) {
-      if (other.name == c.name) {
-        throw common::InputError(job.message(
-            base + "name", "names the constraint of another [[mpm.velocity]]: names are unique"));
-      }
+    for (std::size_t k = 0; k < setup.constraints.size(); ++k) {
+      if (setup.constraints[k].name != c.name) continue;
+      // Name the key that was written: this entry's name, or the earlier one's that took the
+      // default name of this entry (velocity_<i>).
+      const std::string other = fmt::format("mpm.velocity[{}]", k);
+      const std::string here = fmt::format("mpm.velocity[{}]", i);
+      throw common::InputError(
+          job.has(base + "name")
+              ? job.message(base + "name",
+                            fmt::format("{} is already named so{}: names are unique", other,
+                                        job.has(other + ".name") ? "" : " (its default name)"))
+              : job.message(other + ".name",
+                            fmt::format("the default name of {}: names are unique (name {} "
+                                        "too, or rename this one)",
+                                        here, here)));
     }
     setup.constraints.push_back(std::move(c));
   }
