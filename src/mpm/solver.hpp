@@ -87,10 +87,10 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
      {"max_volume_ratio", &SolverConfig::max_volume_ratio, common::Unit::Dimensionless,
       common::gt(1), common::Source::cpp_only,
       "Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run."},
-     {"mass_scaling", &SolverConfig::mass_scaling, common::Unit::Dimensionless, common::ge(1),
-      common::Source::job_default,
+     {"mass_scaling", &SolverConfig::mass_scaling, common::Unit::Dimensionless,
+      common::in_cc(1, 1e6), common::Source::job_default,
       "Quasi-static mass scaling: the inertia (not the weight) is multiplied by it, the time step "
-      "by its square root; 1 = off (docs/mpm.md, Mass scaling)."},
+      "by its square root (at most 1000 times); 1 = off (docs/mpm.md, Mass scaling)."},
      {"quasi_static_ratio", &SolverConfig::quasi_static_ratio, common::Unit::Dimensionless,
       common::gt(0), common::Source::job_default,
       "With mass_scaling > 1: the log warns once when the kinetic energy exceeds this fraction "
