@@ -188,6 +188,9 @@ void Solver::prepare_grid(std::int64_t step, double t) {
   scale_inertia(true);  // after P2G: the gravity force above keeps the real mass
   threshold_ = config_.mass_threshold * typical_nodal_mass(fields_);
   compute_nodal_velocity(threshold_, fields_);
+  // Plane strain holds the thickness component before the constraints too: a frictional wall then
+  // sees no slip through the thickness (it would resist it and report it as its reaction).
+  hold_thickness_velocity();
   apply_velocity_constraints(config_.grid, constraints_, t, fields_);
   hold_thickness_velocity();
 }
@@ -328,6 +331,7 @@ void Solver::step() {
     p2g_internal_force(grid, cache_, bins_, points_, fields_);
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
+    hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
     // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
@@ -338,12 +342,14 @@ void Solver::step() {
     p2g_internal_force(grid, cache_, bins_, points_, fields_);
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
+    hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
     g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
     p2g_momentum(grid, cache_, bins_, points_, fields_);
     scale_inertia(false);
     compute_nodal_velocity(threshold_, fields_);
+    hold_thickness_velocity();
     apply_velocity_constraints(grid, constraints_, t + dt, fields_);
     hold_thickness_velocity();
     g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);

@@ -171,3 +171,34 @@ TEST(PlaneStrain, GridMustBeOneCellThick) {
 }
 
 }  // namespace
+
+// Plane strain with rough (frictional) platens: the thickness component is held before the walls
+// act, so no wall resists slip through the thickness and no reaction has a thickness component
+// (before, the rough base of a plane-strain biaxial reported R_y of 4 % of R_z: the out-of-plane
+// pressure on the two node planes, resisted by friction). Exactly zero: nothing is left to resist.
+TEST(PlaneStrain, RoughWallsReportNoThicknessReaction) {
+  const double E = 50e6, nu = 0.25, rho = 1600.0, p = 100e3;
+  mpm::SolverConfig cfg;
+  cfg.grid = {Vec3::Zero(), Vec3::Ones(), common::Vec3i(1, 1, 1)};
+  cfg.damping = 0.2;
+  cfg.plane_strain_axis = 1;
+  const Mat3 s0 = -p * Mat3::Identity();
+  RecordingMaterial material(E, nu, rho, s0, 0.0);
+  mpm::MaterialPoints pts;
+  mpm::fill_box(pts, cfg.grid, Vec3::Zero(), Vec3::Ones(), common::Vec3i(2, 1, 2), rho, 0);
+  for (Mat3& s : pts.stress) s = s0;
+  mpm::Solver solver(cfg, pts, {&material});
+  mpm::VelocityConstraint base{Vec3::Constant(-10), Vec3(10, 10, 0), {}, Vec3::Zero(), {}};
+  base.wall = {2, -1, 10.0, mpm::WallContact::fixed};
+  mpm::VelocityConstraint platen{Vec3(-10, -10, 1), Vec3::Constant(10), {}, Vec3(0, 0, -2e-3), {}};
+  platen.wall = {2, 1, 10.0, mpm::WallContact::fixed};
+  platen.name = "platen";
+  solver.add_constraint(base);
+  solver.add_constraint(platen);
+  for (int side : {-1, 1}) solver.add_traction({0, side, p, Vec3::Zero()});
+  for (int k = 0; k < 200; ++k) {
+    solver.step();
+    for (const Vec3& r : solver.reactions()) ASSERT_EQ(r[1], 0.0) << "step " << k;
+  }
+  EXPECT_LT(solver.reactions()[1][2], -0.5 * p);  // the platen presses down on the 1 m^2 top
+}
