@@ -2,7 +2,9 @@
 // migration on a real change of cost, none that does not pay back its move.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "farm/rebalance.hpp"
 
@@ -145,4 +147,59 @@ TEST(Rebalance, KeepOwnersRenamesPartsToMoveLeast) {
   std::vector<int> rotated{2, 2, 0, 0, 1, 1};
   EXPECT_EQ(farm::keep_owners(three, rotated, 3), 0);
   EXPECT_EQ(rotated, three);
+}
+
+namespace {
+// The renaming as first written: the dense P x P table scanned P times (O(P^3)), the reference
+// the O(N log N) version must equal exactly (same greedy order and ties).
+std::vector<int> keep_owners_dense(const std::vector<int>& current, std::vector<int> proposal,
+                                   int nparts) {
+  const auto np = static_cast<std::size_t>(nparts);
+  std::vector<std::int64_t> shared(np * np, 0);
+  for (std::size_t k = 0; k < current.size(); ++k)
+    ++shared[static_cast<std::size_t>(proposal[k]) * np + static_cast<std::size_t>(current[k])];
+  std::vector<int> rename(np, -1);
+  std::vector<bool> taken(np, false);
+  for (std::size_t round = 0; round < np; ++round) {
+    std::int64_t best = -1;
+    std::size_t bn = 0;
+    std::size_t bo = 0;
+    for (std::size_t n = 0; n < np; ++n) {
+      if (rename[n] >= 0) continue;
+      for (std::size_t o = 0; o < np; ++o) {
+        if (!taken[o] && shared[n * np + o] > best) {
+          best = shared[n * np + o];
+          bn = n;
+          bo = o;
+        }
+      }
+    }
+    rename[bn] = static_cast<int>(bo);
+    taken[bo] = true;
+  }
+  for (int& p : proposal) p = rename[static_cast<std::size_t>(p)];
+  return proposal;
+}
+}  // namespace
+
+// Random ownerships, some parts empty, many ties: the same renaming as the dense scan.
+TEST(Rebalance, KeepOwnersEqualsTheDenseGreedyScan) {
+  std::mt19937 gen(7);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int parts = 1 + static_cast<int>(gen() % 40);
+    const std::size_t rves = gen() % 200;
+    std::vector<int> current(rves);
+    std::vector<int> proposal(rves);
+    const int used = 1 + static_cast<int>(gen() % static_cast<unsigned>(parts));  // some empty
+    for (std::size_t k = 0; k < rves; ++k) {
+      current[k] = static_cast<int>(gen() % static_cast<unsigned>(used));
+      proposal[k] = static_cast<int>(gen() % static_cast<unsigned>(parts));
+    }
+    const std::vector<int> expected = keep_owners_dense(current, proposal, parts);
+    std::int64_t moves = 0;
+    for (std::size_t k = 0; k < rves; ++k) moves += expected[k] != current[k] ? 1 : 0;
+    std::vector<int> got = proposal;
+    ASSERT_EQ(farm::keep_owners(current, got, parts), moves) << "trial " << trial;
+    ASSERT_EQ(got, expected) << "trial " << trial;
+  }
 }
