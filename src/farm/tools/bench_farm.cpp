@@ -2,7 +2,11 @@
 //   mpiexec -n 2 --bind-to none bench_farm overhead [--wait auto|spin|sleep] [--steps 10]
 //       [--output-every 10] (rows of results.h5: the paper's job writes every 10th step)
 //   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12] [--steps
-//   20] mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8]
+//   20] mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8] [--micro dem|elastic]
+//       [--owners metis|blocks]
+//   mpiexec -n 4 --bind-to none bench_farm exchange --rves 10000 [--steps 50] [--migrate 1]
+//   bench_farm partition --rves 10000 [--parts 1024] [--bytes-per-rve 266000]
+// (exchange, partition, checkpoint --micro elastic: what grows with the RVE count; docs/scaling.md)
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default:
 // the 1000-sphere reference of jobs/packings),
 // --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
@@ -25,6 +29,7 @@
 #include "farm/driver.hpp"
 #include "farm/elastic_micro.hpp"
 #include "farm/partition.hpp"
+#include "farm/rebalance.hpp"
 #include "farm/rve_farm.hpp"
 #include "mpm/boundary.hpp"
 #include "mpm/material_points.hpp"
@@ -288,35 +293,193 @@ farm::RveFarm dem_farm_in_one_cell(const Args& a, MPI_Comm comm,
                        farm_options(a));
 }
 
+/// Tiny RVEs for counting what grows with their number: ElasticMicro, one substep.
+farm::MicroKind tiny_kind() {
+  farm::ElasticMicroParams p;
+  p.young = 50e6;
+  p.poisson = 0.25;
+  p.density = 1600.0;
+  p.initial_stress = -100e3 * Mat3::Identity();
+  return farm::ElasticMicro::kind(p);
+}
+
+/// n points on a cubic lattice in the unit cube, about 8 per cell of the grid.
+struct Lattice {
+  mpm::Grid grid;
+  std::vector<Vec3> x;
+};
+Lattice lattice(int n) {
+  const int c = std::max(1, static_cast<int>(std::ceil(std::cbrt(n / 8.0))));
+  const int m = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(n))));
+  Lattice l{{Vec3::Zero(), Vec3::Constant(1.0 / c), common::Vec3i::Constant(c)}, {}};
+  for (int k = 0; k < n; ++k)
+    l.x.emplace_back((k % m + 0.5) / m, ((k / m) % m + 0.5) / m, (k / (m * m) + 0.5) / m);
+  return l;
+}
+
+double max_over_ranks(MPI_Comm comm, double v) {
+  double m = 0.0;
+  MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return m;
+}
+
+// Write (best of 3) and collective read of one checkpoint: --micro dem (the reference packing,
+// bandwidth) or elastic (tiny RVEs: bytes per RVE of the format's per-RVE overhead).
 void checkpoint(const Args& a, MPI_Comm comm) {
   const int n = std::stoi(a.get("rves", "8"));
+  const bool dem = a.get("micro", "dem") == "dem";
   const std::vector<std::int64_t> ids = rve_ids(n);
-  farm::RveFarm f = dem_farm_in_one_cell(a, comm, ids);
+  const std::string path = a.get("path", "/tmp/bench_farm_checkpoint.h5");
+  {
+    const Lattice lat = lattice(n);
+    farm::RveFarm f = dem ? dem_farm_in_one_cell(a, comm, ids)
+                          : farm::RveFarm(comm, tiny_kind(), ids, lat.x, lat.grid, farm_options(a));
+    if (f.rank() != 0) {
+      f.serve();
+    } else {
+      std::vector<Mat3> L(static_cast<std::size_t>(n), Mat3::Zero());
+      for (auto& l : L) l(2, 2) = -0.01;
+      std::vector<Mat3> s(static_cast<std::size_t>(n));
+      f.update_stress(ids, L, 1e-3, s);  // contacts with history
+      // --owners blocks: contiguous index ranges per rank (one file block per rank and field)
+      // instead of METIS's parts, whose RVE indices interleave.
+      if (a.get("owners", "metis") == "blocks")
+        f.migrate_to(farm::partition_blocks(static_cast<std::size_t>(n), f.size()));
+      common::StateStore mpm;
+      mpm.write("solver/step", std::vector<std::int64_t>{1});
+      double best = 1e300;
+      for (int rep = 0; rep < 3; ++rep) {
+        const double t0 = now();
+        f.checkpoint(path, 1, 1e-3, "# bench_farm\n", mpm, false);
+        best = std::min(best, now() - t0);
+      }
+      const auto bytes = static_cast<double>(std::filesystem::file_size(path));
+      std::printf("checkpoint: ranks %d, %d %s RVEs\n", f.size(), n,
+                  dem ? a.get("packing", MPMXDEM_DEFAULT_PACKING).c_str() : "tiny ElasticMicro");
+      std::printf("  write (best of 3, incl. fsync + rename) %.4f s = %.3f ms per RVE\n", best,
+                  1e3 * best / n);
+      std::printf("  file size %.3f MB = %.1f B per RVE (chunked, shuffle + deflate 4)\n",
+                  bytes / 1e6, bytes / n);
+      f.stop();
+    }
+  }
+  // Restart read: every rank reads the info, then its block of RVEs (collective).
+  MPI_Barrier(comm);
+  const double t0 = now();
+  const farm::CheckpointInfo info = farm::read_checkpoint_info(path);
+  const std::vector<int> owner = farm::partition_blocks(info.ids.size(), size_of(comm));
+  std::vector<std::int64_t> mine;
+  for (std::size_t k = 0; k < owner.size(); ++k)
+    if (owner[k] == rank_of(comm)) mine.push_back(static_cast<std::int64_t>(k));
+  const std::vector<common::StateStore> states = farm::read_checkpoint_rves(comm, info, mine);
+  const double t_read = max_over_ranks(comm, now() - t0);
+  if (rank_of(comm) == 0)
+    std::printf("  read (info + collective RVE read, %zu states here) %.4f s = %.3f ms per RVE\n",
+                states.size(), t_read, 1e3 * t_read / n);
+}
+
+// Rank 0's cost per MPM step of the farm's exchange with tiny RVEs (their own work ~0): the
+// scatter of L, the gather of records and the bookkeeping, with --rves on a lattice (8 per cell).
+// --migrate 1: then a migration to round-robin owners (time per moved RVE).
+void exchange(const Args& a, MPI_Comm comm) {
+  const int n = std::stoi(a.get("rves", "1000"));
+  const int steps = std::stoi(a.get("steps", "50"));
+  const Lattice lat = lattice(n);
+  const std::vector<std::int64_t> ids = rve_ids(n);
+  const double t_setup0 = now();
+  farm::RveFarm f(comm, tiny_kind(), ids, lat.x, lat.grid, farm_options(a));
+  const double t_setup = max_over_ranks(comm, now() - t_setup0);
   if (f.rank() != 0) {
     f.serve();
     return;
   }
+  const int p = f.size();
   std::vector<Mat3> L(static_cast<std::size_t>(n), Mat3::Zero());
-  for (auto& l : L) l(2, 2) = -0.01;
+  for (std::size_t k = 0; k < L.size(); ++k) L[k](2, 2) = -1e-3 * (1.0 + 1e-4 * k);
   std::vector<Mat3> s(static_cast<std::size_t>(n));
-  f.update_stress(ids, L, 1e-3, s);  // contacts with history
-  common::StateStore mpm;
-  mpm.write("solver/step", std::vector<std::int64_t>{1});
-  const std::string path = "/tmp/bench_farm_checkpoint.h5";
-  double best = 1e300;
-  for (int rep = 0; rep < 3; ++rep) {
-    const double t0 = now();
-    f.checkpoint(path, 1, 1e-3, "# bench_farm\n", mpm, false);
-    best = std::min(best, now() - t0);
+  for (int k = 0; k < 3; ++k) f.update_stress(ids, L, 1e-6, s);  // warm-up
+  // Per step: the wall of update_stress and its part outside the critical rank's RVE loop (the
+  // exchange, rank 0's packing and unpacking, waiting); medians over the steps.
+  std::vector<double> wall;
+  std::vector<double> outside;
+  for (int k = 0; k < steps; ++k) {
+    const double c0 = f.times().critical_busy;
+    const double w0 = now();
+    f.update_stress(ids, L, 1e-6, s);
+    wall.push_back(now() - w0);
+    outside.push_back(wall.back() - (f.times().critical_busy - c0));
   }
-  const auto bytes = static_cast<double>(std::filesystem::file_size(path));
-  std::printf("checkpoint: ranks %d, %d DEM RVEs (%s)\n", f.size(), n,
-              a.get("packing", MPMXDEM_DEFAULT_PACKING).c_str());
-  std::printf("  write (best of 3, incl. fsync + rename) %.4f s = %.5f s per RVE\n", best,
-              best / n);
-  std::printf("  file size %.3f MB = %.1f kB per RVE (chunked, shuffle + deflate 4)\n", bytes / 1e6,
-              bytes / 1e3 / n);
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::printf("exchange: ranks %d, %d tiny RVEs, %d steps (set-up incl. METIS %.4f s)\n", p, n,
+              steps, t_setup);
+  std::printf(
+      "  bytes per step: scatter %lld (24 per rank + 72 per RVE), gather %lld (8 per "
+      "rank + 160 per RVE)\n",
+      24LL * p + 72LL * n, 8LL * p + 160LL * n);
+  std::printf(
+      "  per step (medians): update_stress wall %.1f us = %.4f us per RVE; outside the "
+      "critical RVE loop %.1f us = %.4f us per RVE\n",
+      1e6 * median(wall), 1e6 * median(wall) / n, 1e6 * median(outside), 1e6 * median(outside) / n);
+  if (a.get("migrate", "0") == "1" && p > 1) {
+    const std::vector<int> rr = farm::partition_round_robin(static_cast<std::size_t>(n), p);
+    std::int64_t moved = 0;
+    for (std::size_t k = 0; k < rr.size(); ++k) moved += rr[k] != f.owner()[k] ? 1 : 0;
+    const double m0 = f.times().migrate_wall;
+    f.migrate_to(rr);
+    const double mw = f.times().migrate_wall - m0;
+    std::printf("  migration to round-robin: %lld RVEs moved in %.4f s = %.2f us per moved RVE\n",
+                static_cast<long long>(moved), mw, 1e6 * mw / std::max<std::int64_t>(moved, 1));
+  }
   f.stop();
+}
+
+// METIS on the RVE graph at --rves RVEs (serial, as on rank 0): graph build, the start-up
+// partition, then a rebalance check after the costs changed by +/-30 % (deterministic noise):
+// time, RVEs moved and the bytes they carry (--bytes-per-rve: a 1000-sphere RVE's state).
+void partition(const Args& a) {
+  const int n = std::stoi(a.get("rves", "1000"));
+  const int parts = std::stoi(a.get("parts", "32"));
+  const double bytes_per_rve = std::stod(a.get("bytes-per-rve", "266000"));
+  const Lattice lat = lattice(n);
+  double t = now();
+  const farm::RveGraph g = farm::cell_graph(lat.grid, lat.x);
+  const double t_graph = now() - t;
+  std::uint64_t lcg = 12345;
+  auto uniform = [&lcg] {
+    lcg = lcg * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(lcg >> 11) / 9007199254740992.0;
+  };
+  std::vector<double> cost(static_cast<std::size_t>(n));
+  for (double& c : cost) c = 1.0 + uniform();
+  t = now();
+  const std::vector<int> owner = farm::partition_metis(g, cost, parts);
+  const double t_metis = now() - t;
+  const double balance = farm::balance_efficiency(owner, cost, parts);
+  for (double& c : cost) c *= 0.7 + 0.6 * uniform();
+  // The check's two parts: a fresh METIS partition and the renaming of its parts (keep_owners).
+  std::vector<int> proposal = farm::partition_metis(g, cost, parts);
+  t = now();
+  const std::int64_t kept_moves = farm::keep_owners(owner, proposal, parts);
+  const double t_keep = now() - t;
+  const double threshold = std::stod(a.get("threshold", "1.0"));
+  t = now();
+  const farm::RebalancePlan plan = farm::plan_rebalance(g, owner, cost, parts, threshold, 1);
+  const double t_plan = now() - t;
+  std::printf("partition: %d RVEs, %zu graph edges, %d parts\n", n, g.adjncy.size() / 2, parts);
+  std::printf(
+      "  cell_graph %.4f s, partition_metis %.4f s (balance %.3f), plan_rebalance %.4f s "
+      "(of which keep_owners %.4f s)\n",
+      t_graph, t_metis, balance, t_plan, t_keep);
+  std::printf(
+      "  rebalance after +/-30 %% cost noise (threshold %.2f): imbalance %.3f -> %.3f, "
+      "migrate %d, %lld RVEs moved (%.1f %%; renamed proposal %lld) = %.1f "
+      "MB at %.0f B per RVE\n",
+      threshold, plan.imbalance_now, plan.imbalance_new, plan.migrate ? 1 : 0,
+      static_cast<long long>(plan.moves), 100.0 * plan.moves / n,
+      static_cast<long long>(kept_moves), plan.moves * bytes_per_rve / 1e6, bytes_per_rve);
 }
 
 // What moving an RVE costs: 8 DEM RVEs of the reference packing under the paper's strain rate;
@@ -391,9 +554,15 @@ int main(int argc, char** argv) {
       checkpoint(a, MPI_COMM_WORLD);
     } else if (a.mode == "move") {
       move(a, MPI_COMM_WORLD);
+    } else if (a.mode == "exchange") {
+      exchange(a, MPI_COMM_WORLD);
+    } else if (a.mode == "partition") {
+      if (rank_of(MPI_COMM_WORLD) == 0) partition(a);
     } else {
-      std::fprintf(stderr,
-                   "usage: bench_farm overhead|balance|checkpoint|move [--option value ...]\n");
+      std::fprintf(
+          stderr,
+          "usage: bench_farm overhead|balance|checkpoint|move|exchange|partition [--option value "
+          "...]\n");
       rc = 2;
     }
   } catch (const std::exception& e) {

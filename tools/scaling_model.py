@@ -1,0 +1,187 @@
+#!/usr/bin/python3
+"""Scaling model of the MPM x DEM farm (docs/scaling.md, issue 20).
+
+Time per MPM step on P cores with N RVEs (one RVE per material point):
+
+    T(P, N) = t_rve * ceil-ish(N / W) / eff(N / W)          slowest rank's RVE work
+            + N * (s_mpm / speedup0 + s_farm + s_out)        rank 0: MPM, bookkeeping, results rows
+            + 2 * alpha * R + N * b_step / beta              scatter of L + gather of records
+
+W: cores that step RVEs; R: MPI ranks (messages per collective); eff: mean/max of the rank
+loads of a METIS partition at N / W RVEs per core (measured, bench_farm partition).
+Efficiency E = T(1, N) / (P * T(P, N)), with T(1, N) = N * (t_rve + s_mpm + s_farm + s_out).
+
+Reads docs/data/scaling/constants.json; prints the tables; writes docs/figures/scaling_*.png
+(when matplotlib is present). Usage: /usr/bin/python3 tools/scaling_model.py [--no-figures]
+"""
+import json
+import math
+import pathlib
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+CONSTANTS = ROOT / "docs" / "data" / "scaling" / "constants.json"
+FIGURES = ROOT / "docs" / "figures"
+
+
+def load():
+    with open(CONSTANTS) as f:
+        return json.load(f)
+
+
+def balance(c, k):
+    """mean/max of the rank loads at k RVEs per working core (log-linear interpolation of the
+    measured METIS balances; 1 RVE per core: the cost spread alone)."""
+    pts = sorted((p["rves_per_part"], p["balance"]) for p in c["metis_balance"])
+    if k <= pts[0][0]:
+        return pts[0][1]
+    if k >= pts[-1][0]:
+        return pts[-1][1]
+    for (k0, e0), (k1, e1) in zip(pts, pts[1:]):
+        if k0 <= k <= k1:
+            w = (math.log(k) - math.log(k0)) / (math.log(k1) - math.log(k0))
+            return e0 + w * (e1 - e0)
+    return pts[-1][1]
+
+
+def layouts(c):
+    """The designs compared: how P cores are used."""
+    return c["layouts"]
+
+
+def step_time(c, lay, P, N):
+    """Seconds per MPM step and its parts on P cores with N RVEs for layout `lay`."""
+    t = lay["threads_per_rank"]
+    ranks = max(1, P // t)
+    # Cores that step RVEs: all, or all but those reserved for rank 0's MPM (it owns no RVEs);
+    # on small machines at most 1/8 of the cores are reserved, with a proportional MPM speed-up.
+    reserved = min(lay["rank0_cores"], P // 8) if ranks > 1 else 0
+    W = max(P - reserved, 1)
+    speedup = max(1.0, lay["mpm_speedup"] * reserved / lay["rank0_cores"]) if reserved else 1.0
+    k = N / W
+    # With fewer RVEs than cores the slowest core still steps one whole RVE.
+    work = c["t_rve_s"] * max(k, 1.0) / balance(c, k)
+    s_mpm = c["s_mpm_s"] / speedup
+    rank0 = N * (s_mpm + c["s_farm_s"] + c["s_out_s"])
+    if ranks > 1:
+        alpha = c["alpha_s"] * (math.log2(ranks) if lay.get("tree") else ranks)
+        exch = 2 * alpha + N * c["bytes_per_rve_step"] / c["beta_Bps"]
+    else:
+        exch = 0.0
+    return work + rank0 + exch, work, rank0, exch
+
+
+def efficiency(c, lay, P, N):
+    t1 = N * (c["t_rve_s"] + c["s_mpm_s"] + c["s_farm_s"] + c["s_out_s"])
+    return t1 / (P * step_time(c, lay, P, N)[0])
+
+
+def rank0_bound(c, lay):
+    """Cores beyond which rank 0's serial part per step (MPM, bookkeeping, rows and the bytes of
+    the exchange) exceeds one core's RVE work (independent of N: both grow with N)."""
+    s = c["s_mpm_s"] / lay["mpm_speedup"] + c["s_farm_s"] + c["s_out_s"]
+    s += c["bytes_per_rve_step"] / c["beta_Bps"]
+    return c["t_rve_s"] / s
+
+
+def tables(c):
+    Ps = [16, 64, 128, 256, 512, 1024, 2048, 4096, 10000]
+    Ns = [1000, 10000, 100000]
+    out = []
+    for name, lay in layouts(c).items():
+        out.append(f"\n## {name}: {lay['what']}")
+        out.append(f"rank 0 becomes the bottleneck beyond ~{rank0_bound(c, lay):.0f} cores")
+        out.append("strong scaling, parallel efficiency [%] (rows: RVEs; columns: cores)")
+        out.append("N \\ P   " + "".join(f"{P:>7d}" for P in Ps))
+        for N in Ns:
+            out.append(f"{N:<8d}" + "".join(f"{100 * efficiency(c, lay, P, N):7.1f}" for P in Ps))
+        T, w, r0, ex = step_time(c, lay, 1024, 10000)
+        out.append(
+            f"1024 cores, 10^4 RVEs: {1e3 * T:.2f} ms/step = RVE work {1e3 * w:.2f} + rank 0 "
+            f"{1e3 * r0:.2f} + exchange {1e3 * ex:.2f} ms; E = {100 * efficiency(c, lay, 1024, 10000):.1f} %"
+        )
+        out.append("weak scaling, 10 RVEs per core: E [%] = T(1 core, 10 RVEs) / T(P, 10 P)")
+        out.append("P       " + "".join(f"{P:>7d}" for P in Ps))
+        out.append(
+            "        "
+            + "".join(
+                f"{100 * step_time(c, lay, 1, 10)[0] / step_time(c, lay, P, 10 * P)[0]:7.1f}"
+                for P in Ps
+            )
+        )
+    return "\n".join(out)
+
+
+def figures(c):
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib not found: no figures")
+        return
+    Ps = [int(round(10 ** (x / 8))) for x in range(8, 33)]  # 10 .. 10^4
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2), sharey=True)
+    for ax, N in zip(axes, [1000, 10000, 100000]):
+        for name, lay in layouts(c).items():
+            ax.semilogx(Ps, [100 * efficiency(c, lay, P, N) for P in Ps], label=name)
+        ax.axhline(80, color="grey", ls=":", lw=1)
+        ax.axvline(1024, color="grey", ls=":", lw=1)
+        ax.set_title(f"strong scaling, {N:,} RVEs")
+        ax.set_xlabel("cores")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel("modelled parallel efficiency [%]")
+    axes[0].set_ylim(0, 105)
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "scaling_strong.png", dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    for name, lay in layouts(c).items():
+        ax.semilogx(
+            Ps,
+            [100 * step_time(c, lay, 1, 10)[0] / step_time(c, lay, P, 10 * P)[0] for P in Ps],
+            label=name,
+        )
+    ax.axhline(80, color="grey", ls=":", lw=1)
+    ax.set_xlabel("cores (10 RVEs per core)")
+    ax.set_ylabel("modelled weak-scaling efficiency [%]")
+    ax.set_ylim(0, 105)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "scaling_weak.png", dpi=110)
+    plt.close(fig)
+
+    # Where the time of a step goes, as built, 10^4 RVEs.
+    lay = layouts(c)["as built"]
+    parts = [step_time(c, lay, P, 10000) for P in Ps]
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    ax.loglog(Ps, [1e3 * p[1] for p in parts], label="slowest rank's RVE work")
+    ax.loglog(Ps, [1e3 * p[2] for p in parts], label="rank 0: MPM + bookkeeping + rows")
+    ax.loglog(Ps, [1e3 * max(p[3], 1e-6) for p in parts], label="scatter + gather")
+    ax.set_xlabel("cores")
+    ax.set_ylabel("ms per MPM step")
+    ax.set_title("as built, 10,000 RVEs of 1000 spheres")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(FIGURES / "scaling_parts.png", dpi=110)
+    plt.close(fig)
+    print("figures: docs/figures/scaling_strong.png, scaling_weak.png, scaling_parts.png")
+
+
+def main():
+    c = load()
+    print("constants:", CONSTANTS.relative_to(ROOT))
+    for k in ("t_rve_s", "s_mpm_s", "s_farm_s", "s_out_s", "alpha_s", "beta_Bps"):
+        print(f"  {k} = {c[k]:g}   ({c['notes'][k]})")
+    print(tables(c))
+    if "--no-figures" not in sys.argv:
+        figures(c)
+
+
+if __name__ == "__main__":
+    main()
