@@ -188,13 +188,17 @@ def front(hv):
     return 0.0
 
 
-# Release: the gate spheres stay where they are but stop colliding (mask 0) and lose their contacts. Erasing
-# them instead (O.bodies.erase) left two of three N = 2000 runs stuck in InsertionSortCollider::insertionSortPeri
-# at the first steps after the release (YADE 2023.02a, periodic cell).
+# Release: the gate's spheres lose their contacts and are moved next to the far end of the base (against the
+# periodic image of the back wall, x = Lx, far beyond any runout); a fresh collider then sorts the bounds anew.
+# Two other ways failed with YADE 2023.02a in this periodic cell: erasing the bodies (O.bodies.erase) left two
+# of three N = 2000 runs stuck in InsertionSortCollider::insertionSortPeri right after the release, and
+# setting their mask to 0 left the gate in place (the columns did not move).
 for i in gate:
     for it in O.interactions.withBodyAll(i):  # real and potential contacts
         O.interactions.erase(it.id1, it.id2)
-    O.bodies[i].mask = 0
+    p = O.bodies[i].state.pos
+    O.bodies[i].state.pos = (Lx - 1.5 * DW, p[1], p[2])
+O.engines = [O.engines[0], InsertionSortCollider([Bo1_Sphere_Aabb()], avoidSelfInteractionMask=2)] + O.engines[2:]
 t0, step0 = O.time, O.iter
 ts_path = os.path.join(args.out, f"{tag}_timeseries.csv")
 pr_path = os.path.join(args.out, f"{tag}_profiles.csv")
