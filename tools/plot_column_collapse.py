@@ -107,25 +107,30 @@ fig.savefig(os.path.join(args.fig, "column_front.png"), dpi=130)
 plt.close(fig)
 
 # --- scaling against a -------------------------------------------------------------------------
-big = sm.sort_values("N").groupby(sm.a.round(1)).tail(1).sort_values("a")
+# only finished runs (at rest or at --tmax) give a runout: a run cut by --max-wall is left out
+done = sm[sm.end_reason.isin(["rest", "tmax"])]
+big = done.sort_values("N").groupby(done.a.round(1)).tail(1).sort_values("a")
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
 aa = np.logspace(math.log10(0.3), math.log10(8), 50)
 ax[0].loglog(big.a, big.runout_over_L0, "ko-", label="YADE (this work)")
-small = sm.drop(big.index)
+small = done.drop(big.index)
+if big.empty:
+    ax[0].text(0.05, 0.9, "no finished YADE run yet (all cut by --max-wall)", transform=ax[0].transAxes,
+               fontsize=8, color="r")
 if not small.empty:
     ax[0].loglog(small.a, small.runout_over_L0, "k^", mfc="none", label="YADE, smaller N")
 lube = np.where(aa < 2.3, 1.2 * aa, 1.9 * aa ** (2 / 3))
 ax[0].loglog(aa, lube, "b--", lw=1, label="Lube et al. 2005 as quoted: 1.2a | 1.9a^(2/3)")
 for expo, lab, ls in [(0.65, "Balmforth & Kerswell narrow slot: a^0.65", "g-."),
                       (0.9, "Balmforth & Kerswell wide channel: a^0.9", "m:")]:
-    ref = big.runout_over_L0.iloc[len(big) // 2] / big.a.iloc[len(big) // 2] ** expo if len(big) else 1.0
+    ref = big.runout_over_L0.iloc[len(big) // 2] / big.a.iloc[len(big) // 2] ** expo if len(big) else 1.2
     ax[0].loglog(aa, ref * aa ** expo, ls, lw=1, label=lab + " (slope only)")
 ax[0].set_xlabel("a = H0 / L0")
 ax[0].set_ylabel("(L_f - L0) / L0")
 ax[0].legend(fontsize=7)
 ax[1].loglog(big.a, big.Hf_over_L0, "ko-", label="YADE: H_f / L0")
 ax[1].loglog(big.a, big.a / big.Hf_over_L0, "rs-", label="YADE: H0 / H_f")
-ref = (big.a / big.Hf_over_L0).iloc[len(big) // 2] / big.a.iloc[len(big) // 2] ** 0.5 if len(big) else 1.0
+ref = (big.a / big.Hf_over_L0).iloc[len(big) // 2] / big.a.iloc[len(big) // 2] ** 0.5 if len(big) else 0.8
 ax[1].loglog(aa, ref * aa ** 0.5, "g-.", lw=1, label="B&K narrow slot H0/h_inf ~ a^0.5 (slope only)")
 ax[1].loglog(aa, np.minimum(aa, 1.0) * 0 + np.where(aa < 1, aa, np.nan), "k:", lw=1, label="H_f = H0")
 ax[1].set_xlabel("a = H0 / L0")
