@@ -71,11 +71,11 @@ for ax, (_, r) in zip(axes[:, 0], sm.iterrows()):
             continue
         lw = 2.0 if s == "final" else 1.0
         ax.plot(p.x_m / L0, p.h_vol_m / L0, color="k" if s == "final" else colors[i % len(colors)], lw=lw,
-                label=f"t/t* = {s}" if s != "final" else f"final (t/t* = {r.t_end_over_tstar:.1f})")
+                label=f"t/t* = {s}" if s != "final" else f"end of run (t/t* = {r.t_end_over_tstar:.1f}, {r.end_reason})")
     ax.set_xlim(0, max(2.0, 1.15 * r.L_f_m / L0))
     ax.set_ylim(0, 1.1 * H0 / L0)
     ax.set_ylabel("h / L0")
-    ax.set_title(f"{r.tag}: a = {r.a:.2f}, N = {r.N}, runout (Lf-L0)/L0 = {r.runout_over_L0:.2f}", fontsize=9)
+    ax.set_title(f"{r.tag}: a = {r.a:.2f}, N = {r.N}, (L-L0)/L0 = {r.runout_over_L0:.2f} at the end of the run ({r.end_reason})", fontsize=9)
     ax.legend(fontsize=6, ncol=3, loc="upper right")
 axes[-1, 0].set_xlabel("x / L0")
 fig.suptitle("YADE column collapse: equivalent height h = solid volume / (dx W phi0), bins of d50", fontsize=9)
