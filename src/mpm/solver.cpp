@@ -223,6 +223,10 @@ void Solver::hold_thickness_acceleration() {
 void Solver::update_stress(double dt) {
   const auto n = static_cast<std::int64_t>(points_.size());
   const common::Mat3 I = common::Mat3::Identity();
+  if (config_.strain_smoothing == StrainSmoothing::cell) {
+    smooth_velocity_gradient(config_.grid, points_.x, points_.volume, points_.L,
+                             smoothing_scratch_);
+  }
   if (const int a = config_.plane_strain_axis; a >= 0) {
     // Plane strain: no stretching or shearing through the thickness reaches the material, even
     // when its out-of-plane shear stress makes the in-plane velocities vary through the cell.

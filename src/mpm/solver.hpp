@@ -15,6 +15,7 @@
 #include "mpm/material_model.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/shape_function.hpp"
+#include "mpm/strain_smoothing.hpp"
 #include "mpm/transfers.hpp"
 
 namespace mpm {
@@ -64,6 +65,9 @@ struct SolverConfig {
   /// Kinetic energy over internal work above which a mass-scaled run is warned that it is no
   /// longer quasi-static [-] (mpm/energy.hpp, QuasiStaticWatch).
   double quasi_static_ratio = 0.01;
+  /// cell: every point of a grid cell gets the cell's volume-averaged L before the material
+  /// update, in USF and MUSL (docs/mpm.md, "Strain smoothing"). none: each point its own L.
+  StrainSmoothing strain_smoothing = StrainSmoothing::none;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
@@ -189,6 +193,7 @@ class Solver {
   std::vector<std::int64_t> gather_ids_;
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
+  std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
 };
 
 }  // namespace mpm
