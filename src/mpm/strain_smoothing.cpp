@@ -30,12 +30,12 @@ std::int64_t cell_of(const Grid& grid, const common::Vec3& x) {
   return ijk[0] + grid.cells[0] * (ijk[1] + grid.cells[1] * ijk[2]);
 }
 
-void smooth_velocity_gradient(const Grid& grid, const std::vector<common::Vec3>& x,
-                              const std::vector<double>& volume, std::vector<common::Mat3>& L,
-                              std::vector<std::pair<std::int64_t, std::int64_t>>& scratch) {
+void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                      const std::vector<double>& volume, std::vector<common::Mat3>& L,
+                      std::vector<std::pair<std::int64_t, std::int64_t>>& scratch) {
   const std::size_t n = x.size();
   if (volume.size() != n || L.size() != n) {
-    throw common::NumericalError("smooth_velocity_gradient: x, volume and L differ in size");
+    throw common::NumericalError("average_per_cell: x, volume and L differ in size");
   }
   // (cell, point) pairs sorted by cell then point: each cell's points in point order.
   scratch.resize(n);

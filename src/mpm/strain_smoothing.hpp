@@ -16,7 +16,8 @@ namespace mpm {
 /// Which velocity gradient the material update sees.
 enum class StrainSmoothing {
   none,  ///< each point its own L (the default)
-  cell,  ///< each point the volume-weighted mean L of the points in its grid cell
+  cell,  ///< each point the volume-weighted mean L of the points in its grid cell, and the
+         ///< internal forces from the cell's mean stress (no hourglass forces; docs/mpm.md)
 };
 
 /// "none" or "cell"; throws common::InputError otherwise.
@@ -28,11 +29,12 @@ enum class StrainSmoothing {
 [[nodiscard]] std::int64_t cell_of(const Grid& grid, const common::Vec3& x);
 
 /// Replaces each L[p] by sum_q V_q L_q / sum_q V_q over the points q in the cell of x[p]
-/// (volume [m^3], L [1/s]). Pre: x, volume and L have the same size, volumes > 0. The sums run
-/// in point order within each cell: the result depends on neither thread count nor cell count.
-/// `scratch` is reused between calls (no allocation in the steady state).
-void smooth_velocity_gradient(const Grid& grid, const std::vector<common::Vec3>& x,
-                              const std::vector<double>& volume, std::vector<common::Mat3>& L,
-                              std::vector<std::pair<std::int64_t, std::int64_t>>& scratch);
+/// (volume [m^3]; L: any tensor per point, the velocity gradient [1/s] or the stress [Pa]). Pre: x,
+/// volume and L have the same size, volumes > 0. The sums run in point order within each cell: the
+/// result depends on neither thread count nor cell count. `scratch` is reused between calls (no
+/// allocation in the steady state).
+void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                      const std::vector<double>& volume, std::vector<common::Mat3>& L,
+                      std::vector<std::pair<std::int64_t, std::int64_t>>& scratch);
 
 }  // namespace mpm

@@ -35,7 +35,7 @@ TEST(StrainSmoothing, VolumeWeightedMeanPerCell) {
   const Mat3 mean0 = (1.0 * filled(1.0) + 3.0 * filled(-2.0) + 4.0 * filled(0.5)) / 8.0;
   const Mat3 mean1 = (2.0 * filled(10.0) + 0.5 * filled(4.0)) / 2.5;
   std::vector<std::pair<std::int64_t, std::int64_t>> scratch;
-  mpm::smooth_velocity_gradient(g, x, vol, L, scratch);
+  mpm::average_per_cell(g, x, vol, L, scratch);
   for (const std::size_t p : {0U, 2U, 4U}) EXPECT_LT((L[p] - mean0).norm(), kTol) << p;
   for (const std::size_t p : {1U, 3U}) EXPECT_LT((L[p] - mean1).norm(), kTol) << p;
   // The volume-weighted sum over each cell (the cell's deformation rate) is conserved.
@@ -53,7 +53,7 @@ TEST(StrainSmoothing, HomogeneousFieldUnchanged) {
   std::vector<Mat3> L(4, filled(0.3));
   const std::vector<Mat3> before = L;
   std::vector<std::pair<std::int64_t, std::int64_t>> scratch;
-  mpm::smooth_velocity_gradient(g, x, vol, L, scratch);
+  mpm::average_per_cell(g, x, vol, L, scratch);
   for (std::size_t p = 0; p < L.size(); ++p) EXPECT_LT((L[p] - before[p]).norm(), kTol) << p;
 }
 
