@@ -29,8 +29,9 @@ void add_mpm_sections(Schema& s) {
       .or_default(std::string("vector"));
   s.add("mpm.strain_smoothing", Type::String,
         "cell: every point of a grid cell gets the cell's volume-averaged velocity gradient before "
-        "the material update (cures the checkerboard of softening single-cell tests, but also "
-        "suppresses real localisation within a cell; docs/mpm.md, Strain smoothing). none: off.")
+        "the material update, and the internal forces come from the cell's mean stress (cures "
+        "the checkerboard of softening single-cell tests, but also suppresses real localisation "
+        "within a cell; docs/mpm.md, Strain smoothing). none: off.")
       .one_of({"none", "cell"})
       .or_default(std::string("none"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
