@@ -27,6 +27,13 @@ void add_mpm_sections(Schema& s) {
         "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
       .one_of({"vector", "component"})
       .or_default(std::string("vector"));
+  s.add("mpm.strain_smoothing", Type::String,
+        "cell: every point of a grid cell gets the cell's volume-averaged velocity gradient before "
+        "the material update, and the internal forces come from the cell's mean stress (cures "
+        "the checkerboard of softening single-cell tests, but also suppresses real localisation "
+        "within a cell; docs/mpm.md, Strain smoothing). none: off.")
+      .one_of({"none", "cell"})
+      .or_default(std::string("none"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "

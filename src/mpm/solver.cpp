@@ -226,6 +226,9 @@ void Solver::hold_thickness_acceleration() {
 void Solver::update_stress(double dt) {
   const auto n = static_cast<std::int64_t>(points_.size());
   const common::Mat3 I = common::Mat3::Identity();
+  if (config_.strain_smoothing == StrainSmoothing::cell) {
+    average_per_cell(config_.grid, points_.x, points_.volume, points_.L, smoothing_scratch_);
+  }
   if (const int a = config_.plane_strain_axis; a >= 0) {
     // Plane strain: no stretching or shearing through the thickness reaches the material, even
     // when its out-of-plane shear stress makes the in-plane velocities vary through the cell.
@@ -318,6 +321,19 @@ void Solver::add_external_loads() {
   }
 }
 
+void Solver::internal_force() {
+  if (config_.strain_smoothing != StrainSmoothing::cell) {
+    p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);
+    return;
+  }
+  // The forces of the cell's mean stress: the hourglass modes, which the smoothed L does not
+  // see, get no force either, and the forces' power equals the material's (docs/mpm.md).
+  smoothing_stress_ = points_.stress;
+  average_per_cell(config_.grid, points_.x, points_.volume, points_.stress, smoothing_scratch_);
+  p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);
+  points_.stress.swap(smoothing_stress_);
+}
+
 void Solver::step() {
   const double dt = next_dt();
   const double t = time_;
@@ -328,7 +344,7 @@ void Solver::step() {
     g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
     update_stress(dt);
     check_points(t + dt);
-    p2g_internal_force(grid, cache_, bins_, points_, fields_);
+    internal_force();
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
@@ -339,7 +355,7 @@ void Solver::step() {
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
-    p2g_internal_force(grid, cache_, bins_, points_, fields_);
+    internal_force();
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness

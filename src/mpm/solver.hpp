@@ -15,6 +15,7 @@
 #include "mpm/material_model.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/shape_function.hpp"
+#include "mpm/strain_smoothing.hpp"
 #include "mpm/transfers.hpp"
 
 namespace mpm {
@@ -64,6 +65,10 @@ struct SolverConfig {
   /// Kinetic energy over internal work above which a mass-scaled run is warned that it is no
   /// longer quasi-static [-] (mpm/energy.hpp, QuasiStaticWatch).
   double quasi_static_ratio = 0.01;
+  /// cell: every point of a grid cell gets the cell's volume-averaged L before the material
+  /// update, and the internal forces use the cell's volume-averaged stress, in USF and MUSL
+  /// (docs/mpm.md, "Strain smoothing"). none: each point its own L and stress.
+  StrainSmoothing strain_smoothing = StrainSmoothing::none;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
@@ -159,6 +164,8 @@ class Solver {
   void update_stress(double dt);
   void update_material_stress(double dt);
   void add_external_loads();
+  /// P2G of the internal forces; with strain smoothing from the cell-averaged stresses.
+  void internal_force();
   void check_points(double t_end) const;
   void advance_displacements(double t, double dt);
   /// The stable step h_min / (c + |v|_max) [s] and the speed used [m/s].
@@ -189,6 +196,8 @@ class Solver {
   std::vector<std::int64_t> gather_ids_;
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
+  std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
+  std::vector<common::Mat3> smoothing_stress_;  ///< the points' own stresses while averaged
 };
 
 }  // namespace mpm
