@@ -138,6 +138,8 @@ def check_grain_measures(r, np):
         expect(np.array_equal(np.isnan(v).all(axis=2), nan) and
                np.array_equal(np.isnan(v).any(axis=2), nan),
                f"results.h5: /{k} NaN where /rve/z_mech is not (or the reverse)")
+    # A grain RVE (Z > 0) must have its measures; only continuum RVEs (Z = 0) report NaN.
+    expect(not nan[r["rve/z"] > 0].any(), "results.h5: NaN grain measures of an RVE with Z > 0")
     ok = ~nan
     if not ok.any():
         return
