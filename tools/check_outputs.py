@@ -5,13 +5,18 @@ them against results.h5.
   tools/check_outputs.py DIR [--require h5py,pandas,paraview] [--without pandas,paraview]
 
   results.h5          h5py (required): format attributes, every dataset's unit and description,
-                      shapes (rows, RVEs, points) consistent, p and q of the points = their RVE's
+                      shapes (rows, RVEs, points) consistent, p and q of the points = their RVE's;
+                      point fields: displacement = x - x(row 0) when row 0 is step 0, volume =
+                      det(F) volume(row 0); grain measures: fabric symmetric with trace 1, Z
+                      without rattlers >= Z where Z >= 2, unbalanced force and kinetic energy
+                      >= 0, or all NaN (a continuum RVE)
   means.csv           pandas.read_csv if pandas is installed, else csv.DictReader: the first line
                       is the header, one row per results.h5 row, values equal to /step, /time and
                       /means/* (exactly: written with 17 digits)
   points.xmf          ParaView (paraview.simple, its default reader for .xmf) if importable, else
                       ElementTree: one time step per row at /time, every point at /points/x of its
-                      row, the arrays id, p, q, stress, void_ratio, z with results.h5's values
+                      row, the arrays id, p, q, stress, void_ratio, z, volume, velocity,
+                      displacement, F with results.h5's values
   checkpoint_*.h5     h5py: format attribute, step among the rows' steps
   job.toml, job.resolved.toml   tomllib
 
@@ -32,7 +37,11 @@ import subprocess
 import sys
 
 SKIP = 77
-POINT_ARRAYS = ["id", "p", "q", "stress", "void_ratio", "z"]
+POINT_ARRAYS = sorted(["id", "p", "q", "stress", "void_ratio", "z", "volume", "velocity",
+                       "displacement", "F"])
+# Arrays of points.xmf compared value for value with /points/<name> of results.h5.
+POINT_VALUES = ["p", "q", "void_ratio", "z", "stress", "volume", "velocity", "displacement", "F"]
+GRAIN_MEASURES = ["rve/fabric", "rve/z_mech", "rve/unbalanced", "rve/kinetic_energy"]
 CSV_COLUMNS = ["step", "time_s", "eps_ax", "eps_v", "p_mean_Pa", "q_mean_Pa"]
 
 
@@ -86,9 +95,66 @@ def check_results(path, h5py, np):
             rve_vals = set(r["rve/" + q][-1].tolist())
             expect(all(v in rve_vals for v in r["points/" + q][-1].tolist()),
                    f"results.h5: /points/{q} not among /rve/{q}")
+    check_point_fields(r, np)
+    check_grain_measures(r, np)
     log(f"results.h5 (h5py {h5py.__version__}): {nt} rows, {n_rve} RVEs, {m} points, "
         f"{len(names)} datasets with unit + description, format version 1")
     return r
+
+
+def check_point_fields(r, np):
+    """Point fields (issue 19): velocity, displacement, F, volume, consistent with each other."""
+    for k in ("points/velocity", "points/displacement", "points/F", "points/volume"):
+        expect(k in r, f"results.h5: /{k} missing")
+    nt = len(r["step"])
+    if nt == 0:
+        return
+    x = r["points/x"]
+    u = r["points/displacement"]
+    if int(r["step"][0]) == 0:
+        # x0 is the job's points = row 0's positions of a fresh run: the subtraction is exact.
+        expect(np.array_equal(u, x - x[0]), "results.h5: /points/displacement != x - x(row 0)")
+    F = r["points/F"].reshape(x.shape[:2] + (3, 3))
+    V = r["points/volume"]
+    if int(r["step"][0]) == 0 and np.all(np.isfinite(V)):
+        # V = J V0 (J = det F); the two are updated step by step by different products, so they
+        # agree to rounding: 1e-9 relative leaves 1e5 times the 1e-14 seen after 2000 steps.
+        rel = np.abs(np.linalg.det(F) * V[0] / V - 1.0)
+        expect(rel.max() < 1e-9, f"results.h5: volume != det(F) V0 (relative {rel.max():.3g})")
+    expect(np.all(np.isfinite(r["points/velocity"])), "results.h5: /points/velocity not finite")
+
+
+def check_grain_measures(r, np):
+    """Per-RVE grain-scale measures (issue 19): all NaN (continuum RVE) or physically sound."""
+    for k in GRAIN_MEASURES:
+        expect(k in r, f"results.h5: /{k} missing")
+    fab = r["rve/fabric"]
+    if fab.size == 0:
+        return
+    fab = fab.reshape(fab.shape[:2] + (3, 3))
+    nan = np.isnan(r["rve/z_mech"])
+    for k in GRAIN_MEASURES:
+        v = r[k].reshape(r[k].shape[:2] + (-1,))
+        expect(np.array_equal(np.isnan(v).all(axis=2), nan) and
+               np.array_equal(np.isnan(v).any(axis=2), nan),
+               f"results.h5: /{k} NaN where /rve/z_mech is not (or the reverse)")
+    # A grain RVE (Z > 0) must have its measures; only continuum RVEs (Z = 0) report NaN.
+    expect(not nan[r["rve/z"] > 0].any(), "results.h5: NaN grain measures of an RVE with Z > 0")
+    ok = ~nan
+    if not ok.any():
+        return
+    f = fab[ok]
+    has = np.abs(f).sum(axis=(1, 2)) > 0  # an RVE without contacts has a zero fabric
+    # <n n> of unit normals: trace 1 to rounding (a mean of thousands of terms: 1e-12).
+    expect(np.all(np.abs(np.trace(f[has], axis1=1, axis2=2) - 1.0) < 1e-12),
+           "results.h5: /rve/fabric trace != 1")
+    expect(np.array_equal(f, np.swapaxes(f, 1, 2)), "results.h5: /rve/fabric not symmetric")
+    z = r["rve/z"][ok]
+    zm = r["rve/z_mech"][ok]
+    # Removing a sphere with < 2 contacts cannot lower 2 Nc / N when it is >= 2.
+    expect(np.all(zm[z >= 2.0] >= z[z >= 2.0] - 1e-12), "results.h5: /rve/z_mech < /rve/z")
+    expect(np.all(r["rve/unbalanced"][ok] >= 0.0), "results.h5: /rve/unbalanced < 0")
+    expect(np.all(r["rve/kinetic_energy"][ok] >= 0.0), "results.h5: /rve/kinetic_energy < 0")
 
 
 def check_csv(path, r, np, use_pandas):
@@ -171,7 +237,7 @@ def check_xmf_paraview(xmf, r, np):
                f"{POINT_ARRAYS}")
         expect(np.array_equal(np.array(s["arrays"]["id"]), r["points/id"]),
                f"points.xmf row {t}: id != /points/id")
-        for a in ("p", "q", "void_ratio", "z", "stress"):
+        for a in POINT_VALUES:
             v = np.array(s["arrays"][a]).reshape(r["points/" + a][t].shape)
             expect(np.array_equal(v, r["points/" + a][t]), f"points.xmf row {t}: {a} differs")
     log(f"points.xmf (ParaView, reader {got['reader']}): {nt} time steps at /time, rows "

@@ -72,12 +72,14 @@ Packing read_packing(const std::string& path) {
   std::vector<long> lines;  // packing line of each sphere
   bool have_h = false;
   bool have_cell = false;
+  long yade_format = 0;  // line of YADE's "#format x_y_z_r" (yade.export.text), 0: none
   std::string line;
   long ln = 0;
   while (std::getline(in, line)) {
     ++ln;
     auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos) continue;
+    if (line.compare(first, 7, "#format") == 0) yade_format = ln;
     if (line[first] == '#') {
       first = cell_directive(line, first);
       if (first == std::string::npos) continue;
@@ -97,7 +99,20 @@ Packing read_packing(const std::string& path) {
       if (!(pk.cell.h.determinant() > 0.0)) fail(path, ln, "HSIZE must have det > 0");
       have_h = true;
     } else {
-      if (!have_h && !have_cell) fail(path, ln, "sphere line before CELL/HSIZE");
+      if (!have_h && !have_cell) {
+        // YADE's text export (yade.export.text) writes the spheres only, never the cell.
+        fail(path, ln,
+             "sphere line before any cell line: a packing file needs 'CELL Lx Ly Lz' (or 'HSIZE' "
+             "+ 9 numbers, the cell matrix row-major; both may be written as '# CELL ...' "
+             "comments) before its spheres" +
+                 (yade_format > 0
+                      ? std::string("; line ") + std::to_string(yade_format) +
+                            " says this is a YADE text export (yade.export.text), which carries "
+                            "no cell: add the line '# CELL' + O.cell.size (or '# HSIZE' + "
+                            "O.cell.hSize) before the spheres, or export with "
+                            "tools/yade_export_packing.py (docs/yade_reference.md)"
+                      : std::string()));
+      }
       const auto v = numbers(path, ln, line, 4);
       if (!(v[3] > 0.0)) fail(path, ln, "radius must be > 0");
       pk.x.emplace_back(v[0], v[1], v[2]);

@@ -63,7 +63,7 @@ class Master {
     results_.append(solver_.step_count(), solver_.time(), farm_.stresses(), farm_.reports(),
                     solver_.points(),
                     sample_means(solver_.points(), farm_.reports(), cfg_.output.axial_axis),
-                    solver_.reactions(), solver_.constraint_displacements());
+                    solver_.reactions(), solver_.constraint_displacements(), farm_.measure());
   }
   void checkpoint(RunSummary& sum);
   void balance(std::int64_t step);
@@ -121,7 +121,7 @@ Master::Master(const CoupledConfig& cfg, RveFarm& farm, const std::optional<Chec
       solver_(start_solver(cfg, farm, info, mpm_state)),
       index_(ids, solver_.points().id),
       results_(cfg.output.dir, ids, solver_.points(), info ? info->step : -1,
-               solver_.constraint_names()),
+               solver_.constraint_names(), &cfg.points),
       output_(cfg.output.every),
       checkpoints_(cfg.checkpoint, fault_abort_at, info ? info->step : -1, wall_now()),
       balance_(cfg.balance, farm.size()),

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/tensor.hpp"
+#include "dem/measures.hpp"
 
 namespace farm {
 
@@ -44,6 +46,16 @@ MicroReport DemMicro::step(const common::Mat3& L, double dt) {
 }
 
 MicroReport DemMicro::report() const { return to_micro(rve_.measure()); }
+
+MicroMeasures DemMicro::measures() const {
+  const dem::Measures d = dem::measure(rve_.simulation());
+  MicroMeasures m;
+  common::row_major_out(m.fabric) = d.fabric;
+  m.z_mech = d.z_mech;
+  m.unbalanced = d.unbalanced;
+  m.kinetic = d.kinetic;
+  return m;
+}
 
 void DemMicro::save(common::StateWriter& w) const {
   rve_.save(w);

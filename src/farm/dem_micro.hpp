@@ -23,6 +23,9 @@ class DemMicro final : public MicroModel {
   MicroReport step(const common::Mat3& L, double dt) override;
   [[nodiscard]] common::Mat3 stress() const override { return rve_.stress(); }
   [[nodiscard]] MicroReport report() const override;
+  /// dem::measure of the RVE's state (fabric, Z without rattlers, unbalanced force, kinetic
+  /// energy): one more pass over the contacts, for output rows only.
+  [[nodiscard]] MicroMeasures measures() const override;
   /// dem::Rve::save fields plus farm/dem_fail_guards.
   void save(common::StateWriter& writer) const override;
   /// Number of spheres.

@@ -35,6 +35,9 @@ class ElasticMicro final : public MicroModel {
   [[nodiscard]] common::Mat3 stress() const override { return stress_; }
   /// p and q of the stress, e = (1 + e0) J - 1, Z = 0.
   [[nodiscard]] MicroReport report() const override;
+  /// No grains: MicroMeasures::none() (NaN: fabric, Z without rattlers, unbalanced force and
+  /// kinetic energy are not defined for a continuum).
+  [[nodiscard]] MicroMeasures measures() const override { return MicroMeasures::none(); }
   /// Named fields (docs/checkpoint.md): elastic/version, elastic/id, elastic/params/<name> (one per
   /// ElasticMicroParams member), elastic/stress, elastic/j, elastic/steps.
   void save(common::StateWriter& writer) const override;

@@ -125,6 +125,34 @@ RveRecord StepExchange::record(int r, std::size_t i) const {
   return rec;
 }
 
+std::vector<MicroMeasures> gather_measures(MPI_Comm comm, const Placement& pl,
+                                           const std::vector<MicroMeasures>& mine, WaitMode wait) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  MPMXDEM_CHECK(mine.size() == pl.local().size(), "one measure per local RVE");
+  const auto nr = static_cast<std::size_t>(pl.nranks());
+  std::vector<int> counts(nr, 0);
+  for (std::size_t r = 0; r < nr; ++r) {
+    counts[r] = to_count(sizeof(MicroMeasures) * pl.members(static_cast<int>(r)).size());
+  }
+  std::vector<int> displs;
+  const std::size_t total = displacements(counts, displs);
+  std::vector<MicroMeasures> all(rank == 0 ? total / sizeof(MicroMeasures) : 0);
+  MPI_Request req = MPI_REQUEST_NULL;
+  MPI_Igatherv(mine.data(), counts[static_cast<std::size_t>(rank)], MPI_BYTE, all.data(),
+               counts.data(), displs.data(), MPI_BYTE, 0, comm, &req);
+  wait_for(req, wait);
+  if (rank != 0) return {};
+  // By rank, members(r) order -> by RVE index.
+  std::vector<MicroMeasures> by_index(pl.size());
+  for (std::size_t r = 0; r < nr; ++r) {
+    const std::vector<std::size_t>& members = pl.members(static_cast<int>(r));
+    const std::size_t first = static_cast<std::size_t>(displs[r]) / sizeof(MicroMeasures);
+    for (std::size_t i = 0; i < members.size(); ++i) by_index[members[i]] = all[first + i];
+  }
+  return by_index;
+}
+
 std::vector<std::pair<std::size_t, std::string>> gather_texts(
     MPI_Comm comm, const std::vector<std::pair<std::size_t, std::string>>& mine) {
   int rank = 0;

@@ -28,6 +28,7 @@ enum class Command : std::int32_t {
   stop = 4,         ///< return from serve()
   stop_error = 5,   ///< throw the error whose text is broadcast next
   error_texts = 6,  ///< send the texts of the last step's RVE failures
+  measure = 7,      ///< gather the grain-scale measures of my RVEs (an output row is written)
 };
 
 /// In front of every rank's command message (24 bytes).
@@ -66,6 +67,17 @@ struct InitRecord {
 };
 static_assert(std::is_trivially_copyable_v<InitRecord>);
 static_assert(sizeof(InitRecord) == 15 * sizeof(double));
+
+/// What Command::measure gathers per RVE (96 bytes), only when an output row is written: the
+/// step's RveRecord does not carry it, so the other steps neither compute nor send it.
+static_assert(std::is_trivially_copyable_v<MicroMeasures>);
+static_assert(sizeof(MicroMeasures) == 12 * sizeof(double));
+
+/// Collective over `comm` (Command::measure): `mine` (this rank's RVEs in Placement::local()
+/// order) of every rank to rank 0, returned there by RVE index (empty elsewhere). One
+/// MPI_Igatherv of MicroMeasures bytes, completed with `wait`.
+std::vector<MicroMeasures> gather_measures(MPI_Comm comm, const Placement& placement,
+                                           const std::vector<MicroMeasures>& mine, WaitMode wait);
 
 /// Collective over `comm`: every rank's InitRecords (by RVE index, set on the owners) on every
 /// rank, exactly (bitwise OR of the 8-byte words; a sum would turn -0.0 into 0.0).

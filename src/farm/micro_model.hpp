@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 
 #include "common/state_io.hpp"
@@ -25,6 +26,18 @@ struct MicroReport {
   double wall_s = 0.0;         ///< wall-clock seconds of the step [s] (timing only, never state)
 };
 
+/// Grain-scale measures of an RVE's current state (dem::Measures): computed only when an output
+/// row is written (RveFarm::measure, one command of its own), never on the other MPM steps.
+/// Continuum models have none: every entry NaN (MicroMeasures::none()).
+struct MicroMeasures {
+  double fabric[9] = {};    ///< fabric tensor <n (x) n> over the contacts, row-major [-]
+  double z_mech = 0.0;      ///< coordination without rattlers 2 Nc' / N' [-]
+  double unbalanced = 0.0;  ///< mean |f_sphere| / mean |f_contact| [-]
+  double kinetic = 0.0;     ///< kinetic energy of the spheres' fluctuating motion [J]
+  /// Every entry NaN: what a model without grains reports.
+  [[nodiscard]] static MicroMeasures none();
+};
+
 /// One RVE. Implementations are deterministic: the same calls on the same state give the same
 /// bits on any rank and thread.
 class MicroModel {
@@ -40,6 +53,9 @@ class MicroModel {
   /// Measures of the current state without stepping: p, q, void_ratio, z (and guards that
   /// describe the state); dem_steps, t_p and wall_s are zero. Outputs at step 0 use it.
   [[nodiscard]] virtual MicroReport report() const = 0;
+  /// Grain-scale measures of the current state (an extra pass over the contacts for DEM: called
+  /// only for output rows). MicroMeasures::none() for continuum models.
+  [[nodiscard]] virtual MicroMeasures measures() const = 0;
   /// Whole state as named fields; the loader of the same kind rebuilds an equal model.
   virtual void save(common::StateWriter& writer) const = 0;
   /// Cost estimate before any timing exists (particle count for DEM) [arbitrary units, > 0].
@@ -47,6 +63,16 @@ class MicroModel {
   /// Largest elastic wave speed of the RVE's continuum response (CFL bound) [m/s].
   [[nodiscard]] virtual double wave_speed() const = 0;
 };
+
+inline MicroMeasures MicroMeasures::none() {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  MicroMeasures m;
+  for (double& f : m.fabric) f = nan;
+  m.z_mech = nan;
+  m.unbalanced = nan;
+  m.kinetic = nan;
+  return m;
+}
 
 /// How the farm creates and restores micro models; every rank holds an identical copy.
 struct MicroKind {

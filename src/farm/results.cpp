@@ -14,170 +14,18 @@
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
 #include "farm/placement.hpp"
+#include "farm/results_layout.hpp"
 
 namespace farm {
 
-struct SeriesSpec {  // declared in results.hpp
-  const char* name;
-  bool integer;
-  int per_item;             ///< values per RVE or point (0: scalar per row)
-  char over;                ///< 'r' RVEs, 'p' points, 'c' constraints, '-' none
-  const char* unit;         ///< attribute "unit" ("-": dimensionless, "": a count or bits)
-  const char* description;  ///< attribute "description"
-};
-
-namespace {
-
 using h5::check;
 using h5::Handle;
-
-// Sign conventions: stress tensors are Cauchy, tension positive; p, q and the strains of
-// /means are compression positive (root attribute "conventions", docs/farm.md "Outputs").
-constexpr SeriesSpec kSeries[] = {
-    {"time", false, 0, '-', "s", "MPM time of the row"},
-    {"step", true, 0, '-', "", "MPM step of the row"},
-    {"rve/stress", false, 9, 'r', "Pa",
-     "Cauchy stress of every RVE (order of /rve/id), row-major 3x3 [row, rve, 9], TENSION "
-     "positive"},
-    {"rve/p", false, 1, 'r', "Pa", "mean stress p = -tr(sigma)/3, compression positive"},
-    {"rve/q", false, 1, 'r', "Pa",
-     "von Mises deviatoric stress q = sqrt(3/2 s:s), s = sigma + p I (always >= 0)"},
-    {"rve/void_ratio", false, 1, 'r', "-", "void ratio e = V_voids / V_solids"},
-    {"rve/z", false, 1, 'r', "-", "coordination number 2 Nc / N (0 for continuum models)"},
-    {"rve/t_p", false, 1, 'r', "s", "quasi-static time of the step, eq. (11)"},
-    {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
-    {"rve/guards", true, 1, 'r', "", "guard bits (dem::RveGuard, docs/dem.md)"},
-    {"points/x", false, 3, 'p', "m",
-     "position of every material point (order of /points/id) [row, point, xyz]"},
-    {"points/stress", false, 9, 'p', "Pa",
-     "Cauchy stress of every point, row-major 3x3 [row, point, 9], TENSION positive"},
-    {"points/volume", false, 1, 'p', "m^3", "current volume of every point (J V0)"},
-    {"points/p", false, 1, 'p', "Pa", "p of the point's RVE (/rve/p), compression positive"},
-    {"points/q", false, 1, 'p', "Pa", "q of the point's RVE (/rve/q), von Mises"},
-    {"points/void_ratio", false, 1, 'p', "-", "void ratio of the point's RVE"},
-    {"points/z", false, 1, 'p', "-", "coordination number of the point's RVE"},
-    {"means/eps_ax", false, 0, '-', "-",
-     "axial strain 1 - mean_p F_aa (a = output.axial_axis of the job), compression positive; "
-     "NOT logarithmic: -ln(1 - eps_ax) is the logarithmic strain"},
-    {"means/eps_v", false, 0, '-', "-",
-     "volumetric strain 1 - sum_p V_p / sum_p V0_p, compression positive; NOT logarithmic: "
-     "-ln(1 - eps_v) is the logarithmic strain"},
-    {"means/p", false, 0, '-', "Pa", "mean over RVEs of p, compression positive"},
-    {"means/q", false, 0, '-', "Pa", "mean over RVEs of the von Mises q"},
-};
-
-// Velocity constraints (mpm::Solver::reactions), written when the run has any; their names are
-// the attribute "names" of /constraints, in order.
-constexpr SeriesSpec kConstraintSeries[] = {
-    {"constraints/reaction", false, 3, 'c', "N",
-     "force each velocity constraint exerts ON the material in the row's step, sum over its "
-     "nodes of m (a after it - a before it) [row, constraint, xyz] (order: attribute names of "
-     "/constraints)"},
-    {"constraints/displacement", false, 3, 'c', "m",
-     "displacement of each constraint: integral of its prescribed velocity over the time it was "
-     "active [row, constraint, xyz]"},
-};
-
-/// UTF-8 variable-length string attribute `name` of `obj`, replacing one of that name (h5py
-/// returns it as str, a fixed-length one as bytes).
-void put_attr(hid_t obj, const char* name, const std::string& value) {
-  if (H5Aexists(obj, name) > 0) check(H5Adelete(obj, name), std::string("delete ") + name);
-  Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
-  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
-  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
-  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
-  Handle a(check(H5Acreate2(obj, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                 std::string("create attribute ") + name),
-           H5Aclose);
-  const char* v = value.c_str();
-  check(H5Awrite(a.get(), type.get(), &v), std::string("write attribute ") + name);
-}
-
-void put_attr(hid_t obj, const char* name, std::int64_t value) {
-  if (H5Aexists(obj, name) > 0) check(H5Adelete(obj, name), std::string("delete ") + name);
-  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
-  Handle a(check(H5Acreate2(obj, name, H5T_NATIVE_INT64, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                 std::string("create attribute ") + name),
-           H5Aclose);
-  check(H5Awrite(a.get(), H5T_NATIVE_INT64, &value), std::string("write attribute ") + name);
-}
-
-/// File access of the writer: without HDF5's file lock, so that h5py, h5dump or ParaView can open
-/// results.h5 while a run writes it (with the lock they fail with errno 11, EAGAIN). Two runs
-/// never write one directory: the output directory's own lock (app/output_dir.hpp) refuses it.
-Handle writer_access() {
-  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
-#if H5_VERSION_GE(1, 10, 7)
-  check(H5Pset_file_locking(fapl.get(), 0, 1), "H5Pset_file_locking");
-#endif
-  return fapl;
-}
-
-/// Attributes of results.h5: what the file is (root) and what every dataset holds.
-void describe(hid_t file) {
-  put_attr(file, "format", std::string(ResultsWriter::kFormat));
-  put_attr(file, "format_version", ResultsWriter::kFormatVersion);
-  put_attr(file, "software", std::string("mpmxdem"));
-  put_attr(file, "software_version", std::string(MPMXDEM_SOFTWARE_VERSION));
-  put_attr(file, "conventions",
-           std::string("SI units (attribute unit of every dataset; '-' dimensionless, '' a "
-                       "count). Stress tensors: Cauchy, TENSION positive, row-major 3x3. p, q "
-                       "and the strains of /means: COMPRESSION positive. p = -tr(sigma)/3, "
-                       "q = sqrt(3/2 s:s) (von Mises). First dimension: one row per output "
-                       "step (/step, /time)."));
-  auto dataset = [&](const char* name, const char* unit, const char* description) {
-    Handle d(check(H5Dopen2(file, name, H5P_DEFAULT), std::string("open ") + name), H5Dclose);
-    put_attr(d.get(), "unit", std::string(unit));
-    put_attr(d.get(), "description", std::string(description));
-  };
-  dataset("rve/id", "", "RVE ids, ascending: the order of the RVE axis of every /rve series");
-  dataset("points/id", "",
-          "material point ids in the solver's slot order: the order of the point axis of "
-          "every /points series");
-  for (const SeriesSpec& s : kSeries) dataset(s.name, s.unit, s.description);
-}
-
-std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts,
-                              std::size_t n_con) {
-  std::vector<hsize_t> d;
-  if (s.over == 'r') d.push_back(n_rve);
-  if (s.over == 'p') d.push_back(n_pts);
-  if (s.over == 'c') d.push_back(n_con);
-  if (s.per_item > 1) d.push_back(static_cast<hsize_t>(s.per_item));
-  return d;
-}
-
-void write_static(hid_t file, const char* name, const std::vector<std::int64_t>& v) {
-  Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
-  H5Pset_create_intermediate_group(lcpl.get(), 1);
-  const hsize_t dims[1] = {v.size()};
-  Handle space(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
-  Handle d(check(H5Dcreate2(file, name, H5T_NATIVE_INT64, space.get(), lcpl.get(), H5P_DEFAULT,
-                            H5P_DEFAULT),
-                 std::string("create ") + name),
-           H5Dclose);
-  if (!v.empty()) {
-    check(H5Dwrite(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
-          std::string("write ") + name);
-  }
-}
-
-template <class T>
-std::vector<T> read_rows(hid_t file, const std::string& name, hsize_t rows) {
-  std::vector<T> v(rows);
-  if (rows == 0) return v;
-  Handle d(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
-  Handle fs(H5Dget_space(d.get()), H5Sclose);
-  const hsize_t start[1] = {0};
-  const hsize_t count[1] = {rows};
-  H5Sselect_hyperslab(fs.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
-  Handle ms(H5Screate_simple(1, count, nullptr), H5Sclose);
-  check(H5Dread(d.get(), h5::native_type<T>(), ms.get(), fs.get(), H5P_DEFAULT, v.data()),
-        "read " + name);
-  return v;
-}
-
-}  // namespace
+using results_detail::describe;
+using results_detail::put_attr;
+using results_detail::read_rows;
+using results_detail::row_dims;
+using results_detail::write_static;
+using results_detail::writer_access;
 
 struct ResultsWriter::Series {
   Handle dset;
@@ -222,7 +70,8 @@ SampleMeans sample_means(const mpm::MaterialPoints& points, const std::vector<Mi
 
 ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int64_t>& rve_ids,
                              const mpm::MaterialPoints& points, std::int64_t restart_step,
-                             std::vector<std::string> constraint_names)
+                             std::vector<std::string> constraint_names,
+                             const mpm::MaterialPoints* initial)
     : dir_(dir),
       rve_ids_(rve_ids),
       point_ids_(points.id),
@@ -230,6 +79,18 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   h5::silence_errors();
   const PointIndex index(rve_ids_, point_ids_);  // every point has an RVE (checked)
   for (std::size_t p = 0; p < index.size(); ++p) rve_of_point_.push_back(index.rve_of(p));
+  // x0 of /points/displacement by slot: the initial points' position of the same id (NaN for an
+  // id they lack), or without them the positions now.
+  x0_ = points.x;
+  if (initial != nullptr) {
+    std::map<std::int64_t, common::Vec3> at;
+    for (std::size_t p = 0; p < initial->size(); ++p) at[initial->id[p]] = initial->x[p];
+    for (std::size_t p = 0; p < x0_.size(); ++p) {
+      const auto it = at.find(point_ids_[p]);
+      x0_[p] = it != at.end() ? it->second
+                              : common::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
   const std::string path = (std::filesystem::path(dir) / "results.h5").string();
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
@@ -244,12 +105,11 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     const auto steps = read_rows<std::int64_t>(file_.get(), "/step", nt[0]);
     hsize_t keep = 0;
     while (keep < nt[0] && steps[keep] <= restart_step) ++keep;
-    for (const SeriesSpec& s : kSeries) {
+    for (const SeriesSpec& s : results_detail::series()) {
       auto se = std::make_unique<Series>();
       se->set_layout(s, n, m);
-      if (std::string(s.name) == "points/volume" &&
-          H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
-        create_nan_series(s, keep);  // added after format 1's first files (issue 15)
+      if (results_detail::added_later(s.name) && H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
+        create_nan_series(s, keep);  // added after format 1's first files (issues 15, 19)
         continue;
       }
       se->dset = Handle(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), H5Dclose);
@@ -280,9 +140,9 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   if (!file_.valid()) throw common::InputError("output " + path + ": cannot create");
   write_static(file_.get(), "/rve/id", rve_ids_);
   write_static(file_.get(), "/points/id", point_ids_);
-  for (const SeriesSpec& s : kSeries) create_series(s);
+  for (const SeriesSpec& s : results_detail::series()) create_series(s);
   if (!constraint_names_.empty()) {
-    for (const SeriesSpec& s : kConstraintSeries) create_series(s);
+    for (const SeriesSpec& s : results_detail::constraint_series()) create_series(s);
   }
   describe(file_.get());
   describe_constraints();
@@ -335,7 +195,7 @@ void ResultsWriter::create_nan_series(const SeriesSpec& s, std::uint64_t keep) {
 void ResultsWriter::open_constraints(std::uint64_t keep) {
   if (constraint_names_.empty()) return;
   const std::size_t nc = constraint_names_.size();
-  for (const SeriesSpec& s : kConstraintSeries) {
+  for (const SeriesSpec& s : results_detail::constraint_series()) {
     if (H5Lexists(file_.get(), "constraints", H5P_DEFAULT) <= 0 ||
         H5Lexists(file_.get(), s.name, H5P_DEFAULT) <= 0) {
       // A file of an earlier version: the rows before the restart have no constraint data (NaN).
@@ -381,7 +241,7 @@ void ResultsWriter::open_constraints(std::uint64_t keep) {
 
 void ResultsWriter::describe_constraints() {
   if (constraint_names_.empty()) return;
-  for (const SeriesSpec& s : kConstraintSeries) {
+  for (const SeriesSpec& s : results_detail::constraint_series()) {
     Handle d(check(H5Dopen2(file_.get(), s.name, H5P_DEFAULT), std::string("open ") + s.name),
              H5Dclose);
     put_attr(d.get(), "unit", std::string(s.unit));
@@ -444,7 +304,8 @@ void ResultsWriter::append(std::int64_t step, double time,
                            const std::vector<MicroReport>& reports,
                            const mpm::MaterialPoints& points, const SampleMeans& means,
                            const std::vector<common::Vec3>& reactions,
-                           const std::vector<common::Vec3>& displacements) {
+                           const std::vector<common::Vec3>& displacements,
+                           const std::vector<MicroMeasures>& measures) {
   MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
   if (!constraint_names_.empty()) {
     const std::size_t nc = constraint_names_.size();
@@ -496,6 +357,22 @@ void ResultsWriter::append(std::int64_t step, double time,
   stage_row("rve/t_p", tp.data());
   stage_row("rve/dem_steps", ds.data());
   stage_row("rve/guards", gd.data());
+  // Grain-scale measures (RveFarm::measure, for output rows only); NaN when not given.
+  MPMXDEM_CHECK(measures.empty() || measures.size() == n, "one MicroMeasures per RVE");
+  std::vector<double> zm(n);
+  std::vector<double> ub(n);
+  std::vector<double> ke(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const MicroMeasures mm = measures.empty() ? MicroMeasures::none() : measures[k];
+    std::copy(std::begin(mm.fabric), std::end(mm.fabric), buf.begin() + 9 * k);
+    zm[k] = mm.z_mech;
+    ub[k] = mm.unbalanced;
+    ke[k] = mm.kinetic;
+  }
+  stage_row("rve/fabric", buf.data());
+  stage_row("rve/z_mech", zm.data());
+  stage_row("rve/unbalanced", ub.data());
+  stage_row("rve/kinetic_energy", ke.data());
   std::vector<double> x(3 * m);
   for (std::size_t p = 0; p < m; ++p) {
     for (int a = 0; a < 3; ++a) x[3 * p + static_cast<std::size_t>(a)] = points.x[p][a];
@@ -504,6 +381,18 @@ void ResultsWriter::append(std::int64_t step, double time,
   for (std::size_t p = 0; p < m; ++p) mat9(points.stress[p], buf.data() + 9 * p);
   stage_row("points/stress", buf.data());
   stage_row("points/volume", points.volume.data());
+  for (std::size_t p = 0; p < m; ++p) {
+    for (int a = 0; a < 3; ++a) x[3 * p + static_cast<std::size_t>(a)] = points.v[p][a];
+  }
+  stage_row("points/velocity", x.data());
+  for (std::size_t p = 0; p < m; ++p) {
+    for (int a = 0; a < 3; ++a) {
+      x[3 * p + static_cast<std::size_t>(a)] = points.x[p][a] - x0_[p][a];
+    }
+  }
+  stage_row("points/displacement", x.data());
+  for (std::size_t p = 0; p < m; ++p) mat9(points.F[p], buf.data() + 9 * p);
+  stage_row("points/F", buf.data());
   stage_row("means/eps_ax", &means.eps_ax);
   stage_row("means/eps_v", &means.eps_v);
   stage_row("means/p", &means.p);

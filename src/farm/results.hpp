@@ -37,9 +37,13 @@ class ResultsWriter {
   /// rve_ids: ascending; the points' ids and order must stay those of `points`.
   /// constraint_names (mpm::Solver::constraint_names): when not empty, /constraints/reaction and
   /// /constraints/displacement are written and reactions.csv beside means.csv.
+  /// initial: the points at t = 0 (the job's, also on a restart): /points/displacement is
+  /// x - x0 with x0 their position of the same id (NaN for an id they lack); nullptr: x0 =
+  /// `points`' positions now.
   ResultsWriter(const std::string& dir, const std::vector<std::int64_t>& rve_ids,
                 const mpm::MaterialPoints& points, std::int64_t restart_step,
-                std::vector<std::string> constraint_names = {});
+                std::vector<std::string> constraint_names = {},
+                const mpm::MaterialPoints* initial = nullptr);
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
@@ -49,10 +53,12 @@ class ResultsWriter {
   /// destructor (a run that stops on an error keeps its completed rows).
   /// reactions, displacements: one per constraint name (mpm::Solver::reactions and
   /// constraint_displacements) [N], [m]; ignored without constraint names.
+  /// measures: grain-scale measures by RVE index (RveFarm::measure); empty: NaN rows.
   void append(std::int64_t step, double time, const std::vector<common::Mat3>& rve_stress,
               const std::vector<MicroReport>& reports, const mpm::MaterialPoints& points,
               const SampleMeans& means, const std::vector<common::Vec3>& reactions = {},
-              const std::vector<common::Vec3>& displacements = {});
+              const std::vector<common::Vec3>& displacements = {},
+              const std::vector<MicroMeasures>& measures = {});
   /// Writes the pending rows, flushes results.h5 and rewrites points.xmf, means.csv and
   /// reactions.csv (atomic
   /// rename each). With `indexes` false the two are rewritten only if the time since their last
@@ -87,6 +93,7 @@ class ResultsWriter {
   std::vector<std::int64_t> rve_ids_;
   std::vector<std::int64_t> point_ids_;
   std::vector<std::size_t> rve_of_point_;  ///< RVE index of every point slot
+  std::vector<common::Vec3> x0_;           ///< position at t = 0 of every point slot [m]
   h5::Handle file_;
   std::map<std::string, std::unique_ptr<Series>> series_;
   std::int64_t rows_ = 0;     ///< rows written to results.h5

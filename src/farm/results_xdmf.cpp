@@ -37,7 +37,14 @@ void ResultsWriter::write_xdmf() const {
   };
   const Slab x = slab("points/x", 3);
   const Slab stress = slab("points/stress", 9);
-  const char* scalars[] = {"p", "q", "void_ratio", "z"};
+  // Attributes by type: name in ParaView = the dataset's name under /points.
+  const char* vectors[] = {"velocity", "displacement"};
+  const char* tensors[] = {"F"};
+  std::vector<Slab> vec;
+  for (const char* a : vectors) vec.push_back(slab((std::string("points/") + a).c_str(), 3));
+  std::vector<Slab> ten;
+  for (const char* a : tensors) ten.push_back(slab((std::string("points/") + a).c_str(), 9));
+  const char* scalars[] = {"p", "q", "void_ratio", "z", "volume"};
   std::vector<Slab> sc;
   for (const char* a : scalars) sc.push_back(slab((std::string("points/") + a).c_str(), 1));
   const std::string id_attr = fmt::format(
@@ -59,6 +66,18 @@ void ResultsWriter::write_xdmf() const {
                    "<Attribute Name=\"stress\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
                    "</Attribute>\n",
                    steps_[tu], times_[tu], m, x.head, t, x.tail, stress.head, t, stress.tail);
+    for (std::size_t a = 0; a < vec.size(); ++a) {
+      fmt::format_to(it,
+                     "<Attribute Name=\"{}\" AttributeType=\"Vector\" Center=\"Node\">{}{}{}"
+                     "</Attribute>\n",
+                     vectors[a], vec[a].head, t, vec[a].tail);
+    }
+    for (std::size_t a = 0; a < ten.size(); ++a) {
+      fmt::format_to(it,
+                     "<Attribute Name=\"{}\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
+                     "</Attribute>\n",
+                     tensors[a], ten[a].head, t, ten[a].tail);
+    }
     for (std::size_t a = 0; a < sc.size(); ++a) {
       fmt::format_to(it,
                      "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"

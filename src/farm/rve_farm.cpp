@@ -286,6 +286,33 @@ std::vector<std::pair<std::size_t, std::string>> RveFarm::exec_error_texts() {
   return gather_texts(comm_, mine);
 }
 
+std::vector<MicroMeasures> RveFarm::measure() {
+  MPMXDEM_CHECK(rank_ == 0, "measures are requested by rank 0");
+  CommandHeader h;
+  h.cmd = Command::measure;
+  h.step = step_;
+  exchange_.send(h);
+  return exec_measure();
+}
+
+std::vector<MicroMeasures> RveFarm::exec_measure() {
+  const std::vector<std::size_t>& local = placement_.local();
+  std::vector<MicroMeasures> mine(local.size());
+  const auto nl = static_cast<std::int64_t>(local.size());
+#pragma omp parallel for schedule(dynamic, 1) if (options_.omp_over_rves && nl > 1)
+  for (std::int64_t jj = 0; jj < nl; ++jj) {
+    const auto j = static_cast<std::size_t>(jj);
+    // Measures only read the state; a failure here (none is expected) leaves NaN in the row
+    // rather than an exception inside the parallel loop or a rank missing the gather.
+    try {
+      mine[j] = model(local[j]).measures();
+    } catch (...) {
+      mine[j] = MicroMeasures::none();
+    }
+  }
+  return gather_measures(comm_, placement_, mine, options_.wait);
+}
+
 void RveFarm::checkpoint(const std::string& path, std::int64_t step, double time,
                          const std::string& job_text, const common::StateStore& mpm_state,
                          bool abort_mid_write) {
@@ -421,6 +448,9 @@ void RveFarm::serve() {
       }
       case Command::error_texts:
         exec_error_texts();
+        break;
+      case Command::measure:
+        (void)exec_measure();
         break;
       case Command::stop:
         stopped_ = true;

@@ -69,6 +69,10 @@ class RveFarm final : public mpm::MaterialModel {
   /// current partition has lasted, the measured time per RVE moved), migrates the RVEs. Returns
   /// true if RVEs moved; last_plan() tells the decision.
   bool rebalance_if_needed(double threshold, const std::vector<common::Vec3>& x);
+  /// Rank 0 only. Collective (Command::measure): every RVE's grain-scale measures of its current
+  /// state (MicroModel::measures, OpenMP over a rank's RVEs), by RVE index. Called for output
+  /// rows only: the MPM steps in between neither compute nor send them.
+  [[nodiscard]] std::vector<MicroMeasures> measure();
   /// Rank 0 only: moves the RVEs to `owner` (one rank per RVE index), whatever the costs.
   /// For tests and benchmarks (e.g. round-robin against METIS).
   void migrate_to(std::vector<int> owner);
@@ -123,6 +127,8 @@ class RveFarm final : public mpm::MaterialModel {
   void collect_records(std::span<common::Mat3> stress);
   /// Every rank: the texts of the RVE failures of the last step, gathered to rank 0.
   std::vector<std::pair<std::size_t, std::string>> exec_error_texts();
+  /// Every rank: the measures of my RVEs, gathered to rank 0 (by RVE index there).
+  std::vector<MicroMeasures> exec_measure();
   void exec_checkpoint(const CommandHeader& h, std::string path, std::string job_text,
                        const common::StateStore* mpm_state);
   void exec_migrate(std::vector<int> new_owner);

@@ -195,4 +195,30 @@ TEST(PackingIo, ReferencePackingPassesTheChecks) {
   EXPECT_NO_THROW(dem::check_packing(pk, "reference"));
 }
 
+// YADE's text export (yade.export.text, written by tools/yade_export_packing.py with YADE 2023.02a)
+// with the cell lines the script adds after '#format x_y_z_r': read as it is. YADE writes 6
+// significant digits, so the values are compared with the text of the file, exactly.
+TEST(PackingIo, ReadsAYadeExportWithTheCellAdded) {
+  const dem::Packing pk = dem::read_packing(dem_test::data_path("yade_export_periodic.txt"));
+  ASSERT_EQ(pk.r.size(), 30u);
+  EXPECT_EQ(pk.cell.h, (1e-3 * common::Mat3::Identity()).eval());
+  EXPECT_EQ(pk.x[0], common::Vec3(0.000997185, 0.000932557, 0.000128124));
+  EXPECT_EQ(pk.r[0], 0.000129032);
+}
+
+// YADE's export as it is has no cell: refused with the file, the line, what is missing and how to
+// add it (an InputError: exit 2).
+TEST(PackingIo, YadeExportWithoutCellNamesWhatIsMissing) {
+  const std::string path = dem_test::data_path("yade_export_no_cell.txt");
+  try {
+    (void)dem::read_packing(path);
+    FAIL() << "a packing without a cell was accepted";
+  } catch (const common::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(path + ":2: sphere line before any cell line"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 1 says this is a YADE text export"), std::string::npos) << m;
+    EXPECT_NE(m.find("'# CELL' + O.cell.size"), std::string::npos) << m;
+  }
+}
+
 }  // namespace

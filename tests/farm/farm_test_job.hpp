@@ -99,10 +99,12 @@ inline std::vector<std::uint64_t> read_words(const std::string& file, const std:
 /// Every time series of results.h5; compared bit for bit by the tests.
 inline const std::vector<std::string>& result_series() {
   static const std::vector<std::string> names{
-      "/time",       "/step",           "/rve/id",      "/rve/stress",    "/rve/p",
-      "/rve/q",      "/rve/void_ratio", "/rve/z",       "/rve/t_p",       "/rve/dem_steps",
-      "/rve/guards", "/points/id",      "/points/x",    "/points/stress", "/points/p",
-      "/points/q",   "/means/eps_ax",   "/means/eps_v", "/means/p",       "/means/q"};
+      "/time", "/step", "/rve/id", "/rve/stress", "/rve/p", "/rve/q", "/rve/void_ratio", "/rve/z",
+      "/rve/t_p", "/rve/dem_steps", "/rve/guards", "/points/id", "/points/x", "/points/stress",
+      "/points/p", "/points/q", "/means/eps_ax", "/means/eps_v", "/means/p", "/means/q",
+      // issue 19: grain-scale measures (output rows only) and point fields
+      "/rve/fabric", "/rve/z_mech", "/rve/unbalanced", "/rve/kinetic_energy", "/points/volume",
+      "/points/velocity", "/points/displacement", "/points/F"};
   return names;
 }
 

@@ -20,6 +20,30 @@ TEST(Exchange, RecordSizesAreThoseTheDocsState) {
   EXPECT_EQ(sizeof(farm::InitRecord), 120u);
   EXPECT_EQ(sizeof(farm::MicroReport), 64u);
   EXPECT_EQ(offsetof(farm::RveRecord, report), 72u);
+  // Command::measure's record (output rows only): fabric 9 + z_mech, unbalanced, kinetic.
+  EXPECT_EQ(sizeof(farm::MicroMeasures), 96u);
+}
+
+TEST(Exchange, MeasuresRoundTripThroughBytesBitForBit) {
+  farm::MicroMeasures a;
+  for (int i = 0; i < 9; ++i) a.fabric[i] = (i % 4 == 0) ? 1.0 / 3.0 : -0.0;
+  a.fabric[1] = std::numeric_limits<double>::denorm_min();
+  a.z_mech = 4.25;
+  a.unbalanced = 1e-300;
+  a.kinetic = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> wire(sizeof a / sizeof(double));
+  std::memcpy(wire.data(), &a, sizeof a);
+  farm::MicroMeasures b;
+  b.kinetic = 0.0;
+  std::memcpy(static_cast<void*>(&b), wire.data(), sizeof b);
+  EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0);
+  EXPECT_TRUE(std::signbit(b.fabric[2]));
+  EXPECT_EQ(b.fabric[1], std::numeric_limits<double>::denorm_min());
+  EXPECT_TRUE(std::isnan(b.kinetic));
+  // A continuum model's measures: every entry NaN.
+  const farm::MicroMeasures none = farm::MicroMeasures::none();
+  for (const double f : none.fabric) EXPECT_TRUE(std::isnan(f));
+  EXPECT_TRUE(std::isnan(none.z_mech) && std::isnan(none.unbalanced) && std::isnan(none.kinetic));
 }
 
 TEST(Exchange, RecordRoundTripsThroughBytesBitForBit) {

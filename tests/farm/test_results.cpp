@@ -167,7 +167,7 @@ TEST(Results, EveryDatasetIsDescribed) {
         return 0;
       },
       &names);
-  EXPECT_EQ(names.size(), 23u);
+  EXPECT_EQ(names.size(), 30u);  // 23 until issue 19 (point fields, grain-scale measures)
   for (const std::string& n : names) {
     EXPECT_FALSE(string_attr(f, n.c_str(), "description").empty()) << n;
     EXPECT_EQ(H5Aexists_by_name(f, n.c_str(), "unit", H5P_DEFAULT), 1) << n;
@@ -348,6 +348,102 @@ TEST(Results, RestartOfAnOlderFileFillsConstraintRowsWithNaN) {
   for (std::string l; std::getline(csv, l);) lines.push_back(l);
   ASSERT_EQ(lines.size(), 5u);
   EXPECT_EQ(lines[4], "30,1.5,1,2,3,0,0,-1");
+}
+
+// Point fields (issue 19): velocity, displacement from the INITIAL points matched by id (here
+// given in another order and with one id they lack: NaN), F; grain-scale measures by RVE index,
+// NaN rows when none are given. Exact: the writer copies doubles.
+TEST(Results, PointFieldsAndGrainMeasures) {
+  const std::string dir = scratch("point_fields");
+  Sample smp;
+  mpm::MaterialPoints initial;
+  initial.resize(2);
+  initial.id = {1, 9};  // no id 5
+  initial.x = {common::Vec3(1.0, 2.0, 3.0), common::Vec3(-1.0, 0.0, 0.5)};
+  for (std::size_t p = 0; p < 3; ++p) {
+    smp.points.v[p] = common::Vec3(static_cast<double>(p), -2.0, 0.25);
+    smp.points.F[p](0, 1) = 0.5 + static_cast<double>(p);
+  }
+  std::vector<farm::MicroMeasures> mm(3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    mm[k].fabric[0] = 0.5;
+    mm[k].fabric[4] = 0.25 + static_cast<double>(k);
+    mm[k].z_mech = 4.0 + static_cast<double>(k);
+    mm[k].unbalanced = 1e-3;
+    mm[k].kinetic = 2e-9;
+  }
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1, {}, &initial);
+    const std::vector<common::Mat3> stress(3, common::Mat3::Zero());
+    w.append(0, 0.0, stress, smp.reports(0), smp.points, farm::SampleMeans{}, {}, {}, mm);
+    w.append(1, 0.5, stress, smp.reports(1), smp.points, farm::SampleMeans{});
+    w.flush();  // points.xmf
+  }
+  const std::string f = dir + "/results.h5";
+  const std::vector<double> v = read_all(f, "/points/velocity");
+  ASSERT_EQ(v.size(), 2u * 3 * 3);
+  EXPECT_EQ(v[3], 1.0);  // slot 1: x component = 1
+  EXPECT_EQ(v[4], -2.0);
+  const std::vector<double> u = read_all(f, "/points/displacement");
+  ASSERT_EQ(u.size(), 2u * 3 * 3);
+  // Slot 0 is id 9 at (0, 0.5, 0.5), initially (-1, 0, 0.5); slot 1 is id 1 at (0.1, 0.5, 0.5),
+  // initially (1, 2, 3); slot 2 is id 5, not among the initial points.
+  EXPECT_EQ(u[0], 0.0 - (-1.0));
+  EXPECT_EQ(u[1], 0.5 - 0.0);
+  EXPECT_EQ(u[3], 0.1 - 1.0);
+  EXPECT_EQ(u[5], 0.5 - 3.0);
+  for (int a = 6; a < 9; ++a) EXPECT_TRUE(std::isnan(u[static_cast<std::size_t>(a)])) << a;
+  const std::vector<double> F = read_all(f, "/points/F");
+  ASSERT_EQ(F.size(), 2u * 3 * 9);
+  EXPECT_EQ(F[9 * 2 + 1], 2.5);  // row-major (0, 1) of slot 2
+  EXPECT_EQ(F[9 * 2 + 3], 0.0);
+  const std::vector<double> fab = read_all(f, "/rve/fabric");
+  ASSERT_EQ(fab.size(), 2u * 3 * 9);
+  EXPECT_EQ(fab[9 * 2 + 4], 2.25);
+  const std::vector<double> zm = read_all(f, "/rve/z_mech");
+  ASSERT_EQ(zm.size(), 6u);
+  EXPECT_EQ(zm[1], 5.0);
+  for (std::size_t i = 3; i < 6; ++i) EXPECT_TRUE(std::isnan(zm[i])) << i;  // row without
+  EXPECT_EQ(read_all(f, "/rve/unbalanced")[0], 1e-3);
+  EXPECT_EQ(read_all(f, "/rve/kinetic_energy")[2], 2e-9);
+  EXPECT_TRUE(std::isnan(read_all(f, "/rve/fabric")[9 * 3]));
+  // points.xmf names every point field (ParaView arrays).
+  std::ifstream xmf(dir + "/points.xmf");
+  const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
+  for (const char* a :
+       {"velocity\" AttributeType=\"Vector", "displacement\" AttributeType=\"Vector",
+        "F\" AttributeType=\"Tensor", "volume\" AttributeType=\"Scalar"}) {
+    EXPECT_NE(text.find(a), std::string::npos) << a;
+  }
+}
+
+// A file written before issue 19 lacks the point fields and measures: a restart adds them with
+// NaN rows up to the restart.
+TEST(Results, RestartOfAFileWithoutIssue19SeriesFillsThemWithNaN) {
+  const std::string dir = scratch("issue19_old_file");
+  const Sample smp;
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
+    for (int r = 0; r < 5; ++r) smp.append(w, r);
+  }
+  {
+    const hid_t f = H5Fopen((dir + "/results.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    for (const char* n : {"points/velocity", "points/displacement", "points/F", "rve/fabric",
+                          "rve/z_mech", "rve/unbalanced", "rve/kinetic_energy"}) {
+      ASSERT_GE(H5Ldelete(f, n, H5P_DEFAULT), 0) << n;
+    }
+    H5Fclose(f);
+  }
+  {
+    farm::ResultsWriter w(dir, smp.rve_ids, smp.points, 20);
+    EXPECT_EQ(w.rows(), 3);
+    smp.append(w, 3);
+  }
+  const std::vector<double> v = read_all(dir + "/results.h5", "/points/velocity");
+  ASSERT_EQ(v.size(), 4u * 3 * 3);
+  for (std::size_t i = 0; i < 27; ++i) EXPECT_TRUE(std::isnan(v[i])) << i;
+  EXPECT_EQ(v[27], 0.0);  // the sample's points are at rest
+  EXPECT_EQ(read_all(dir + "/results.h5", "/rve/z_mech").size(), 4u * 3);
 }
 
 }  // namespace
