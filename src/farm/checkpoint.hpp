@@ -20,13 +20,13 @@ inline constexpr const char* kCheckpointFormat = "mpmxdem-farm-checkpoint";
 struct CheckpointInfo {
   std::string path;
   std::int64_t version = 0;
-  std::int64_t step = 0;          ///< MPM steps done
-  double time = 0.0;              ///< MPM time [s]
-  std::int64_t nranks = 0;        ///< ranks that wrote it
-  std::vector<std::int64_t> ids;  ///< RVE ids, ascending
-  std::vector<int> partition;     ///< owner rank of every RVE when written
-  std::vector<double> cost;       ///< measured cost of every RVE [s of thread CPU time]
-  std::string job_text;           ///< the job file the run was started with
+  std::int64_t step = 0;                ///< MPM steps done
+  double time = 0.0;                    ///< MPM time [s]
+  std::int64_t nranks = 0;              ///< ranks that wrote it
+  std::vector<std::int64_t> ids;        ///< RVE ids, ascending
+  std::vector<int> partition;           ///< owner rank of every RVE when written
+  std::vector<double> cost;             ///< measured cost of every RVE [s of thread CPU time]
+  std::string job_text;                 ///< the job file the run was started with
   std::vector<std::string> rve_fields;  ///< RVE state fields as listed: "f:<name>" or "i:<name>"
   std::vector<std::string> mpm_fields;  ///< MPM state fields as listed: "f:<name>" or "i:<name>"
 };

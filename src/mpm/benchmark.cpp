@@ -126,8 +126,8 @@ SceneBenchmarkResult run_scene_benchmark(std::int64_t num_points, int threads, i
     base.name = "base";
     solver.add_constraint(base);
     const double x_gate = nx * h;
-    VelocityConstraint gate{common::Vec3(x_gate, -1e3, 0.0), common::Vec3(x_gate, 1e3, 1e3),
-                            {}, {}, {}};
+    VelocityConstraint gate{
+        common::Vec3(x_gate, -1e3, 0.0), common::Vec3(x_gate, 1e3, 1e3), {}, {}, {}};
     gate.wall = {0, 1, 0.0, WallContact::no_penetration};
     gate.until = (2 + steps / 2) * solver.next_dt();
     gate.name = "gate";
@@ -143,7 +143,7 @@ SceneBenchmarkResult run_scene_benchmark(std::int64_t num_points, int threads, i
   with_threads(threads, [&] {
     auto step = [&] {
       solver.step();
-      const Energies e = solver.energies();  // the coupled run's quasi-static watch
+      const Energies e = solver.energies();       // the coupled run's quasi-static watch
       common::Vec3 total = common::Vec3::Zero();  // the reactions, as the results rows read them
       for (const common::Vec3& f : solver.reactions()) total += f;
       if (!std::isfinite(e.kinetic) || !total.allFinite())
