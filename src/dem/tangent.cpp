@@ -27,9 +27,8 @@ Tangent contact_stiffness_tangent(const Simulation& sim) {
     const double len = d.norm();
     if (!(len > 0.0)) continue;
     const Vec3 n = d / len;
-    const double shear_factor = (s.r[static_cast<std::size_t>(c.i[p])] +
-                                 s.r[static_cast<std::size_t>(c.j[p])]) /
-                                len;
+    const double shear_factor =
+        (s.r[static_cast<std::size_t>(c.i[p])] + s.r[static_cast<std::size_t>(c.j[p])]) / len;
     const CohFrictProps& pr = c.props[p];
     const double kt = shear_factor * pr.ks;
     const Mat3 k = (pr.kn - kt) * (n * n.transpose()) + kt * Mat3::Identity();
@@ -49,9 +48,8 @@ Tangent contact_stiffness_tangent(const Simulation& sim) {
     for (int j = 0; j < 3; ++j) {
       for (int kk = 0; kk < 3; ++kk) {
         for (int l = 0; l < 3; ++l) {
-          t(3 * i + j, 3 * kk + l) =
-              0.25 * (a(3 * i + j, 3 * kk + l) + a(3 * j + i, 3 * kk + l) +
-                      a(3 * i + j, 3 * l + kk) + a(3 * j + i, 3 * l + kk));
+          t(3 * i + j, 3 * kk + l) = 0.25 * (a(3 * i + j, 3 * kk + l) + a(3 * j + i, 3 * kk + l) +
+                                             a(3 * i + j, 3 * l + kk) + a(3 * j + i, 3 * l + kk));
         }
       }
     }

@@ -31,9 +31,9 @@ enum class SparingTangent : std::int64_t {
 struct SparingOptions {
   double tolerance = 0.0;  ///< ||sym(sum L dt)|| (Frobenius) that triggers a DEM update [-]; 0: off
   std::int64_t max_spared_steps = 20;  ///< DEM update at the latest after this many spared steps
-  double drift_tolerance = 0.02;  ///< |sigma_DEM - sigma_predicted| / max(p, pressure_floor)
+  double drift_tolerance = 0.02;       ///< |sigma_DEM - sigma_predicted| / max(p, pressure_floor)
                                   ///< at a DEM update above which the RVE's allowance halves [-]
-  double pressure_floor = 1e3;    ///< floor of p in the drift measure [Pa]
+  double pressure_floor = 1e3;  ///< floor of p in the drift measure [Pa]
   std::int64_t tangent = static_cast<std::int64_t>(SparingTangent::scaled);  ///< SparingTangent
 
   /// Throws common::InputError naming the job key of the first invalid entry.
@@ -69,8 +69,7 @@ using TangentFn = std::function<dem::Tangent(const MicroModel&)>;
 class SparedMicro final : public MicroModel {
  public:
   /// @pre inner != nullptr, options valid, tangent callable on inner
-  SparedMicro(std::unique_ptr<MicroModel> inner, const SparingOptions& options,
-              TangentFn tangent);
+  SparedMicro(std::unique_ptr<MicroModel> inner, const SparingOptions& options, TangentFn tangent);
 
   /// Spares the step (predicted stress, report with kGuardSpared, dem_steps 0) or steps the
   /// inner model with the accumulated increment: inner.step(L, dt) itself when nothing was
@@ -95,7 +94,7 @@ class SparedMicro final : public MicroModel {
   [[nodiscard]] const MicroModel& inner() const { return *inner_; }
   [[nodiscard]] std::int64_t spared_now() const { return n_spared_; }  ///< pending spared steps
   [[nodiscard]] double allowance() const { return allowance_; }        ///< current tolerance [-]
-  [[nodiscard]] double alpha() const { return alpha_; }  ///< scale of the tangent [-]
+  [[nodiscard]] double alpha() const { return alpha_; }                ///< scale of the tangent [-]
   /// Relative error |sigma_DEM - sigma_pred| / max(p, floor) of the last update after spared
   /// steps; -1 before any [-].
   [[nodiscard]] double last_drift() const { return last_drift_; }

@@ -76,8 +76,9 @@ TEST(Tangent, PredictsTheDemIncrementOfTheLattice) {
   const Mat3 predicted = dem::apply_tangent(c, e);
   // The tangent leaves out the geometric terms of order sigma e (volume change, rotation of the
   // forces): |sigma| / C_xxxx = 150 kPa / 150 MPa = 1e-3 of the increment; 3e-3 bounds them.
-  EXPECT_LT((ds - predicted).norm(), 3e-3 * predicted.norm())
-      << "DEM\n" << ds << "\npredicted\n" << predicted;
+  EXPECT_LT((ds - predicted).norm(), 3e-3 * predicted.norm()) << "DEM\n"
+                                                              << ds << "\npredicted\n"
+                                                              << predicted;
   EXPECT_GT(predicted.norm(), 100.0);  // a real increment (about 150 Pa), not two zeros
 }
 
