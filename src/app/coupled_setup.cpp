@@ -21,6 +21,7 @@
 #include "dem/stress_target.hpp"
 #include "farm/dem_micro.hpp"
 #include "farm/elastic_micro.hpp"
+#include "farm/spared_micro.hpp"
 
 namespace app {
 
@@ -183,7 +184,16 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
     if (setup.points.material[i] == kDemMaterial) dem_ids.insert(setup.points.id[i]);
     setup.points.material[i] = 0;  // the farm is the one material; it dispatches by point id
   }
-  c.micro = micro_kind(job, setup, dem_ids, std::move(plan));
+  // [dem.sparing]: the DEM RVEs wrapped in farm::SparedMicro when its tolerance is > 0.
+  farm::SparingOptions sparing;
+  fill_from_job(job, farm::kSparingOptions, sparing);
+  if (setup.has_dem) sparing.pressure_floor = job.number("dem.coupling.pressure_floor");
+  if (sparing.tolerance > 0.0 && setup.has_dem) {
+    spdlog::info("sparing idle RVEs: tolerance {:g}, at most {} spared steps, drift tolerance {:g}",
+                 sparing.tolerance, sparing.max_spared_steps, sparing.drift_tolerance);
+  }
+  c.micro = farm::spared_kind(micro_kind(job, setup, dem_ids, std::move(plan)), sparing,
+                              farm::is_dem_micro, farm::dem_micro_tangent);
   c.solver = setup.config;
   c.points = std::move(setup.points);
   c.constraints = std::move(setup.constraints);

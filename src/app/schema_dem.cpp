@@ -1,11 +1,13 @@
 // Job-file sections of the DEM (the RVE): [dem.material], [dem.sample], [dem.preparation],
-// [dem.numerics], [dem.coupling], [dem.loading]. The material, numerics, coupling and preparation
-// keys are the rows of dem's parameter tables (dem/params.hpp, dem/rve.hpp, dem/loading.hpp).
+// [dem.numerics], [dem.coupling], [dem.sparing], [dem.loading]. The material, numerics, coupling,
+// sparing and preparation keys are the rows of parameter tables (dem/params.hpp, dem/rve.hpp,
+// dem/loading.hpp, farm/spared_micro.hpp).
 #include "app/schema.hpp"
 #include "app/schema_params.hpp"
 #include "dem/loading.hpp"
 #include "dem/params.hpp"
 #include "dem/rve.hpp"
+#include "farm/spared_micro.hpp"
 
 namespace app {
 
@@ -58,6 +60,10 @@ void add_dem_sections(Schema& s) {
 
   s.add("dem.coupling", Type::Table, "The RVE step of MPM x DEM (paper eqs. 11-12).");
   add_params(s, dem::kRveParams);
+
+  s.add("dem.sparing", Type::Table,
+        "Sparing of idle RVEs in `run` (docs/sparing.md): off unless `tolerance` > 0.");
+  add_params(s, farm::kSparingOptions);
 
   s.add("dem.loading", Type::Table, "The loading programme of a pure DEM job (`mpmxdem dem`).");
   s.add("dem.loading.type", Type::String, "What to do after preparation.")
