@@ -62,10 +62,13 @@ SparedMicro::SparedMicro(std::unique_ptr<MicroModel> inner, const SparingOptions
 }
 
 Mat3 SparedMicro::predict(const Mat3& sigma0, const Mat3& g) const {
-  const double a =
-      options_.tangent == static_cast<std::int64_t>(SparingTangent::contact) ? 1.0 : alpha_;
+  const Mat3 e = sym(g);
+  // The fitted scale holds while the loading goes on; a reversal unloads elastically, which the
+  // (stiffer) contact tangent describes better (measured: docs/sparing.md).
+  const bool scaled = options_.tangent == static_cast<std::int64_t>(SparingTangent::scaled) &&
+                      (e.array() * e_fit_.array()).sum() >= 0.0;
   const Mat3 q = rotation(g);
-  return q * (sigma0 + a * dem::apply_tangent(c_, sym(g))) * q.transpose();
+  return q * (sigma0 + (scaled ? alpha_ : 1.0) * dem::apply_tangent(c_, e)) * q.transpose();
 }
 
 MicroReport SparedMicro::step(const Mat3& L, double dt) {
@@ -123,7 +126,10 @@ void SparedMicro::after_update(const Mat3& g, const Mat3& sigma_before, bool had
     const Mat3 ds = q.transpose() * sigma * q - sigma_before;
     const Mat3 ce = dem::apply_tangent(c_, sym(g));
     const double den = (ce.array() * ce.array()).sum();
-    if (den > 0.0) alpha_ = std::clamp((ds.array() * ce.array()).sum() / den, 0.0, 1.0);
+    if (den > 0.0) {
+      alpha_ = std::clamp((ds.array() * ce.array()).sum() / den, 0.0, 1.0);
+      e_fit_ = sym(g);
+    }
   }
   g_acc_.setZero();
   dt_acc_ = 0.0;
@@ -157,6 +163,7 @@ void SparedMicro::save(common::StateWriter& w) const {
   w.write("spare/tangent", std::span<const double>(c_.data(), 81));
   common::write_scalar(w, "spare/allowance", allowance_);
   common::write_scalar(w, "spare/alpha", alpha_);
+  w.write("spare/alpha_strain", nine(e_fit_));
   common::write_scalar(w, "spare/last_drift", last_drift_);
 }
 
@@ -191,6 +198,7 @@ std::unique_ptr<MicroModel> SparedMicro::load(const common::StateReader& r,
   m->allowance_ =
       std::clamp(common::read_scalar_f64(r, "spare/allowance"), kMinAllowance * tol, tol);
   m->alpha_ = common::read_scalar_f64(r, "spare/alpha");
+  m->e_fit_ = read_nine(r, "spare/alpha_strain");
   m->last_drift_ = common::read_scalar_f64(r, "spare/last_drift");
   if (m->n_spared_ > 0) m->sigma_ = m->predict(m->inner_->stress(), m->g_acc_);
   return m;

@@ -24,7 +24,8 @@ inline constexpr std::int64_t kSparedStateVersion = 1;
 /// How a spared step predicts the stress.
 enum class SparingTangent : std::int64_t {
   contact = 0,  ///< the affine contact-stiffness tangent C (dem::contact_stiffness_tangent)
-  scaled = 1,   ///< alpha C, alpha in [0, 1] fitted to the DEM's response at the last catch-up
+  scaled = 1,   ///< alpha C, alpha in [0, 1] fitted to the DEM's response at the last catch-up,
+                ///< for increments that continue that one (E : E_fit >= 0); C on a reversal
 };
 
 /// [dem.sparing]. The member initializers are the job keys' defaults.
@@ -100,7 +101,8 @@ class SparedMicro final : public MicroModel {
   [[nodiscard]] double last_drift() const { return last_drift_; }
 
  private:
-  /// Q (sigma0 + a C : sym(g)) Q^T, Q the rotation of g, a = 1 (contact) or alpha (scaled).
+  /// Q (sigma0 + a C : sym(g)) Q^T, Q the rotation of g, a = 1 (contact, or a reversal of the
+  /// increment alpha was fitted on) or alpha (scaled).
   [[nodiscard]] common::Mat3 predict(const common::Mat3& sigma0, const common::Mat3& g) const;
   void after_update(const common::Mat3& g_applied, const common::Mat3& sigma_before,
                     bool had_spared);
@@ -119,6 +121,7 @@ class SparedMicro final : public MicroModel {
   bool have_c_ = false;
   double allowance_ = 0.0;
   double alpha_ = 1.0;
+  common::Mat3 e_fit_ = common::Mat3::Zero();  ///< strain increment alpha was fitted on [-]
   double last_drift_ = -1.0;
   common::Mat3 sigma_ = common::Mat3::Zero();  ///< the prediction while spared (not saved)
 };
