@@ -1,0 +1,196 @@
+#!/usr/bin/python3
+"""Speed against error of sparing idle RVEs (issue 17, docs/sparing.md).
+
+Runs each scene with dem.sparing.tolerance = 0 (the reference) and several tolerances, in pairs
+alternating over the repetitions (the machine's load drifts), every run on the same number of
+ranks with one thread per rank, niced; writes output.every = 1 so that the DEM steps of every MPM
+step are counted. Per run: the DEM steps in total, the spared fraction of the RVE steps, the loop's
+wall time and the critical rank's RVE time (the `done:` line of the log), and the error of the
+scene's reference quantity against the reference run:
+  column   (jobs/geostatic_column_small.toml): base reaction (results.h5 /constraints/reaction,
+           z of the first constraint) at the end and its largest deviation over the rows; point
+           stresses: max over points and rows of max|sigma - sigma_ref| / p_ref (p_ref >= 1 kPa)
+  element  (jobs/triaxial_mpmxdem_small.toml): q(eps_ax) of /means/q, max |q - q_ref| / max q_ref
+Prints a markdown table (medians over the repetitions) and writes it, with a CSV and a figure of
+DEM steps against error, to --out.
+
+  tools/bench_sparing.py --exe build/mpmxdem --out /tmp/bench_sparing [--reps 2] [--np 2]
+      [--scenes column,column1000,element] [--tolerances 0,1e-6,1e-5,1e-4] [--max-spared 20]
+  tools/bench_sparing.py --out DIR --from-csv A/bench_sparing.csv,B/bench_sparing.csv
+      (one table and figure from earlier runs' CSVs)
+"""
+import argparse
+import csv
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+SCENES = {
+    # name: (job, text replacements, reference quantity)
+    "column": ("jobs/geostatic_column_small.toml", [], "column"),
+    "column1000": ("jobs/geostatic_column_small.toml",
+                   [("spheres = 100\n", "spheres = 1000\n"),
+                    ('end_time = "0.2 s"', 'end_time = "0.4 s"')], "column"),
+    "element": ("jobs/triaxial_mpmxdem_small.toml", [], "element"),
+}
+
+
+def job_text(scene, tol, max_spared):
+    path, repl, _ = SCENES[scene]
+    text = open(os.path.join(ROOT, path)).read()
+    for a, b in repl:
+        assert a in text, (scene, a)
+        text = text.replace(a, b)
+    text = re.sub(r"^every = \d+", "every = 1", text, flags=re.M)
+    text = text.replace("[dem.coupling]", "[dem.sparing]\ntolerance = %g\nmax_spared_steps = %d\n\n"
+                        "[dem.coupling]" % (tol, max_spared), 1)
+    # packings and other relative paths stay relative to the original job's directory
+    return text
+
+
+def run(args, scene, tol, max_spared, rep):
+    name = "%s_tol%g_max%d_rep%d" % (scene, tol, max_spared, rep)
+    job = os.path.join(args.out, "jobs", name + ".toml")
+    out = os.path.join(args.out, "runs", name)
+    os.makedirs(os.path.dirname(job), exist_ok=True)
+    with open(job, "w") as f:
+        f.write(job_text(scene, tol, max_spared))
+    env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    cmd = ["nice", "-n", "5", "mpirun", "-n", str(args.np), args.exe, "run", job, "--out", out,
+           "--force"]
+    log = subprocess.run(cmd, env=env, cwd=ROOT, capture_output=True, text=True)
+    if log.returncode != 0:
+        sys.exit("run failed: %s\n%s" % (" ".join(cmd), log.stderr[-3000:]))
+    m = re.search(r"done: .* wall ([\d.]+) s; RVE time ([\d.]+) s", log.stdout + log.stderr)
+    return out, float(m.group(1)), float(m.group(2))
+
+
+def measures(out):
+    with h5py.File(os.path.join(out, "results.h5")) as f:
+        d = {
+            "dem_steps": int(f["rve/dem_steps"][:].sum()),
+            "spared": float(((f["rve/guards"][1:] >> 16) & 1).mean()),
+            "reaction": f["constraints/reaction"][:, 0, 2].copy(),
+            "stress": f["points/stress"][:].copy(),
+            "q": f["means/q"][:].copy(),
+        }
+    return d
+
+
+def errors(kind, m, ref):
+    if kind == "column":
+        r, r0 = m["reaction"][1:], ref["reaction"][1:]
+        s, s0 = m["stress"], ref["stress"]
+        p0 = np.maximum(-(s0[..., 0] + s0[..., 4] + s0[..., 8]) / 3, 1e3)
+        e = np.abs(s - s0).max(axis=2) / p0
+        return {"reaction end": abs(r[-1] - r0[-1]) / abs(r0[-1]),
+                "reaction max": float(np.max(np.abs(r - r0)) / np.max(np.abs(r0))),
+                "stress max": float(e.max()), "stress rms": float(np.sqrt((e ** 2).mean()))}
+    q, q0 = m["q"], ref["q"]
+    return {"q max": float(np.max(np.abs(q - q0)) / np.max(np.abs(q0)))}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "mpmxdem"))
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--reps", type=int, default=2)
+    ap.add_argument("--scenes", default="column,column1000,element")
+    ap.add_argument("--tolerances", default="0,1e-6,1e-5,1e-4")
+    ap.add_argument("--max-spared", default="20", help="comma list; each tolerance > 0 with each")
+    ap.add_argument("--from-csv", default="", help="comma list of earlier bench_sparing.csv")
+    args = ap.parse_args()
+    args.exe = os.path.abspath(args.exe)
+    os.makedirs(args.out, exist_ok=True)
+    tols = [float(t) for t in args.tolerances.split(",")]
+    maxes = [int(x) for x in args.max_spared.split(",")]
+    rows = []
+    for path in filter(None, args.from_csv.split(",")):
+        with open(path) as f:
+            for r in csv.DictReader(f):
+                rows.append({k: (v if k == "scene" else float(v)) for k, v in r.items() if v != ""})
+    scenes = [] if args.from_csv else args.scenes.split(",")
+    for scene in scenes:
+        kind = SCENES[scene][2]
+        variants = [(0.0, 20)] + [(t, mx) for t in tols if t > 0 for mx in maxes]
+        res = {v: [] for v in variants}
+        for rep in range(args.reps):
+            for v in variants:  # alternating: every repetition runs every variant once
+                out, wall, rve = run(args, scene, v[0], v[1], rep)
+                res[v].append((out, wall, rve))
+                print("%s tol %g max %d rep %d: wall %.2f s, RVE %.2f s" % (scene, v[0], v[1], rep,
+                                                                            wall, rve), flush=True)
+        ref = measures(res[variants[0]][0][0])
+        for v in variants:
+            m = measures(res[v][0][0])
+            for other in res[v][1:]:  # every repetition gives the same bits: same DEM steps
+                assert measures(other[0])["dem_steps"] == m["dem_steps"]
+            row = {"scene": scene, "tolerance": v[0], "max_spared_steps": v[1],
+                   "dem_steps": m["dem_steps"], "fewer": ref["dem_steps"] / max(m["dem_steps"], 1),
+                   "spared": m["spared"],
+                   "wall_s": statistics.median(x[1] for x in res[v]),
+                   "rve_s": statistics.median(x[2] for x in res[v])}
+            row.update(errors(kind, m, ref))
+            rows.append(row)
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(os.path.join(args.out, "bench_sparing.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| scene | tolerance | max spared | DEM steps | fewer | spared | loop wall [s] | "
+             "RVE time [s] | error |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if "q max" in r:
+            err = "q: %.2f %%" % (100 * r["q max"])
+        else:
+            err = "reaction %.1e (max %.1e); stress max %.2f %%, rms %.2f %% of p" % (
+                r["reaction end"], r["reaction max"], 100 * r["stress max"], 100 * r["stress rms"])
+        lines.append("| %s | %g | %d | %d | %.1fx | %.0f %% | %.1f | %.1f | %s |" % (
+            r["scene"], r["tolerance"], r["max_spared_steps"], r["dem_steps"], r["fewer"],
+            100 * r["spared"], r["wall_s"], r["rve_s"], err))
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(args.out, "bench_sparing.md"), "w") as f:
+        f.write(table + "\n")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6.5, 4))
+        for scene in dict.fromkeys(r["scene"] for r in rows):
+            rs = [r for r in rows if r["scene"] == scene and r["tolerance"] > 0
+                  and r["max_spared_steps"] == 20]
+            series = [("q max", "%s: q(eps)")] if "q max" in rs[0] else [
+                ("stress max", "%s: point stress, max"), ("reaction end", "%s: base reaction")]
+            for key, label in series:
+                e = [max(100 * r[key], 1e-4) for r in rs]
+                ax.plot([r["fewer"] for r in rs], e, "o-", label=label % scene)
+                for r, y in zip(rs, e):
+                    ax.annotate("%g" % r["tolerance"], (r["fewer"], y), fontsize=7)
+        ax.set_yscale("log")
+        ax.axhline(2, color="grey", ls=":")
+        ax.axvline(5, color="grey", ls=":")
+        ax.set_xscale("log")
+        ax.set_xlabel("DEM steps: reference / spared")
+        ax.set_ylabel("error against sparing off [%]")
+        ax.set_title("max_spared_steps 20; tolerance at each point", fontsize=9)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, "bench_sparing.png"), dpi=120)
+    except ImportError:
+        pass
+
+
+if __name__ == "__main__":
+    main()
