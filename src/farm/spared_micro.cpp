@@ -59,6 +59,7 @@ SparedMicro::SparedMicro(std::unique_ptr<MicroModel> inner, const SparingOptions
   options_.validate();
   base_ = inner_->report();
   allowance_ = options_.tolerance;
+  cap_ = options_.max_spared_steps;
 }
 
 Mat3 SparedMicro::predict(const Mat3& sigma0, const Mat3& g) const {
@@ -73,8 +74,7 @@ Mat3 SparedMicro::predict(const Mat3& sigma0, const Mat3& g) const {
 
 MicroReport SparedMicro::step(const Mat3& L, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (options_.tolerance > 0.0 && n_spared_ < options_.max_spared_steps && L.allFinite() &&
-      dt >= 0.0) {
+  if (options_.tolerance > 0.0 && n_spared_ < cap_ && L.allFinite() && dt >= 0.0) {
     const Mat3 g = g_acc_ + L * dt;
     if (sym(g).norm() <= allowance_) {
       if (!have_c_) {
@@ -115,10 +115,14 @@ void SparedMicro::after_update(const Mat3& g, const Mat3& sigma_before, bool had
     const double p = std::max(common::pressure(sigma), options_.pressure_floor);
     last_drift_ = (sigma - predict(sigma_before, g)).norm() / p;
     const double tol = options_.tolerance;
+    // A drifting prediction shortens both the strain and the time it may run: an RVE that keeps
+    // straining below the tolerance but not as predicted (e.g. oscillating) is updated sooner.
     if (last_drift_ > options_.drift_tolerance) {
       allowance_ = std::max(0.5 * allowance_, kMinAllowance * tol);
+      cap_ = std::max<std::int64_t>(1, cap_ / 2);
     } else if (last_drift_ < 0.25 * options_.drift_tolerance) {
       allowance_ = std::min(2.0 * allowance_, tol);
+      cap_ = std::min(2 * cap_, options_.max_spared_steps);
     }
     // Scale of the tangent: least-squares fit of alpha C : E to the DEM's increment (rotation
     // removed), in [0, 1] (C is an upper bound).
@@ -162,6 +166,7 @@ void SparedMicro::save(common::StateWriter& w) const {
   common::write_scalar(w, "spare/have_tangent", std::int64_t{have_c_ ? 1 : 0});
   w.write("spare/tangent", std::span<const double>(c_.data(), 81));
   common::write_scalar(w, "spare/allowance", allowance_);
+  common::write_scalar(w, "spare/cap", cap_);
   common::write_scalar(w, "spare/alpha", alpha_);
   w.write("spare/alpha_strain", nine(e_fit_));
   common::write_scalar(w, "spare/last_drift", last_drift_);
@@ -197,6 +202,8 @@ std::unique_ptr<MicroModel> SparedMicro::load(const common::StateReader& r,
   const double tol = options.tolerance;
   m->allowance_ =
       std::clamp(common::read_scalar_f64(r, "spare/allowance"), kMinAllowance * tol, tol);
+  m->cap_ = std::clamp<std::int64_t>(common::read_scalar_i64(r, "spare/cap"), 1,
+                                     options.max_spared_steps);
   m->alpha_ = common::read_scalar_f64(r, "spare/alpha");
   m->e_fit_ = read_nine(r, "spare/alpha_strain");
   m->last_drift_ = common::read_scalar_f64(r, "spare/last_drift");

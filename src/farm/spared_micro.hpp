@@ -56,8 +56,8 @@ inline constexpr auto kSparingOptions = common::make_table<SparingOptions>(
      {"drift_tolerance", &SparingOptions::drift_tolerance, common::Unit::Dimensionless,
       common::gt(0), common::Source::job_default,
       "Sparing: when the DEM's stress after spared steps differs from the prediction by more than "
-      "this fraction of p (Frobenius norm), that RVE's own tolerance halves (down to 1/64 of "
-      "`tolerance`); a good prediction doubles it back."},
+      "this fraction of p (Frobenius norm), that RVE's own tolerance and maximum of spared steps "
+      "halve (down to 1/64 of `tolerance` and 1 step); a good prediction doubles them back."},
      {"pressure_floor", &SparingOptions::pressure_floor, common::Unit::Pressure, common::gt(0),
       common::Source::cpp_only, "Floor of p in the drift measure (dem.coupling.pressure_floor)."},
      {"tangent", &SparingOptions::tangent, common::Unit::Dimensionless, common::in_cc(0, 1),
@@ -95,7 +95,8 @@ class SparedMicro final : public MicroModel {
   [[nodiscard]] const MicroModel& inner() const { return *inner_; }
   [[nodiscard]] std::int64_t spared_now() const { return n_spared_; }  ///< pending spared steps
   [[nodiscard]] double allowance() const { return allowance_; }        ///< current tolerance [-]
-  [[nodiscard]] double alpha() const { return alpha_; }                ///< scale of the tangent [-]
+  [[nodiscard]] std::int64_t cap() const { return cap_; }  ///< current max_spared_steps [-]
+  [[nodiscard]] double alpha() const { return alpha_; }    ///< scale of the tangent [-]
   /// Relative error |sigma_DEM - sigma_pred| / max(p, floor) of the last update after spared
   /// steps; -1 before any [-].
   [[nodiscard]] double last_drift() const { return last_drift_; }
@@ -120,6 +121,7 @@ class SparedMicro final : public MicroModel {
   dem::Tangent c_ = dem::Tangent::Zero();
   bool have_c_ = false;
   double allowance_ = 0.0;
+  std::int64_t cap_ = 1;  ///< the RVE's own max_spared_steps, halved and doubled with allowance_
   double alpha_ = 1.0;
   common::Mat3 e_fit_ = common::Mat3::Zero();  ///< strain increment alpha was fitted on [-]
   double last_drift_ = -1.0;

@@ -179,6 +179,7 @@ TEST(SparedMicro, DriftHalvesTheAllowanceAndGoodPredictionsRestoreIt) {
   const auto& sm = dynamic_cast<const farm::SparedMicro&>(*m);
   EXPECT_GT(sm.last_drift(), 0.01);
   EXPECT_DOUBLE_EQ(sm.allowance(), 0.5e-4);
+  EXPECT_EQ(sm.cap(), 1);  // max_spared_steps 2, halved
   // Halving while the stretches miss by more than 1 %: 2 spared steps (3e-5 applied: 2 % of p),
   // then one (2e-5: 1.3 %), until the allowance is below the step's own increment: from then
   // on no step is spared.
@@ -190,6 +191,7 @@ TEST(SparedMicro, DriftHalvesTheAllowanceAndGoodPredictionsRestoreIt) {
   for (int s = 0; s < 15; ++s) m->step(l, 1e-7);
   EXPECT_LT(sm.last_drift(), 0.0025);
   EXPECT_DOUBLE_EQ(sm.allowance(), 1e-4);
+  EXPECT_EQ(sm.cap(), 2);
 }
 
 TEST(SparedMicro, SaveLoadMidSparingContinuesBitForBit) {
