@@ -171,6 +171,8 @@ def main():
         for scene in dict.fromkeys(r["scene"] for r in rows):
             rs = [r for r in rows if r["scene"] == scene and r["tolerance"] > 0
                   and r["max_spared_steps"] == 20]
+            if not rs:
+                continue
             series = [("q max", "%s: q(eps)")] if "q max" in rs[0] else [
                 ("stress max", "%s: point stress, max"), ("reaction end", "%s: base reaction")]
             for key, label in series:
