@@ -100,8 +100,8 @@ MicroReport SparedMicro::step(const Mat3& L, double dt) {
   } else {
     g_applied = g_acc_ + L * dt;
     const double t = dt_acc_ + dt;
-    // The DEM needs only the increment G (its T_p follows from G, eq. 11); G / t * t may differ
-    // from G in the last bit, which no state depends on.
+    // The DEM needs only the increment G (its T_p follows from G, eq. 11): it gets (G / t) t,
+    // which is G to the last bit, deterministically.
     r = inner_->step(t > 0.0 ? Mat3(g_applied / t) : Mat3::Zero(), t > 0.0 ? t : 0.0);
   }
   after_update(g_applied, sigma_before, had_spared);
