@@ -172,6 +172,11 @@ void mpm_rules(const Job& job, Rules& r) {
                          nodes, points, need / 1e9, mem / 1e9));
     }
   }
+  if (job.text("mpm.formulation") == "total_lagrangian" && job.flag("mpm.move_points")) {
+    r.fail("mpm.formulation",
+           "needs mpm.move_points = false (the grid is the reference configuration only while "
+           "the points keep their initial positions: an element test whose cell is the sample)");
+  }
   if (job.has("mpm.plane_strain")) {
     // Plane strain holds the velocity along the thickness on every node: one cell through it.
     const int a = job.text("mpm.plane_strain")[0] - 'x';

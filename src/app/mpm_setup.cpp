@@ -103,6 +103,7 @@ MpmSetup mpm_setup(const Job& job) {
   fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold, ...
   if (job.has("mpm.plane_strain")) cfg.plane_strain_axis = job.text("mpm.plane_strain")[0] - 'x';
   cfg.move_points = job.flag("mpm.move_points");
+  cfg.formulation = mpm::formulation_from_string(job.text("mpm.formulation"));
   setup.end_time = job.number("mpm.end_time");
 
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {

@@ -34,6 +34,13 @@ void add_mpm_sections(Schema& s) {
         "within a cell; docs/mpm.md, Strain smoothing). none: off.")
       .one_of({"none", "cell"})
       .or_default(std::string("none"));
+  s.add("mpm.formulation", Type::String,
+        "total_lagrangian: the grid is the reference configuration (needs mpm.move_points = "
+        "false): L = Fdot F^-1 and internal forces from sigma F^-T, so that a single-cell sample "
+        "holds its confining pressure at any strain instead of p / F_xx (docs/mpm.md, Total "
+        "Lagrangian formulation). updated_lagrangian: classical MPM.")
+      .one_of({"updated_lagrangian", "total_lagrangian"})
+      .or_default(std::string("updated_lagrangian"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "

@@ -222,7 +222,8 @@ ShapeKind face_basis(ShapeKind kind) {
 /// Gauss point and kept for the distribution pass). Returns the loaded (deformed) area [m^2].
 template <class Shape>
 double traction_on_facets(const Grid& grid, const TractionLoad& load, const MaterialPoints& points,
-                          const std::vector<std::int64_t>& facet_points, GridFields& fields) {
+                          const std::vector<std::int64_t>& facet_points, bool reference_geometry,
+                          GridFields& fields) {
   constexpr int ns = Shape::support;
   const int n = load.axis;
   const int t1 = (n + 1) % 3;
@@ -247,9 +248,11 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
     const double a_norm = a.norm();
     area += a_norm;
     const common::Vec3 f = -load.pressure * a + load.traction * a_norm;
-    const common::Vec3 centre = points.x[p] + F.col(n) * (load.side * hw[n]);
-    const common::Vec3 g1 = F.col(t1) * hw[t1];
-    const common::Vec3 g2 = F.col(t2) * hw[t2];
+    // Where the facet lies on the grid: deformed, or (total Lagrangian) where it started.
+    const common::Mat3 G = reference_geometry ? common::Mat3::Identity() : F;
+    const common::Vec3 centre = points.x[p] + G.col(n) * (load.side * hw[n]);
+    const common::Vec3 g1 = G.col(t1) * hw[t1];
+    const common::Vec3 g2 = G.col(t2) * hw[t2];
     for (const double alpha : {-g, g}) {
       for (const double beta : {-g, g}) {
         const common::Vec3 x = centre + alpha * g1 + beta * g2;
@@ -300,7 +303,7 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
 
 double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
                       const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
-                      GridFields& fields) {
+                      GridFields& fields, bool reference_geometry) {
   if (load.axis < 0 || load.axis > 2 || (load.side != -1 && load.side != 1)) {
     throw common::InputError("mpm traction load: axis = " + std::to_string(load.axis) +
                              ", side = " + std::to_string(load.side) +
@@ -308,9 +311,11 @@ double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load
   }
   // Facets use the grid basis: the linear hat (uGIMP's too) or the quadratic B-spline.
   if (face_basis(kind) == ShapeKind::bspline2) {
-    return traction_on_facets<BSpline2Shape>(grid, load, points, facet_points, fields);
+    return traction_on_facets<BSpline2Shape>(grid, load, points, facet_points, reference_geometry,
+                                             fields);
   }
-  return traction_on_facets<LinearShape>(grid, load, points, facet_points, fields);
+  return traction_on_facets<LinearShape>(grid, load, points, facet_points, reference_geometry,
+                                         fields);
 }
 
 }  // namespace mpm

@@ -59,6 +59,12 @@ void SolverConfig::validate() const {
                              "\": plane strain needs the linear shape functions (the other "
                              "stencils span 3 node planes, the one-cell-thick grid has 2)");
   }
+  if (formulation == Formulation::total_lagrangian && move_points) {
+    // The grid is the reference configuration only where the points stay where they started.
+    throw common::InputError(
+        "mpm.formulation = \"total_lagrangian\" needs mpm.move_points = false (the grid is the "
+        "reference configuration only while the points keep their initial positions)");
+  }
 }
 
 Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialModel*> materials)
@@ -226,6 +232,8 @@ void Solver::hold_thickness_acceleration() {
 void Solver::update_stress(double dt) {
   const auto n = static_cast<std::int64_t>(points_.size());
   const common::Mat3 I = common::Mat3::Identity();
+  if (config_.formulation == Formulation::total_lagrangian)
+    to_spatial_gradient(points_.F, points_.L);
   if (config_.strain_smoothing == StrainSmoothing::cell) {
     average_per_cell(config_.grid, points_.x, points_.volume, points_.L, smoothing_scratch_);
   }
@@ -316,22 +324,34 @@ void Solver::check_points(double t_end) const {
 
 void Solver::add_external_loads() {
   for (std::size_t k = 0; k < tractions_.size(); ++k) {
-    traction_areas_[k] = apply_traction(config_.grid, config_.shape, tractions_[k], points_,
-                                        traction_points_[k], fields_);
+    traction_areas_[k] =
+        apply_traction(config_.grid, config_.shape, tractions_[k], points_, traction_points_[k],
+                       fields_, config_.formulation == Formulation::total_lagrangian);
   }
 }
 
 void Solver::internal_force() {
-  if (config_.strain_smoothing != StrainSmoothing::cell) {
+  const bool total = config_.formulation == Formulation::total_lagrangian;
+  const bool smooth = config_.strain_smoothing == StrainSmoothing::cell;
+  if (!total && !smooth) {
     p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);
     return;
   }
-  // The forces of the cell's mean stress: the hourglass modes, which the smoothed L does not
-  // see, get no force either, and the forces' power equals the material's (docs/mpm.md).
-  smoothing_stress_ = points_.stress;
-  average_per_cell(config_.grid, points_.x, points_.volume, points_.stress, smoothing_scratch_);
+  // Total Lagrangian: the grid gradients are reference ones, V sigma grad_x S = V sigma F^-T
+  // grad_X S. Smoothing: the forces of the cell's mean stress, so the hourglass modes, which the
+  // smoothed L does not see, get no force either, and the forces' power equals the material's
+  // (docs/mpm.md).
+  if (total) {
+    stress_for_reference_gradient(points_.F, points_.stress, force_stress_);
+  } else {
+    force_stress_ = points_.stress;
+  }
+  if (smooth) {
+    average_per_cell(config_.grid, points_.x, points_.volume, force_stress_, smoothing_scratch_);
+  }
+  points_.stress.swap(force_stress_);
   p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);
-  points_.stress.swap(smoothing_stress_);
+  points_.stress.swap(force_stress_);
 }
 
 void Solver::step() {

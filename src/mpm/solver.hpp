@@ -10,6 +10,7 @@
 #include "common/state_io.hpp"
 #include "mpm/boundary.hpp"
 #include "mpm/energy.hpp"
+#include "mpm/formulation.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_solve.hpp"
 #include "mpm/material_model.hpp"
@@ -69,6 +70,10 @@ struct SolverConfig {
   /// update, and the internal forces use the cell's volume-averaged stress, in USF and MUSL
   /// (docs/mpm.md, "Strain smoothing"). none: each point its own L and stress.
   StrainSmoothing strain_smoothing = StrainSmoothing::none;
+  /// total_lagrangian: the grid is the reference configuration (only with move_points = false):
+  /// L = Fdot F^-1 and the internal forces use sigma F^-T, so that a single-cell sample holds
+  /// its confining pressure at any strain (docs/mpm.md, "Total Lagrangian formulation").
+  Formulation formulation = Formulation::updated_lagrangian;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
@@ -197,7 +202,7 @@ class Solver {
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
   std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
-  std::vector<common::Mat3> smoothing_stress_;  ///< the points' own stresses while averaged
+  std::vector<common::Mat3> force_stress_;  ///< the stress the internal forces use
 };
 
 }  // namespace mpm

@@ -128,6 +128,7 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
   cfg.damping = tc.damping;
   cfg.cfl = tc.cfl;
   cfg.move_points = tc.move_points;
+  cfg.formulation = tc.formulation;
   const Mat3 s0 = -tc.pressure * Mat3::Identity() + tc.initial_stress_seed;
   LinearElastic material(tc.youngs_modulus, tc.poisson_ratio, tc.density, s0);
   MaterialPoints pts;

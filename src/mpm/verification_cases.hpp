@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "mpm/formulation.hpp"
 #include "mpm/shape_function.hpp"
 #include "mpm/solver.hpp"
 
@@ -57,6 +58,8 @@ struct TriaxialConfig {
   /// Added to the initial stress -p I (e.g. a small shear, as DEM RVEs carry) [Pa].
   common::Mat3 initial_stress_seed = common::Mat3::Zero();
   bool move_points = true;  ///< SolverConfig::move_points
+  /// SolverConfig::formulation (total_lagrangian needs move_points = false).
+  Formulation formulation = Formulation::updated_lagrangian;
   /// Also constrain the rigid motions in the horizontal plane (3-2-1 support on the bottom
   /// nodes (0,0,0) in x, y and (1,0,0) in y); the paper's set-up leaves them free.
   bool pin_rigid_modes = false;
