@@ -34,6 +34,12 @@ void add_mpm_sections(Schema& s) {
         "within a cell; docs/mpm.md, Strain smoothing). none: off.")
       .one_of({"none", "cell"})
       .or_default(std::string("none"));
+  s.add("mpm.position_update", Type::String,
+        "point: the points move with their own (FLIP/PIC) velocity (eq. 10, the paper's); grid: "
+        "with the end-of-step grid velocity, which the walls hold, so no point crosses a rigid "
+        "base (docs/mpm.md, Position update).")
+      .one_of({"point", "grid"})
+      .or_default(std::string("point"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
