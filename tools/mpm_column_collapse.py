@@ -30,6 +30,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
 
 G = 9.81
 D50 = 200e-6
@@ -113,15 +114,38 @@ def analyse(run):
                 dx=dx, dz=dz)
 
 
-def yade_for(a):
-    """The YADE series of the nearest a that ran longest (None if none)."""
-    best = None
+def yade_runs():
+    """(tag, a, L0, H0, t_end/t*) of every YADE series in --yade: from its summary row, or, for a run
+    still going (no summary yet), from runs_meta.csv (written from the runs' logs)."""
+    out = {}
+    meta = os.path.join(args.yade, "runs_meta.csv")
+    if os.path.exists(meta):
+        m = np.genfromtxt(meta, delimiter=",", names=True, dtype=None, encoding=None)
+        for r in np.atleast_1d(m):
+            out[str(r["tag"])] = (float(r["a"]), float(r["L0_m"]), float(r["H0_m"]))
     for s in glob.glob(os.path.join(args.yade, "a*_summary.csv")):
-        row = np.genfromtxt(s, delimiter=",", names=True, dtype=None, encoding=None)
-        if abs(float(row["a"]) / a - 1) > 0.2:
+        r = np.genfromtxt(s, delimiter=",", names=True, dtype=None, encoding=None)
+        out[str(r["tag"])] = (float(r["a"]), float(r["L0_m"]), float(r["H0_m"]))
+    runs = []
+    for tag, (a, L0, H0) in out.items():
+        ts = os.path.join(args.yade, f"{tag}_timeseries.csv")
+        if os.path.exists(ts):
+            t_end = np.genfromtxt(ts, delimiter=",", names=True)["t_over_tstar"][-1]
+            runs.append((tag, a, L0, H0, t_end))
+    return runs
+
+
+YADE = yade_runs()
+
+
+def yade_for(a):
+    """The YADE series of the nearest a that ran longest: (path prefix, t_end/t*, L0, H0) or None."""
+    best = None
+    for tag, ay, L0, H0, t_end in YADE:
+        if abs(ay / a - 1) > 0.2:
             continue
-        if best is None or float(row["t_end_over_tstar"]) > best[1]:
-            best = (s.replace("_summary.csv", ""), float(row["t_end_over_tstar"]), row)
+        if best is None or t_end > best[1]:
+            best = (os.path.join(args.yade, tag), t_end, L0, H0)
     return best
 
 
@@ -164,7 +188,7 @@ for r in runs:
     y = yade_for(r["a"])
     if y:
         ts = np.genfromtxt(y[0] + "_timeseries.csv", delimiter=",", names=True)
-        L0y, H0y = float(y[2]["L0_m"]), float(y[2]["H0_m"])
+        L0y = y[2]
         lab = f"YADE {os.path.basename(y[0])}"
         axs[0].plot(ts["t_over_tstar"], (ts["L_front_m"] - ts["L_front_m"][0]) / L0y, "--",
                     color=c, label=lab)
@@ -192,12 +216,19 @@ for ax, r in zip(axs[:, 0], runs):
     ax.plot(r["x"][-1, :, 0] / r["L0"], r["x"][-1, :, 2] / r["L0"], ".", ms=2, color="C0")
     y = yade_for(r["a"])
     if y:
-        pr = np.genfromtxt(y[0] + "_profiles.csv", delimiter=",", names=True, dtype=None,
-                           encoding=None)
-        L0y = float(y[2]["L0_m"])
-        fin = pr[pr["t_over_tstar"] == "final"]
-        ax.plot(fin["x_m"] / L0y, fin["h_vol_m"] / L0y, color="C3",
-                label=f"YADE {os.path.basename(y[0])} end ({y[1]:.2f} t*)")
+        pr = pd.read_csv(y[0] + "_profiles.csv", dtype={"t_over_tstar": str})
+        L0y = y[2]
+        fin = pr[pr.t_over_tstar == "final"]
+        if len(fin) == 0:  # a run still going: its latest profile
+            last = max(float(v) for v in pr.t_over_tstar)
+            fin = pr[pr.t_over_tstar.astype(float) == last]
+        ax.plot(fin.x_m / L0y, fin.h_vol_m / L0y, color="C3",
+                label=f"YADE {os.path.basename(y[0])}, t = {fin.t_over_tstar.iloc[0]} t* "
+                f"(run to {y[1]:.2f} t*)")
+    xmax = r["x"][-1, :, 0].max() / r["L0"] + 0.5
+    if y:
+        xmax = max(xmax, fin.x_m[fin.h_vol_m > 0].max() / L0y + 0.3)
+    ax.set_xlim(0, xmax)
     ax.set_ylabel("h / L0")
     ax.set_title(f"a = {r['a']:.2g}", fontsize=9)
     ax.legend(fontsize=7)
