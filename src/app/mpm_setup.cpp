@@ -96,6 +96,7 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.stress_update =
       job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
   cfg.strain_smoothing = mpm::strain_smoothing_from_string(job.text("mpm.strain_smoothing"));
+  cfg.grid_positions = job.text("mpm.position_update") == "grid";
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
   cfg.damping_mode = job.text("mpm.damping_mode") == "component"
                          ? mpm::DampingMode::cundall_component

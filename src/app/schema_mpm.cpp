@@ -41,6 +41,12 @@ void add_mpm_sections(Schema& s) {
         "Lagrangian formulation). updated_lagrangian: classical MPM.")
       .one_of({"updated_lagrangian", "total_lagrangian"})
       .or_default(std::string("updated_lagrangian"));
+  s.add("mpm.position_update", Type::String,
+        "point: the points move with their own (FLIP/PIC) velocity (eq. 10, the paper's); grid: "
+        "with the end-of-step grid velocity, which the walls hold, so no point crosses a rigid "
+        "base (docs/mpm.md, Position update).")
+      .one_of({"point", "grid"})
+      .or_default(std::string("point"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "

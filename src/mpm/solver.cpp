@@ -371,7 +371,8 @@ void Solver::step() {
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
     // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
-    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
+    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
+               config_.grid_positions);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
@@ -381,7 +382,8 @@ void Solver::step() {
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
-    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_);
+    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
+               config_.grid_positions);
     p2g_momentum(grid, cache_, bins_, points_, fields_);
     scale_inertia(false);
     compute_nodal_velocity(threshold_, fields_);

@@ -35,6 +35,9 @@ struct SolverConfig {
   StressUpdate stress_update = StressUpdate::usf;
   /// FLIP share of the velocity update in [0, 1] [-]: 1 = pure NFLIP (eq. 9, the paper), 0 = PIC.
   double flip = 1.0;
+  /// true: the points move with the end-of-step grid velocity (x_p += dt sum_v S (V_v + dt a_v)),
+  /// which walls constrain; false: with their own blended velocity v_p (eq. 10, the paper).
+  bool grid_positions = false;
   common::Vec3 gravity = common::Vec3::Zero();  ///< g of eq. 6 [m/s^2]; zero = no gravity
   double damping = 0.0;                         ///< D of eq. 8, in [0, 1) [-]
   DampingMode damping_mode = DampingMode::cundall_vector;

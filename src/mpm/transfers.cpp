@@ -226,13 +226,14 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 }
 
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
-                double pic_fraction, bool move_points, double dt, MaterialPoints& points) {
+                double pic_fraction, bool move_points, double dt, MaterialPoints& points,
+                bool grid_positions) {
   const auto n = static_cast<std::int64_t>(points.size());
   for_each_index(n, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
     common::Vec3 a_p = common::Vec3::Zero();
     common::Vec3 v_pic = common::Vec3::Zero();
-    if (pic_fraction == 0.0) {
+    if (pic_fraction == 0.0 && !grid_positions) {
       for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
         a_p += S * fields.acceleration[static_cast<std::size_t>(node_i)];
       });
@@ -246,7 +247,9 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
     const common::Vec3 v_flip = points.v[p] + dt * a_p;
     points.v[p] =
         pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
-    if (move_points) points.x[p] += dt * points.v[p];
+    // Grid positions: the end-of-step grid velocity, which the walls constrain (a point cannot
+    // cross a held node plane within a CFL step); else the point's own (FLIP) velocity.
+    if (move_points) points.x[p] += dt * (grid_positions ? v_pic : points.v[p]);
   });
 }
 

@@ -71,7 +71,10 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 /// Eqs. 9-10 blended with PIC: a_p = sum_v S a_v; v_flip = v_p + dt a_p;
 /// v_pic = sum_v S (V_v + dt a_v); v_p <- (1 - pic) v_flip + pic v_pic; x_p <- x_p + dt v_p
 /// (only when `move_points`: otherwise the points keep their positions, see SolverConfig).
+/// `grid_positions`: x_p <- x_p + dt v_pic instead (the walls' held nodes then stop the points:
+/// a FLIP velocity does not see them and can carry a point through a rigid base).
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
-                double pic_fraction, bool move_points, double dt, MaterialPoints& points);
+                double pic_fraction, bool move_points, double dt, MaterialPoints& points,
+                bool grid_positions = false);
 
 }  // namespace mpm

@@ -152,3 +152,30 @@ TEST(GridSolve, MassThresholdZeroesLightNodes) {
 }
 
 }  // namespace
+
+// Position update (SolverConfig::grid_positions): a point just above a rigid base (its nodes held
+// at zero velocity) with a downward FLIP velocity. Moving with v_p carries it through the base in
+// one step; moving with the grid velocity (here zero at every node) leaves it in place, while its
+// velocity update is the same in both modes (exact: the same expressions).
+TEST(Transfers, GridPositionsKeepAPointAboveAHeldBase) {
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(1.0), common::Vec3i(1, 1, 2)};
+  for (const bool grid_positions : {false, true}) {
+    mpm::MaterialPoints pts;
+    mpm::fill_box(pts, g, Vec3::Zero(), Vec3::Ones(), 1, 1000.0, 0);
+    pts.x[0] = Vec3(0.5, 0.5, 0.05);
+    pts.v[0] = Vec3(0.0, 0.0, -5.0);
+    mpm::StencilCache cache;
+    mpm::GridFields f;
+    f.resize(g);
+    ASSERT_EQ(mpm::compute_stencils(mpm::ShapeKind::linear, g, pts, cache), -1);
+    for (auto& v : f.velocity) v = Vec3::Zero();
+    for (auto& a : f.acceleration) a = Vec3::Zero();
+    mpm::g2p_update(g, cache, f, 0.0, true, 0.02, pts, grid_positions);
+    EXPECT_EQ(pts.v[0], Vec3(0.0, 0.0, -5.0));
+    if (grid_positions) {
+      EXPECT_EQ(pts.x[0], Vec3(0.5, 0.5, 0.05));
+    } else {
+      EXPECT_NEAR(pts.x[0][2], 0.05 - 0.1, 1e-15);  // below the base: what the option prevents
+    }
+  }
+}
