@@ -103,11 +103,18 @@ class Run:
         self.x = f["points/x"][:]
         self.F = f["points/F"][:]
 
+    def row_at(self, eps):
+        """The first output row at or past log axial strain eps (the last row if never)."""
+        if eps is None:
+            return len(self.time) - 1
+        k = np.nonzero(self.eps >= eps)[0]
+        return int(k[0]) if k.size else len(self.time) - 1
+
     def eps_dev(self, row=-1):
         return hencky_dev(self.F[row])
 
 
-def band_fit(x, z, e, h):
+def band_fit(x, z, e, h, angles=(1.0, 179.5)):
     """Radon-like orientation of the band: for each angle theta of the band from the +x axis,
     the sum of the excess strain (e - median) of the points in each strip d = -x sin + z cos of
     width h / 2; the band is the strip and angle with the largest sum. Returns theta [deg, from
@@ -116,7 +123,7 @@ def band_fit(x, z, e, h):
     ex = np.clip(e - np.median(e), 0.0, None)
     best = (-1.0, 0.0, 0.0)
     bw = h / 2.0
-    for th in np.arange(1.0, 179.5, 0.5):
+    for th in np.arange(angles[0], angles[1], 0.5):
         t = math.radians(th)
         d = -x * math.sin(t) + z * math.cos(t)
         k = np.floor(d / bw).astype(int)
@@ -143,6 +150,8 @@ def main():
     ap.add_argument("--figures", default=None)
     ap.add_argument("--prefix", default="biaxial_")
     ap.add_argument("--pre-peak-from", type=float, default=0.002)
+    ap.add_argument("--at-strain", type=float, default=None,
+                    help="band and maps at the first row past this axial strain (default: the last row)")
     a = ap.parse_args()
 
     dems = []
@@ -176,8 +185,9 @@ def main():
         runs.append(Run(path, label or None))
     print()
     print("| run | cells | RVEs | peak ratio (eps_a) | ratio at 10 % | pre-peak error vs DEM, max (RMS) "
-          "| platen reaction vs int sigma_zz dV (RMS) | band angle | band thickness | thickness / h |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "| platen reaction vs int sigma_zz dV (RMS) | band angle | band thickness | thickness / h "
+          "| conjugate line: angle, thickness | band measured at eps_a |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in runs:
         i = int(np.argmax(r.ratio))
         m = (r.eps >= a.pre_peak_from) & (r.eps <= fd["eps_peak"])
@@ -187,20 +197,58 @@ def main():
         r10 = np.interp(0.10, r.eps, r.ratio) if r.eps[-1] >= 0.10 else float("nan")
         post = r.eps > 0.0025
         bal = np.sqrt(np.mean(((r.sig_a[post] - r.sig_int[post]) / r.sig_int[post]) ** 2))
-        x, z = r.x[-1][:, 0], r.x[-1][:, 2]
-        e = r.eps_dev()
-        th, d0, width = band_fit(x, z, e, r.h)
+        r.row = r.row_at(a.at_strain)
+        x, z = r.x[r.row][:, 0], r.x[r.row][:, 2]
+        e = r.eps_dev(r.row)
+        # The band is sought away from the platens: the points of the first and last cell rows
+        # (the rough platens' dead zones and corners) are left out of the fit.
+        top = r.H * math.exp(-r.eps[r.row])
+        inner = (z > r.h) & (z < top - r.h)
+        th, d0, width = band_fit(x[inner], z[inner], e[inner], r.h)
         r.band = (th, d0, width, e)
+        # The conjugate direction (an X of two bands, as rough platens make): the best line
+        # of the other sense of inclination.
+        rng = (90.5, 179.5) if th < 90 else (1.0, 90.0)
+        th2, _, width2 = band_fit(x[inner], z[inner], e[inner], r.h, rng)
+        r.conj = (min(th2, 180 - th2), width2)
+        t = math.radians(th)
+        dist = np.abs(-x * math.sin(t) + z * math.cos(t) - d0)
+        r.in_band = inner & (dist <= max(width, r.h) / 2.0)
+        r.out_band = inner & (dist > 1.5 * max(width, r.h))
         incl = min(th, 180.0 - th)
         print(f"| {r.label} | {r.cells[0]} x {r.cells[1]} | {len(x)} | {r.ratio[i]:.2f} "
               f"({100 * r.eps[i]:.2f} %) | {r10:.2f} | {err} | {100 * bal:.1f} % | {incl:.1f} deg | "
-              f"{1e3 * width:.1f} mm | {width / r.h:.2f} |")
+              f"{1e3 * width:.1f} mm | {width / r.h:.2f} | {r.conj[0]:.1f} deg, {1e3 * r.conj[1]:.1f} mm | {100 * r.eps[r.row]:.2f} % |")
+    print()
+    print()
+    print("| run | RVEs with p < 1 kPa at the end | e in / out of the band | Z in / out | "
+          "MPM steps, wall (log.txt) |")
+    print("|---|---|---|---|---|")
+    for r in runs:
+        f = r.f
+        p_end = f["points/p"][r.row]
+        ev = f["points/void_ratio"][r.row]
+        zz = f["points/z"][r.row]
+        wall = "-"
+        log = os.path.join(r.path, "log.txt")
+        if os.path.exists(log):
+            for line in open(log):
+                if "info: done:" in line and "wall" in line:
+                    wall = line.split("done:")[1].split(";")[0].strip()
+        if not r.in_band.any() or not r.out_band.any():
+            print(f"| {r.label} | {int((p_end < 1e3).sum())} of {len(p_end)} | no band | | {wall} |")
+            continue
+        print(f"| {r.label} | {int((p_end < 1e3).sum())} of {len(p_end)} | "
+              f"{np.nanmean(ev[r.in_band]):.3f} / {np.nanmean(ev[r.out_band]):.3f} | "
+              f"{np.nanmean(zz[r.in_band]):.2f} / {np.nanmean(zz[r.out_band]):.2f} | "
+              f"{wall} |")
     print()
     for r in runs:
-        sm = r.sig_mean[-1]
-        print(f"{r.label}: end eps_a {100 * r.eps[-1]:.2f} %; volume-mean sigma_xx "
+        sm = r.sig_mean[r.row]
+        print(f"{r.label}: at eps_a {100 * r.eps[r.row]:.2f} % (last row {100 * r.eps[-1]:.2f} %); "
+              f"volume-mean sigma_xx "
               f"{sm[0, 0] / 1e3:.1f} kPa, sigma_zz {sm[2, 2] / 1e3:.1f} kPa against platen "
-              f"{r.sig_a[-1] / 1e3:.1f} kPa; eps_dev max {r.band[3].max():.3f}, median "
+              f"{r.sig_a[r.row] / 1e3:.1f} kPa; eps_dev max {r.band[3].max():.3f}, median "
               f"{np.median(r.band[3]):.3f}")
 
     if not a.figures:
@@ -237,7 +285,7 @@ def main():
     fig, ax = plt.subplots(1, len(runs), figsize=(3.6 * len(runs), 6.0), squeeze=False)
     vmax = max(np.percentile(r.band[3], 99) for r in runs)
     for k, r in enumerate(runs):
-        x, z = r.x[-1][:, 0], r.x[-1][:, 2]
+        x, z = r.x[r.row][:, 0], r.x[r.row][:, 2]
         th, d0, width, e = r.band
         sc = ax[0, k].scatter(1e3 * x, 1e3 * z, c=e, s=max(2.0, 900.0 / len(x) ** 0.5 * 1.5),
                               marker="s", cmap="viridis", vmin=0, vmax=vmax)
@@ -257,7 +305,7 @@ def main():
         ax[0, k].set_ylim(-1e3 * r.h / 2, 1e3 * (r.H + r.h / 2))
         ax[0, k].set_aspect("equal")
         ax[0, k].set_title(f"{r.label}: {r.cells[0]} x {r.cells[1]} cells\n"
-                           f"eps_a = {100 * r.eps[-1]:.1f} %", fontsize=9)
+                           f"eps_a = {100 * r.eps[r.row]:.1f} %", fontsize=9)
         ax[0, k].set_xlabel("x [mm]")
         ax[0, k].legend(fontsize=7, loc="lower right")
     ax[0, 0].set_ylabel("z [mm]")

@@ -25,7 +25,8 @@ def platen_keys(platen, side=None):
     return f'friction = {float(platen):g}\n{normal}contact = "fixed"\n'
 
 
-def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough"):
+def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
+        smoothing="cell"):
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
@@ -67,19 +68,21 @@ shape_function = "linear"
 update = "usf"
 plane_strain = "y"             # one cell through y, [2, 1, 2] points per cell
 flip = 1.0
+strain_smoothing = "{smoothing}"     # cell: selective reduced integration per cell; without it the rough
+                               # platens lock the dilatant specimen (docs/biaxial.md, "Locking")
 damping = 0.2                  # Cundall damping (eq. 8)
 mass_scaling = {mass_scaling:g}           # quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):g}; the log checks E_kin/W_int < 0.01
 cfl = 0.5
-end_time = "{t_end:.17g} s"        # log axial strain {strain:g} at the platen speed below
+end_time = "{t_end!r} s"        # log axial strain {strain:g} at the platen speed below
 
 [mpm.grid]                     # {pad} empty cell(s) each side in x for the lateral expansion, one above
-origin = [{x0:.17g}, 0.0, 0.0]  # the top (a point next to the platen may drift above it)
-spacing = [{h:.17g}, {h:.17g}, {h:.17g}]
+origin = [{x0!r}, 0.0, 0.0]  # the top (a point next to the platen may drift above it)
+spacing = [{h!r}, {h!r}, {h!r}]
 cells = [{nx + 2 * pad}, 1, {nz + 1}]
 
 [[mpm.body]]
 min = [0.0, 0.0, 0.0]
-max = [{W:g}, {h:.17g}, {H:g}]
+max = [{W:g}, {h!r}, {H:g}]
 points_per_cell = [2, 1, 2]
 density = "{RHO_BULK:g} kg/m^3"
 material = "dem"
@@ -107,10 +110,10 @@ x = 0.0
         if tk >= t_end:
             break
         lines.append(f"""[[mpm.velocity]]
-min = [{x0:.17g}, 0.0, {zk:.17g}]
-max = [{x1:.17g}, {h:.17g}, {H + 1.5 * h:.17g}]
-{platen_keys(platen, "z+")}z = "{-v * 1e3:.17g} mm/s"{'' if k == 0 else f'''
-from = "{tk:.17g} s"'''}
+min = [{x0!r}, 0.0, {zk!r}]
+max = [{x1!r}, {h!r}, {H + 1.5 * h!r}]
+{platen_keys(platen, "z+")}z = "{-v * 1e3!r} mm/s"{'' if k == 0 else f'''
+from = "{tk!r} s"'''}
 name = "platen_{k}"
 """)
         k += 1
@@ -139,11 +142,13 @@ def main():
     ap.add_argument("--mass-scaling", type=float, default=1e4)
     ap.add_argument("--every", type=int, default=50)
     ap.add_argument("--platen", default="rough", help="rough (no slip), smooth, or a friction coefficient")
+    ap.add_argument("--smoothing", default="cell", help="mpm.strain_smoothing: cell or none")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     a = ap.parse_args()
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
-               a.mass_scaling, a.every, a.header, a.platen)
+               a.mass_scaling, a.every, a.header, a.platen,
+               a.smoothing)
     open(a.out, "w").write(text)
 
 
