@@ -184,13 +184,18 @@ def main():
         path, _, label = spec.partition(":")
         runs.append(Run(path, label or None))
     print()
-    print("| run | cells | RVEs | peak ratio (eps_a) | ratio at 10 % | pre-peak error vs DEM, max (RMS) "
+    print("| run | cells | RVEs | first peak ratio (eps_a) | ratio at 10 % | pre-peak error vs DEM, max (RMS) "
           "| platen reaction vs int sigma_zz dV (RMS) | band angle | band thickness | thickness / h "
           "| conjugate line: angle, thickness | band measured at eps_a |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in runs:
-        i = int(np.argmax(r.ratio))
-        m = (r.eps >= a.pre_peak_from) & (r.eps <= fd["eps_peak"])
+        # The run's first peak: its running maximum before the ratio first falls 5 % below it
+        # (post-peak the ratio oscillates and may come back above it).
+        runmax = np.maximum.accumulate(r.ratio)
+        drop = np.nonzero(r.ratio < 0.95 * runmax)[0]
+        i = int(np.argmax(r.ratio[: drop[0]])) if drop.size else int(np.argmax(r.ratio))
+        # Before the peak: from pre_peak_from to the first of the two peaks (the DEM's, the run's).
+        m = (r.eps >= a.pre_peak_from) & (r.eps <= min(fd["eps_peak"], r.eps[i]))
         rel = r.ratio[m] / np.interp(r.eps[m], ref["eps"], ref["ratio"]) - 1.0
         err = (f"{100 * np.max(np.abs(rel)):.1f} % ({100 * np.sqrt(np.mean(rel ** 2)):.1f} %)"
                if rel.size else "-")
