@@ -219,7 +219,7 @@ def main():
         t = math.radians(th)
         dist = np.abs(-x * math.sin(t) + z * math.cos(t) - d0)
         r.in_band = inner & (dist <= max(width, r.h) / 2.0)
-        r.out_band = inner & (dist > 1.5 * max(width, r.h))
+        r.out_band = inner & (dist > max(width, r.h))
         incl = min(th, 180.0 - th)
         print(f"| {r.label} | {r.cells[0]} x {r.cells[1]} | {len(x)} | {r.ratio[i]:.2f} "
               f"({100 * r.eps[i]:.2f} %) | {r10:.2f} | {err} | {100 * bal:.1f} % | {incl:.1f} deg | "
