@@ -37,15 +37,17 @@ struct Reference {
 };
 
 // One row, in the column order above: p, q, sig_a, sig_r compression positive (the paper's
-// plots); components in the seam's convention (tension positive, as YADE writes them).
-std::vector<double> row(const dem::Simulation& sim, const dem::Measures& m, const Reference& ref) {
+// plots); components in the seam's convention (tension positive, as YADE writes them). sig_r is
+// the mean of sigma_xx and sigma_yy, or sigma_xx alone in a plane-strain (biaxial) test.
+std::vector<double> row(const dem::Simulation& sim, const dem::Measures& m, const Reference& ref,
+                        bool plane_strain = false) {
   const auto& s = m.stress;
   const double eps_a = -std::log(sim.cell().h(2, 2) / ref.lz0);
   const double eps_v = -std::log(sim.cell().volume() / ref.v0);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - ref.start).count();
   const double sig_a = -s(2, 2);
-  const double sig_r = -0.5 * (s(0, 0) + s(1, 1));
+  const double sig_r = plane_strain ? -s(0, 0) : -0.5 * (s(0, 0) + s(1, 1));
   return {static_cast<double>(sim.steps()),
           sim.time(),
           sim.dt(),
@@ -80,9 +82,9 @@ void check_finite(const dem::Measures& m, const dem::Simulation& sim) {
 /// A drained triaxial test whose servo no longer holds the lateral stresses is stopped: its curve
 /// would be another test's (dem.loading.lateral_tolerance).
 void check_lateral_control(const common::Mat3& stress, double confining, double tol, double eps_a,
-                           const dem::Simulation& sim) {
+                           const dem::Simulation& sim, int axes) {
   if (eps_a <= 1e-3) return;  // the servo picks up the lateral rate first
-  for (int a = 0; a < 2; ++a) {
+  for (int a = 0; a < axes; ++a) {
     const double sig = -stress(a, a);
     const double err = std::abs(sig - confining) / confining;
     if (err > tol) {
@@ -133,7 +135,8 @@ int command_dem(const Options& o, const Comm& comm) {
   series.add(row(sim, dem::measure(sim), ref));
 
   std::int64_t done = 0;
-  if (type == "triaxial") {
+  if (type == "triaxial" || type == "biaxial") {
+    const bool plane = type == "biaxial";
     bool generated = false;
     const double rho = job.number("dem.material.density");
     dem::DrainedTriaxial test;
@@ -142,21 +145,23 @@ int command_dem(const Options& o, const Comm& comm) {
     test.axial_rate =
         dem::strain_rate(job.number("dem.loading.inertial_number"), d50, rho, test.confining);
     test.eps_end = job.number("dem.loading.axial_strain");
+    test.plane_strain = plane;
     test.check_every = every;
     test.max_steps = max_steps;
     const double lateral_tol = job.number("dem.loading.lateral_tolerance");
     spdlog::info(
-        "triaxial: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
-        "1/s, to eps_a = {}, lateral stress {:.4g} Pa; about {:.3g} DEM steps",
-        d50, dem::inertial_time(d50, rho, test.confining), test.axial_rate, test.eps_end,
-        test.confining, test.eps_end / test.axial_rate / sim.dt());
-    Progress progress("triaxial", test.eps_end);
+        "{}: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
+        "1/s, to eps_a = {}, lateral stress {:.4g} Pa{}; about {:.3g} DEM steps",
+        type, d50, dem::inertial_time(d50, rho, test.confining), test.axial_rate, test.eps_end,
+        test.confining, plane ? " on x, zero strain on y (plane strain)" : "",
+        test.eps_end / test.axial_rate / sim.dt());
+    Progress progress(type, test.eps_end);
     done = dem::run_drained_triaxial(
         sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
           const dem::Measures m = dem::measure(s);
           check_finite(m, s);
-          series.add(row(s, m, ref));
-          check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s);
+          series.add(row(s, m, ref, plane));
+          check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s, plane ? 1 : 2);
           progress.update(
               now.eps_a, s.steps(),
               fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v, m.void_ratio),

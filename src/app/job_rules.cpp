@@ -103,7 +103,7 @@ void loading_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.loading")) return;
   const std::string& type = job.text("dem.loading.type");
   const std::string why = fmt::format("for dem.loading.type = \"{}\"", type);
-  if (type == "triaxial") {
+  if (type == "triaxial" || type == "biaxial") {
     for (const char* k : {"dem.loading.inertial_number", "dem.loading.axial_strain",
                           "dem.loading.confining_pressure"})
       r.require(k, why);

@@ -66,20 +66,24 @@ void add_dem_sections(Schema& s) {
   add_params(s, farm::kSparingOptions);
 
   s.add("dem.loading", Type::Table, "The loading programme of a pure DEM job (`mpmxdem dem`).");
-  s.add("dem.loading.type", Type::String, "What to do after preparation.")
-      .one_of({"triaxial", "isotropic", "strain_path"})
+  s.add("dem.loading.type", Type::String,
+        "What to do after preparation: triaxial (z compressed, x and y at the confining "
+        "pressure), biaxial (plane strain: z compressed, x at the confining pressure, zero strain "
+        "on y), isotropic, strain_path.")
+      .one_of({"triaxial", "biaxial", "isotropic", "strain_path"})
       .need();
   s.add("dem.loading.inertial_number", Type::Float, "Inertial number of the imposed strain rate.")
       .in(0, 1, true, true);
   s.add("dem.loading.axial_strain", Type::Float,
-        "Final axial strain (compression positive) of a triaxial test.")
+        "Final axial strain (compression positive) of a triaxial or biaxial test.")
       .in(0, 1, true, true);
   s.add("dem.loading.confining_pressure", Type::Float,
-        "Lateral stress held by the servo (triaxial), or target (isotropic).")
+        "Lateral stress held by the servo (triaxial: x and y; biaxial: x), or target (isotropic).")
       .unit(Q::Pressure)
       .in(0, std::nullopt, true);
   s.add("dem.loading.lateral_tolerance", Type::Float,
-        "A triaxial test stops (exit 3) when a lateral stress strays further than this fraction "
+        "A triaxial or biaxial test stops (exit 3) when a lateral stress strays further than this "
+        "fraction "
         "from the confining pressure, once the axial strain passes 0.1 % (the servo's start): a "
         "curve whose control failed is never written as if it held.")
       .in(0, std::nullopt, true)

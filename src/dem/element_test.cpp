@@ -13,8 +13,13 @@ double strain_rate(double inertial_number, double d50, double rho, double p) {
 }
 
 MixedControl triaxial_servo(const DrainedTriaxial& test) {
-  return triaxial_control(test.axial_rate, test.confining,
-                          test.servo_rate_factor * test.axial_rate);
+  MixedControl mc =
+      triaxial_control(test.axial_rate, test.confining, test.servo_rate_factor * test.axial_rate);
+  if (test.plane_strain) {
+    mc.stress_axis[1] = false;  // y follows l_imposed(1, 1) = 0: zero strain
+    mc.target[1] = 0.0;
+  }
+  return mc;
 }
 
 std::int64_t run_drained_triaxial(Simulation& sim, const DrainedTriaxial& test,

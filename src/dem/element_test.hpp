@@ -30,11 +30,15 @@ struct DrainedTriaxial {
   /// packing to 25 % at I = 2.5e-4 (lateral rate at most 1.44 x axial) and in
   /// jobs/triaxial_dem_small.toml.
   double servo_rate_factor = 10.0;
+  /// Plane strain (a biaxial test): only sigma_xx is held at `confining`; the y strain is held at
+  /// zero (L_yy = 0), sigma_yy is what the sample gives. false: the triaxial test (x and y held).
+  bool plane_strain = false;
   std::int64_t check_every = 100;  ///< steps between checks of eps_end and calls of the observer
   std::int64_t max_steps = std::numeric_limits<std::int64_t>::max();  ///< stop here in any case
 };
 
-/// The servo settings of a drained triaxial test (triaxial_control with the rate bound).
+/// The servo settings of a drained triaxial test (triaxial_control with the rate bound); with
+/// plane_strain, y is strain-controlled at L_yy = 0.
 [[nodiscard]] MixedControl triaxial_servo(const DrainedTriaxial& test);
 
 /// Where a drained triaxial test stands, strains relative to its start.

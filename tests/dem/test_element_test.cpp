@@ -42,6 +42,34 @@ TEST(ElementTest, ServoSettings) {
   EXPECT_EQ(c.target[0], -2e5);
 }
 
+// Plane strain (biaxial): x held at the confining pressure, y strain-controlled at zero strain,
+// z compressed; on the small sample the cell's y size stays exactly the same (L_yy = 0 and no
+// shear is imposed, so h_yy is never changed) while sigma_xx follows the servo.
+TEST(ElementTest, PlaneStrainHoldsYAndServoesX) {
+  dem::DrainedTriaxial t;
+  t.axial_rate = 7.0;
+  t.confining = 2e5;
+  t.plane_strain = true;
+  const dem::MixedControl c = dem::triaxial_servo(t);
+  EXPECT_TRUE(c.stress_axis[0] && !c.stress_axis[1] && !c.stress_axis[2]);
+  EXPECT_EQ(c.l_imposed(1, 1), 0.0);
+  EXPECT_EQ(c.l_imposed(2, 2), -7.0);
+
+  dem::Simulation sim = small_sample();
+  const double lx0 = sim.cell().h(0, 0);
+  const double ly0 = sim.cell().h(1, 1);
+  const double lz0 = sim.cell().h(2, 2);
+  t.axial_rate = dem::strain_rate(1e-2, 2e-4, 2650.0, 1e5);
+  t.confining = 1e5;
+  t.eps_end = 2e-3;
+  t.check_every = 20;
+  dem::run_drained_triaxial(sim, t);
+  EXPECT_EQ(sim.cell().h(1, 1), ly0);
+  EXPECT_LT(sim.cell().h(2, 2), lz0 * (1.0 - 1.9e-3));
+  // The x size moved: the servo acts on it (the 70-sphere sample dilates or contracts laterally).
+  EXPECT_NE(sim.cell().h(0, 0), lx0);
+}
+
 // Stops at the first check past eps_end; the observer sees every check with the strains of the
 // cell since the start, and `last` only on the final call.
 TEST(ElementTest, StopsAtTheFirstCheckPastTheTarget) {

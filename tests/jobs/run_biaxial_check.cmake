@@ -1,0 +1,15 @@
+# Issue 16's suite check of the plane-strain biaxial: tests/jobs/biaxial_small.toml on 2 ranks, then
+# tests/jobs/check_biaxial.py (PYTHON) with BAND, R_TOL and BASE_TOL.
+include(${CMAKE_CURRENT_LIST_DIR}/mpmxdem_run.cmake)
+file(REMOVE_RECURSE "${DIR}")
+mpmxdem_run(2 tests/jobs/biaxial_small.toml --out "${DIR}")
+execute_process(COMMAND "${PYTHON}" tests/jobs/check_biaxial.py "${DIR}" ${BAND} ${R_TOL} ${BASE_TOL}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(rc EQUAL 77)
+  message("SKIPPED: h5py not installed")
+  return()
+endif()
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "check_biaxial.py failed (${rc})")
+endif()

@@ -1,0 +1,156 @@
+#!/usr/bin/python3
+"""Write jobs/biaxial_plane_strain_<nx>x<nz>.toml: the plane-strain biaxial test of issue 16
+(section 2) on one mesh. The three jobs in jobs/ were written by this script; a user changes
+the mesh, the RVE size or the rate here, or edits a written job.
+
+    /usr/bin/python3 tools/biaxial_make_jobs.py                  # the three meshes of docs/biaxial.md
+    /usr/bin/python3 tools/biaxial_make_jobs.py --mesh 3 6 --spheres 300 --strain 0.01 --out x.toml
+"""
+import argparse
+import math
+
+W, H = 0.05, 0.10  # specimen width (x) and height (z) [m]: 1:2
+P = 100e3  # confinement [Pa]
+RHO_BULK = 1696.0  # 2650 / (1 + e0), e0 = 0.56 [kg/m^3]
+
+
+def platen_keys(platen, side=None):
+    """The keys that make a node plane a platen: rough (no slip: x = 0), smooth (x free) or a
+    Coulomb wall of friction coefficient `platen` (a number), pushed against (contact fixed)."""
+    if platen == "rough":
+        return "x = 0.0\n"
+    if platen == "smooth":
+        return ""
+    normal = f'normal = "{side}"\n' if side else ""
+    return f'friction = {float(platen):g}\n{normal}contact = "fixed"\n'
+
+
+def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
+        smoothing="cell"):
+    h = W / nx
+    assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
+    v = rate * H  # platen speed [m/s]
+    # Log axial strain -ln(1 - v t / H) = strain.
+    t_end = H * (1.0 - math.exp(-strain)) / v
+    x0, x1 = -pad * h, W + pad * h
+    lines = [header.rstrip(), f'title = "Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, '
+             f'{4 * nx * nz} RVEs of {spheres} spheres"', "",
+             """[dem.material]                 # the reference material (docs/validation.md)
+density = "2650 kg/m^3"
+young_modulus = "300 MPa"
+stiffness_ratio = 0.5
+friction_angle = "30 deg"
+rolling_stiffness = 2.0
+rolling_strength = 0.3
+""",
+             f"""[dem.sample]                   # generated; sample k of the pool has seed 1 + k
+spheres = {spheres}
+psd_diameters = ["130 um", "270 um"]
+psd_passing = [0.0, 1.0]
+seed = 1
+
+[dem.preparation]              # isotropic compaction at 1 deg friction to 100 kPa (e0 about 0.56)
+pressure = "100 kPa"
+friction_angle = "1 deg"
+inertial_number = 1e-2
+
+[dem.initial_state]
+samples = {samples}                   # distinct RVEs (point id mod {samples}): the imperfection that lets a band form
+
+[dem.coupling]
+inertial_number = 4e-3         # I_n of eq. 11 (as jobs/triaxial_mpmxdem_distinct.toml)
+pressure_floor = "10 kPa"      # T_p of an RVE that loses its contacts (the corners under the rough
+                               # platens dilate to p = 0): with 1 kPa those few RVEs took most of
+                               # the run (up to 5700 DEM steps per MPM step, docs/biaxial.md)
+
+[mpm]
+shape_function = "linear"
+update = "usf"
+plane_strain = "y"             # one cell through y, [2, 1, 2] points per cell
+flip = 1.0
+strain_smoothing = "{smoothing}"     # cell: selective reduced integration per cell; without it the rough
+                               # platens lock the dilatant specimen (docs/biaxial.md, "Locking")
+damping = 0.2                  # Cundall damping (eq. 8)
+mass_scaling = {mass_scaling:g}           # quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):g}; the log checks E_kin/W_int < 0.01
+cfl = 0.5
+end_time = "{t_end!r} s"        # log axial strain {strain:g} at the platen speed below
+
+[mpm.grid]                     # {pad} empty cell(s) each side in x for the lateral expansion, one above
+origin = [{x0!r}, 0.0, 0.0]  # the top (a point next to the platen may drift above it)
+spacing = [{h!r}, {h!r}, {h!r}]
+cells = [{nx + 2 * pad}, 1, {nz + 1}]
+
+[[mpm.body]]
+min = [0.0, 0.0, 0.0]
+max = [{W:g}, {h!r}, {H:g}]
+points_per_cell = [2, 1, 2]
+density = "{RHO_BULK:g} kg/m^3"
+material = "dem"
+
+# Rough rigid platens: no slip (x = 0) and the normal velocity imposed on the whole node plane
+# (plain constraints, bonded: the specimen is pushed against them throughout). The base first.
+[[mpm.velocity]]
+face = "z-"
+{platen_keys(platen)}z = 0.0
+name = "base"
+""" + ("" if platen != "smooth" else f"""
+[[mpm.velocity]]               # smooth platens: one node pinned in x against the rigid motion
+node = [{W / 2:g}, 0.0, 0.0]
+x = 0.0
+"""),
+             ]
+    # The top platen: the grid is fixed and the material's top moves down, so the platen is the
+    # node plane at or above the current top (with the empty row of nodes above it): a staircase of boxes, box k (nodes at z >= H - k h)
+    # from the time the top reaches H - k h. A node held by several keeps its first constraint's
+    # reaction: the platen's reaction is the sum over the boxes named platen_*.
+    k = 0
+    while True:
+        zk = H - k * h
+        tk = k * h / v
+        if tk >= t_end:
+            break
+        lines.append(f"""[[mpm.velocity]]
+min = [{x0!r}, 0.0, {zk!r}]
+max = [{x1!r}, {h!r}, {H + 1.5 * h!r}]
+{platen_keys(platen, "z+")}z = "{-v * 1e3!r} mm/s"{'' if k == 0 else f'''
+from = "{tk!r} s"'''}
+name = "platen_{k}"
+""")
+        k += 1
+    lines.append("""[[mpm.traction]]               # confinement on the free sides, on their current area
+face = "x-"
+pressure = "100 kPa"
+
+[[mpm.traction]]
+face = "x+"
+pressure = "100 kPa"
+""")
+    lines.append(f"""[output]
+every = {every}
+""")
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--mesh", nargs=2, type=int, metavar=("NX", "NZ"))
+    ap.add_argument("--spheres", type=int, default=300)
+    ap.add_argument("--strain", type=float, default=0.12)
+    ap.add_argument("--rate", type=float, default=0.03, help="axial strain rate V/H [1/s]")
+    ap.add_argument("--samples", type=int, default=16)
+    ap.add_argument("--pad", type=int, default=1)
+    ap.add_argument("--mass-scaling", type=float, default=1e4)
+    ap.add_argument("--every", type=int, default=50)
+    ap.add_argument("--platen", default="rough", help="rough (no slip), smooth, or a friction coefficient")
+    ap.add_argument("--smoothing", default="cell", help="mpm.strain_smoothing: cell or none")
+    ap.add_argument("--header", default="")
+    ap.add_argument("--out")
+    a = ap.parse_args()
+    text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
+               a.mass_scaling, a.every, a.header, a.platen,
+               a.smoothing)
+    open(a.out, "w").write(text)
+
+
+if __name__ == "__main__":
+    main()
