@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 
 #include "dem/element_test.hpp"
 #include "dem/loading.hpp"
@@ -93,8 +94,10 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   advance(sim, &ctl, cfg.warmup_steps);
   const std::int64_t builds0 = sim.verlet().builds;
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
   advance(sim, &ctl, cfg.steps);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   omp_set_num_threads(old_threads);
 
   BenchmarkResult r;
@@ -103,6 +106,7 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   r.threads = cfg.threads;
   r.steps = cfg.steps;
   r.wall_s = wall;
+  r.cpu_s = cpu;
   r.ms_per_step = 1e3 * wall / static_cast<double>(cfg.steps);
   r.us_per_particle_step = 1e6 * wall / static_cast<double>(cfg.steps) / n;
   const Contacts& c = sim.contacts();

@@ -22,8 +22,9 @@ struct BenchmarkConfig {
 struct BenchmarkResult {
   std::int64_t spheres = 0;
   int threads = 0;
-  std::int64_t steps = 0;             ///< timed steps
-  double wall_s = 0.0;                ///< timed wall seconds [s]
+  std::int64_t steps = 0;  ///< timed steps
+  double wall_s = 0.0;     ///< timed wall seconds [s]
+  double cpu_s = 0.0;      ///< process CPU seconds of the timed steps, all threads (std::clock) [s]
   double ms_per_step = 0.0;           ///< [ms]
   double us_per_particle_step = 0.0;  ///< [us]
   double contacts_per_sphere = 0.0;   ///< active contacts / N at the end [-]
