@@ -48,8 +48,8 @@ void Simulation::set_friction_deg(double phi_deg, bool existing) {
   }
 }
 
-void Simulation::update_neighbors() {
-  if (force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_)) {
+void Simulation::update_neighbors(bool due) {
+  if (due) {
     remap_and_wrap(spheres_, cell_, contacts_, num_.max_skew);
     build_pairs(spheres_, cell_, contacts_, verlet_);
     force_rebuild_ = false;
@@ -143,8 +143,8 @@ void Simulation::pair_forces_shared() {
   }
 }
 
-void Simulation::prepare_pair_pass() {
-  update_neighbors();
+void Simulation::prepare_pair_pass(bool rebuild_due) {
+  update_neighbors(rebuild_due);
   const auto np = static_cast<std::int64_t>(contacts_.size());
   block_stress_.assign(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock),
                        Mat3::Zero());
@@ -214,7 +214,7 @@ inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& 
 }
 
 void Simulation::compute_forces() {
-  prepare_pair_pass();
+  prepare_pair_pass(force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_));
   const auto ns = static_cast<std::int64_t>(spheres_.size());
 #pragma omp parallel if (ns > kParallelSpheres)
   {
@@ -242,40 +242,64 @@ void Simulation::advance_cell_and_clock() {
 
 void Simulation::step() { step(StepHook{}); }
 
-void Simulation::step(const StepHook& between) {
-  prepare_pair_pass();
-  const auto ns = static_cast<std::int64_t>(spheres_.size());
-  std::exception_ptr error;
-#pragma omp parallel if (ns > kParallelSpheres)
-  {
-    pair_forces_shared();
-    if (between) {
+// The forces, (the hook), the per-sphere sums and the integration of step(), called by every
+// thread of its region.
+void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error) {
+  pair_forces_shared();
+  if (between) {
 #pragma omp for schedule(static)
-      for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
+    for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
 #pragma omp single
-      {
-        finish_stress();
-        try {
-          between(*this);
-        } catch (...) {
-          error = std::current_exception();  // an exception must not leave the region
-        }
-      }  // implicit barrier: every thread sees the hook's dt and cell().l
-      if (!error) {
-        const double dt = dt_;
-        const Mat3 l = cell_.l;
-#pragma omp for schedule(static)
-        for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+    {
+      finish_stress();
+      try {
+        between(*this);
+      } catch (...) {
+        error = std::current_exception();  // an exception must not leave the region
       }
-    } else {
+    }  // implicit barrier: every thread sees the hook's dt and cell().l
+    if (!error) {
       const double dt = dt_;
       const Mat3 l = cell_.l;
 #pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+    }
+  } else {
+    const double dt = dt_;
+    const Mat3 l = cell_.l;
+#pragma omp for schedule(static)
+    for (std::int64_t q = 0; q < ns; ++q) {
+      sum_sphere(q);
+      integrate_sphere(q, dt, l);
+    }
+  }
+}
+
+void Simulation::step(const StepHook& between) {
+  const auto ns = static_cast<std::int64_t>(spheres_.size());
+  // The neighbour check (needs_rebuild) runs its loop over spheres in the step's region instead
+  // of a region of its own: one fork per step. A rebuild, when due, runs in a single thread.
+  const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
+  const Mat3 f = check ? rebuild_deformation(cell_, verlet_) : Mat3::Identity();
+  double amax2 = 0.0;
+  std::exception_ptr error;
+#pragma omp parallel if (ns > kParallelSpheres)
+  {
+    if (check) {
+#pragma omp for reduction(max : amax2) schedule(static)
       for (std::int64_t q = 0; q < ns; ++q) {
-        sum_sphere(q);
-        integrate_sphere(q, dt, l);
+        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
       }
     }
+#pragma omp single
+    {
+      try {
+        prepare_pair_pass(!check || rebuild_due(amax2, f, verlet_));
+      } catch (...) {
+        error = std::current_exception();
+      }
+    }  // implicit barrier: every thread sees the new pair list (or the error)
+    if (!error) step_shared(between, ns, error);
   }
   if (error) std::rethrow_exception(error);
   if (!between) finish_stress();
