@@ -218,12 +218,12 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
   for (std::int64_t i = 0; i < n; ++i) {
     amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
   }
-  return rebuild_due(amax2, f, vs);
+  return rebuild_due(amax2, f, vs.r_max, vs.skin);
 }
 
-bool rebuild_due(double amax2, const Mat3& f, const VerletState& vs) {
+bool rebuild_due(double amax2, const Mat3& f, double r_max, double skin) {
   const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
-  return 2.0 * std::sqrt(amax2) + eps * (2.0 * vs.r_max + vs.skin) >= vs.skin;
+  return 2.0 * std::sqrt(amax2) + eps * (2.0 * r_max + skin) >= skin;
 }
 
 }  // namespace dem

@@ -145,9 +145,13 @@ void Simulation::pair_forces_shared() {
 
 void Simulation::prepare_pair_pass(bool rebuild_due) {
   update_neighbors(rebuild_due);
+  size_stress_blocks();
+}
+
+void Simulation::size_stress_blocks() {
+  // Every block's entry is written by the pair loop: only the size matters.
   const auto np = static_cast<std::int64_t>(contacts_.size());
-  block_stress_.assign(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock),
-                       Mat3::Zero());
+  block_stress_.resize(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock));
 }
 
 void Simulation::finish_stress() {
@@ -278,9 +282,14 @@ void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exce
 void Simulation::step(const StepHook& between) {
   const auto ns = static_cast<std::int64_t>(spheres_.size());
   // The neighbour check (needs_rebuild) runs its loop over spheres in the step's region instead
-  // of a region of its own: one fork per step. A rebuild, when due, runs in a single thread.
+  // of a region of its own: one fork per step. Every thread then takes the same decision from
+  // the reduced maximum (inputs copied here: a rebuild changes verlet_), and only a due rebuild
+  // costs a `single` and its barrier.
   const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
   const Mat3 f = check ? rebuild_deformation(cell_, verlet_) : Mat3::Identity();
+  const double r_max = verlet_.r_max;
+  const double skin = verlet_.skin;
+  size_stress_blocks();
   double amax2 = 0.0;
   std::exception_ptr error;
 #pragma omp parallel if (ns > kParallelSpheres)
@@ -291,14 +300,17 @@ void Simulation::step(const StepHook& between) {
         amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
       }
     }
+    if (!check || rebuild_due(amax2, f, r_max, skin)) {
 #pragma omp single
-    {
-      try {
-        prepare_pair_pass(!check || rebuild_due(amax2, f, verlet_));
-      } catch (...) {
-        error = std::current_exception();
-      }
-    }  // implicit barrier: every thread sees the new pair list (or the error)
+      {
+        try {
+          update_neighbors(true);
+          size_stress_blocks();
+        } catch (...) {
+          error = std::current_exception();
+        }
+      }  // implicit barrier: every thread sees the new pair list (or the error)
+    }
     if (!error) step_shared(between, ns, error);
   }
   if (error) std::rethrow_exception(error);

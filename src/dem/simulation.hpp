@@ -79,8 +79,10 @@ class Simulation {
  private:
   /// Rebuild the pair list if `due`.
   void update_neighbors(bool due);
-  /// Neighbour update (if `rebuild_due`) and a zeroed stress block per kStressBlock pairs.
+  /// Neighbour update (if `rebuild_due`) and size_stress_blocks().
   void prepare_pair_pass(bool rebuild_due);
+  /// One stress block per kStressBlock pairs (each written by the pair loop).
+  void size_stress_blocks();
   /// The part of step() after the neighbour update, run by every thread of its region;
   /// an exception of the hook is stored in `error`.
   void step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error);
