@@ -4,6 +4,8 @@
 #include <omp.h>
 
 #include <chrono>
+#include <cstdio>
+#include <ctime>
 
 #include "dem/element_test.hpp"
 #include "dem/loading.hpp"
@@ -16,7 +18,67 @@ template <class V>
 double bytes(const V& v) {
   return static_cast<double>(v.capacity() * sizeof(typename V::value_type));
 }
+
+// FNV-1a over the object representation of doubles (bit patterns, -0 and +0 differ).
+class Fnv {
+ public:
+  void add(const double* p, std::size_t n) {
+    const auto* b = reinterpret_cast<const unsigned char*>(p);
+    for (std::size_t k = 0; k < n * sizeof(double); ++k) {
+      h_ = (h_ ^ b[k]) * 1099511628211ULL;
+    }
+  }
+  template <class V>
+  void add_vec3(const V& v) {
+    for (const auto& e : v) add(e.data(), 3);
+  }
+  [[nodiscard]] std::uint64_t value() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 14695981039346656037ULL;
+};
+
+std::uint64_t state_hash(const Simulation& sim) {
+  Fnv f;
+  const Spheres& s = sim.spheres();
+  f.add_vec3(s.x);
+  f.add_vec3(s.u);
+  f.add_vec3(s.w);
+  f.add_vec3(s.force);
+  f.add_vec3(s.torque);
+  f.add(sim.cell().h.data(), 9);
+  f.add(sim.stress().data(), 9);
+  const Contacts& c = sim.contacts();
+  for (const CohFrictHistory& h : c.hist) {
+    f.add(h.normal.data(), 3);
+    f.add(h.shear.data(), 3);
+    f.add(h.roll.data(), 3);
+    f.add(h.twist.data(), 3);
+  }
+  f.add_vec3(c.force);
+  f.add_vec3(c.torque_i);
+  f.add_vec3(c.torque_j);
+  f.add_vec3(c.branch);
+  f.add(c.fn.data(), c.fn.size());
+  const double dt = sim.dt();
+  f.add(&dt, 1);
+  return f.value();
+}
 }  // namespace
+
+std::string reference_packing_path() { return MPMXDEM_REFERENCE_PACKING; }
+
+std::string to_string(const BenchmarkResult& r) {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "spheres=%lld threads=%d steps=%lld ms/step=%.4f us/particle-step=%.4f "
+                "contacts/sphere=%.3f pairs/sphere=%.3f dt=%.4g rebuilds=%lld hash=%016llx",
+                static_cast<long long>(r.spheres), r.threads, static_cast<long long>(r.steps),
+                r.ms_per_step, r.us_per_particle_step, r.contacts_per_sphere, r.pairs_per_sphere,
+                r.dt, static_cast<long long>(r.rebuilds),
+                static_cast<unsigned long long>(r.state_hash));
+  return buf;
+}
 
 BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Numerics& num,
                               const BenchmarkConfig& cfg) {
@@ -32,8 +94,10 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   advance(sim, &ctl, cfg.warmup_steps);
   const std::int64_t builds0 = sim.verlet().builds;
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
   advance(sim, &ctl, cfg.steps);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   omp_set_num_threads(old_threads);
 
   BenchmarkResult r;
@@ -42,6 +106,7 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   r.threads = cfg.threads;
   r.steps = cfg.steps;
   r.wall_s = wall;
+  r.cpu_s = cpu;
   r.ms_per_step = 1e3 * wall / static_cast<double>(cfg.steps);
   r.us_per_particle_step = 1e6 * wall / static_cast<double>(cfg.steps) / n;
   const Contacts& c = sim.contacts();
@@ -58,6 +123,7 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
        bytes(c.force) + bytes(c.torque_i) + bytes(c.torque_j) + bytes(c.branch) + bytes(c.fn) +
        bytes(c.sphere_offset) + bytes(c.sphere_pairs) + bytes(sim.verlet().x_ref);
   r.bytes_per_sphere = b / n;
+  r.state_hash = state_hash(sim);
   return r;
 }
 

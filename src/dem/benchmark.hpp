@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "dem/packing_io.hpp"
 #include "dem/params.hpp"
@@ -21,8 +22,9 @@ struct BenchmarkConfig {
 struct BenchmarkResult {
   std::int64_t spheres = 0;
   int threads = 0;
-  std::int64_t steps = 0;             ///< timed steps
-  double wall_s = 0.0;                ///< timed wall seconds [s]
+  std::int64_t steps = 0;  ///< timed steps
+  double wall_s = 0.0;     ///< timed wall seconds [s]
+  double cpu_s = 0.0;      ///< process CPU seconds of the timed steps, all threads (std::clock) [s]
   double ms_per_step = 0.0;           ///< [ms]
   double us_per_particle_step = 0.0;  ///< [us]
   double contacts_per_sphere = 0.0;   ///< active contacts / N at the end [-]
@@ -30,7 +32,18 @@ struct BenchmarkResult {
   double dt = 0.0;                    ///< DEM time step [s]
   double bytes_per_sphere = 0.0;      ///< heap bytes of spheres + pairs + Verlet state / N [B]
   std::int64_t rebuilds = 0;          ///< neighbour rebuilds during the run
+  /// FNV-1a hash of the bits of the final state (positions, velocities, spins, cell, contact
+  /// history and forces, stress): equal hashes = bit-identical runs (thread counts, builds).
+  std::uint64_t state_hash = 0;
 };
+
+/// The reference packing (1000 spheres at 100 kPa, e = 0.562) of the source tree this library was
+/// built from: jobs/packings/packing_N1000_e0.562.txt.
+[[nodiscard]] std::string reference_packing_path();
+
+/// One line of figures: spheres=... threads=... steps=... ms/step=... us/particle-step=...
+/// contacts/sphere=... pairs/sphere=... dt=... rebuilds=... hash=... (`mpmxdem bench dem`).
+[[nodiscard]] std::string to_string(const BenchmarkResult& r);
 
 /// Run the benchmark. Deterministic results, wall time of course not.
 [[nodiscard]] BenchmarkResult run_benchmark(const Packing& base, const Material& mat,

@@ -32,4 +32,153 @@ CohFrictProps CohFrictLaw::create(double r1, double r2) const {
   return p;
 }
 
+// ---- Batched form. Every expression below is the one apply() evaluates through Eigen, operation
+// for operation (no reassociation, no fused multiply-add), so that each lane is bit-identical to
+// apply(): Eigen's dot products and squared norms of 3-vectors sum (x0 y0 + x1 y1) + x2 y2, its
+// cross products are (a1 b2 - a2 b1, a2 b0 - a0 b2, a0 b1 - a1 b0), and its 3x3 times 3-vector
+// product sums rows 0 and 1 as (m0 x0 + m1 x1) + m2 x2 but row 2 as m0 x0 + (m1 x1 + m2 x2).
+// Branches of apply() become selects: both sides are computed, one is kept.
+namespace {
+
+struct V3 {
+  double x, y, z;
+};
+
+inline V3 cross(const V3& a, const V3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double dot(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+inline V3 sub(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 scale(double s, const V3& a) { return {s * a.x, s * a.y, s * a.z}; }
+
+// v <- v - v x orth, then v <- v - v x twist_axis (ScGeom::precompute / rotate).
+inline V3 carry(const V3& v, const V3& orth, const V3& twist_axis) {
+  const V3 v1 = sub(v, cross(v, orth));
+  return sub(v1, cross(v1, twist_axis));
+}
+
+// c ? a : b, component by component (a select the vectoriser turns into a blend).
+inline V3 select(bool c, const V3& a, const V3& b) {
+  return {c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
+}
+
+// detail::radial_return as a select.
+inline V3 radial_return(const V3& v, double cap) {
+  const double n2 = dot(v, v);
+  return select(n2 > cap * cap, scale(cap / std::sqrt(n2), v), v);
+}
+
+inline V3 load(const double (&a)[3][CohFrictBatch::kLanes], int q) {
+  return {a[0][q], a[1][q], a[2][q]};
+}
+inline void store(double (&a)[3][CohFrictBatch::kLanes], int q, const V3& v) {
+  a[0][q] = v.x;
+  a[1][q] = v.y;
+  a[2][q] = v.z;
+}
+
+template <bool kTwist>
+[[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const common::Mat3& lm,
+                                               double dt) {
+  const double l00 = lm(0, 0), l01 = lm(0, 1), l02 = lm(0, 2);
+  const double l10 = lm(1, 0), l11 = lm(1, 1), l12 = lm(1, 2);
+  const double l20 = lm(2, 0), l21 = lm(2, 1), l22 = lm(2, 2);
+  const int nl = b.n;
+#pragma omp simd
+  for (int q = 0; q < nl; ++q) {
+    const V3 d = load(b.d, q);
+    const double len = std::sqrt(b.l2[q]);
+    const V3 n{d.x / len, d.y / len, d.z / len};
+    const double r1 = b.r1[q];
+    const double r2 = b.r2[q];
+    const double delta = (r1 + r2) - len;
+    const V3 w1 = load(b.w1, q);
+    const V3 w2 = load(b.w2, q);
+
+    // Carry the tangential vectors with the contact frame.
+    const V3 h = load(b.normal, q);
+    const V3 orth = cross(h, n);
+    const V3 ws{w1.x + w2.x, w1.y + w2.y, w1.z + w2.z};
+    const V3 twist_axis = scale(dt * 0.5 * dot(h, ws), h);
+    V3 shear = carry(load(b.shear, q), orth, twist_axis);
+    V3 roll = carry(load(b.roll, q), orth, twist_axis);
+    store(b.normal, q, n);
+
+    // Relative velocity at the contact: a (u2 - u1 + L d) + w2 x (-r2 n) - w1 x (r1 n).
+    const double a = (r1 + r2) / ((r1 + r2) - delta);
+    const V3 du = load(b.du, q);
+    const V3 dv{du.x + ((l00 * d.x + l01 * d.y) + l02 * d.z),
+                du.y + ((l10 * d.x + l11 * d.y) + l12 * d.z),
+                du.z + (l20 * d.x + (l21 * d.y + l22 * d.z))};
+    const V3 c2 = cross(w2, scale(-r2, n));
+    const V3 c1 = cross(w1, scale(r1, n));
+    const V3 vrel{(a * dv.x + c2.x) - c1.x, (a * dv.y + c2.y) - c1.y, (a * dv.z + c2.z) - c1.z};
+    const double nv = dot(n, vrel);
+    const V3 dus{dt * (vrel.x - nv * n.x), dt * (vrel.y - nv * n.y), dt * (vrel.z - nv * n.z)};
+
+    const double fn = b.kn[q] * delta;
+    shear = sub(shear, scale(b.ks[q], dus));
+    shear = radial_return(shear, fn * b.tan_phi[q]);
+    store(b.shear, q, shear);
+    store(b.force, q, {fn * n.x + shear.x, fn * n.y + shear.y, fn * n.z + shear.z});
+    b.fn[q] = fn;
+    const V3 nxf = cross(n, shear);
+    V3 t1 = scale(-(r1 - 0.5 * delta), nxf);
+    V3 t2 = scale(-(r2 - 0.5 * delta), nxf);
+
+    // Rolling and twisting moments.
+    const double kr = b.kr[q];
+    const double kt = b.kt[q];
+    const V3 wrel = sub(w2, w1);
+    const double wn = dot(n, wrel);
+    const V3 roll_el =
+        sub(roll, scale(kr * dt, {wrel.x - wn * n.x, wrel.y - wn * n.y, wrel.z - wn * n.z}));
+    const V3 roll_pl = radial_return(roll_el, b.roll_cap[q] * fn);
+    roll = select(kr != 0.0, select(b.roll_cap[q] >= 0.0, roll_pl, roll_el), roll);
+    store(b.roll, q, roll);
+    V3 m;
+    if constexpr (kTwist) {
+      V3 twist = carry(load(b.twist, q), orth, twist_axis);
+      const V3 twist_el = sub(twist, scale(kt * dt * wn, n));
+      const V3 twist_pl = radial_return(twist_el, b.twist_cap[q] * fn);
+      twist = select(kt != 0.0, select(b.twist_cap[q] >= 0.0, twist_pl, twist_el), twist);
+      store(b.twist, q, twist);
+      m = {roll.x + twist.x, roll.y + twist.y, roll.z + twist.z};
+    } else {
+      // The twist is +0 and stays so (rotating +0 gives +0): roll + twist is roll + 0.
+      m = {roll.x + 0.0, roll.y + 0.0, roll.z + 0.0};
+    }
+    const bool moments = kr != 0.0 || kt != 0.0;
+    t1 = select(moments, sub(t1, m), t1);
+    t2 = select(moments, V3{t2.x + m.x, t2.y + m.y, t2.z + m.z}, t2);
+    store(b.torque1, q, t1);
+    store(b.torque2, q, t2);
+  }
+}
+
+// One clone per instruction set, chosen once at load time by the processor (GCC function
+// multi-versioning): the same operations, 2, 4 or 8 lanes at a time. Lanes are independent and
+// IEEE operations are exact per lane, and no clone may fuse a multiply and an add
+// (-ffp-contract=off on this file; AVX-512 would otherwise allow it), so every clone gives the
+// bits of apply().
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MPMXDEM_LANE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define MPMXDEM_LANE_CLONES
+#endif
+MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const common::Mat3& l, double dt) {
+  if (b.twist_on) {
+    apply_lanes<true>(b, l, dt);
+  } else {
+    apply_lanes<false>(b, l, dt);
+  }
+}
+#undef MPMXDEM_LANE_CLONES
+
+}  // namespace
+
+void CohFrictLaw::apply_batch(CohFrictBatch& b, const common::Mat3& l, double dt) {
+  run_lanes(b, l, dt);
+}
+
 }  // namespace dem

@@ -46,6 +46,39 @@ struct ContactResult {
   double fn = 0.0;       ///< normal force magnitude [N]
 };
 
+/// Contacts in overlap in structure-of-arrays form, for the batched (vectorised) form of the law:
+/// the force loop fills the inputs of up to kLanes contacts, CohFrictLaw::apply_batch computes
+/// them all, and the force loop reads the outputs back. Lane q of every array is one contact.
+struct CohFrictBatch {
+  static constexpr int kLanes = 64;
+  int n = 0;  ///< lanes in use
+  // Inputs (per contact): branch d, |d|^2, u2 - u1, spins, radii, properties.
+  alignas(64) double d[3][kLanes];   ///< branch x2 + H k - x1 [m]
+  alignas(64) double l2[kLanes];     ///< |d|^2 [m^2]
+  alignas(64) double du[3][kLanes];  ///< fluctuating velocity difference u2 - u1 [m/s]
+  alignas(64) double w1[3][kLanes], w2[3][kLanes];                    ///< spins [rad/s]
+  alignas(64) double r1[kLanes], r2[kLanes];                          ///< radii [m]
+  alignas(64) double kn[kLanes], ks[kLanes], kr[kLanes], kt[kLanes];  ///< CohFrictProps
+  alignas(64) double tan_phi[kLanes], roll_cap[kLanes], twist_cap[kLanes];
+  // History, read and updated in place. A new contact enters with zero vectors.
+  alignas(64) double normal[3][kLanes], shear[3][kLanes], roll[3][kLanes], twist[3][kLanes];
+  // Outputs.
+  alignas(64) double force[3][kLanes];    ///< force on sphere 2 [N]
+  alignas(64) double torque1[3][kLanes];  ///< [N m]
+  alignas(64) double torque2[3][kLanes];  ///< [N m]
+  alignas(64) double fn[kLanes];          ///< normal force magnitude [N]
+  /// Whether some lane has twisting stiffness or a twisting moment (else the twist arrays are
+  /// neither read nor written: they stay zero, as apply() keeps them).
+  bool twist_on = false;
+
+  /// Put contact `props`, `hist` into lane n (history zeroed for a new contact), n += 1.
+  void push(const common::Vec3& branch, double len2, const common::Vec3& du_,
+            const common::Vec3& w1_, const common::Vec3& w2_, double r1_, double r2_,
+            const CohFrictProps& props, const CohFrictHistory& hist, bool is_new);
+  /// The history of lane q.
+  [[nodiscard]] CohFrictHistory history(int q) const;
+};
+
 /// The contact law functor. Stateless apart from the material; all history lives in the contact.
 class CohFrictLaw {
  public:
@@ -60,6 +93,11 @@ class CohFrictLaw {
   void apply(const CohFrictProps& props, CohFrictHistory& hist, const ContactKinematics& kin,
              bool is_new, double dt, ContactResult& out) const;
 
+  /// The same law for the b.n lanes of a batch, lane by lane the same floating-point operations
+  /// in the same order as apply() (bit-identical results, tested), in vectorisable loops; the
+  /// relative velocity is u2 - u1 + L d with the cell's velocity gradient l [1/s].
+  static void apply_batch(CohFrictBatch& b, const common::Mat3& l, double dt);
+
   [[nodiscard]] const Material& material() const { return mat_; }
   /// Change the friction angle used for new contacts [deg].
   void set_friction_deg(double phi_deg);
@@ -68,6 +106,55 @@ class CohFrictLaw {
   Material mat_;
   double tan_phi_ = 0.0;
 };
+
+inline void CohFrictBatch::push(const common::Vec3& branch, double len2, const common::Vec3& du_,
+                                const common::Vec3& w1_, const common::Vec3& w2_, double r1_,
+                                double r2_, const CohFrictProps& props, const CohFrictHistory& hist,
+                                bool is_new) {
+  const int q = n++;
+  for (int a = 0; a < 3; ++a) {
+    d[a][q] = branch[a];
+    du[a][q] = du_[a];
+    w1[a][q] = w1_[a];
+    w2[a][q] = w2_[a];
+  }
+  l2[q] = len2;
+  r1[q] = r1_;
+  r2[q] = r2_;
+  kn[q] = props.kn;
+  ks[q] = props.ks;
+  kr[q] = props.kr;
+  kt[q] = props.kt;
+  tan_phi[q] = props.tan_phi;
+  roll_cap[q] = props.roll_cap;
+  twist_cap[q] = props.twist_cap;
+  if (is_new) {
+    // apply() zeroes the tangential vectors and skips the rotation; rotating zero vectors by
+    // finite ones gives +0 again, so a zero history is the same.
+    for (int a = 0; a < 3; ++a) {
+      normal[a][q] = 0.0;
+      shear[a][q] = 0.0;
+      roll[a][q] = 0.0;
+      twist[a][q] = 0.0;
+    }
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      normal[a][q] = hist.normal[a];
+      shear[a][q] = hist.shear[a];
+      roll[a][q] = hist.roll[a];
+      twist[a][q] = hist.twist[a];
+    }
+    twist_on = twist_on || hist.twist[0] != 0.0 || hist.twist[1] != 0.0 || hist.twist[2] != 0.0;
+  }
+  twist_on = twist_on || props.kt != 0.0;
+}
+
+inline CohFrictHistory CohFrictBatch::history(int q) const {
+  return {common::Vec3(normal[0][q], normal[1][q], normal[2][q]),
+          common::Vec3(shear[0][q], shear[1][q], shear[2][q]),
+          common::Vec3(roll[0][q], roll[1][q], roll[2][q]),
+          common::Vec3(twist[0][q], twist[1][q], twist[2][q])};
+}
 
 // Defined inline: it is the body of the force loop.
 namespace detail {

@@ -211,16 +211,19 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
   // Branch change of any pair: d = F d0 + (a_j - a_i), F = H H0^-1, a = x - F x0. A pair outside
   // the list had |d0| >= R_i + R_j + skin; it cannot touch while
   // 2 max|a| + ||F - I|| (2 r_max + skin) < skin.
-  const Mat3 f = cell.h * vs.h_ref_inv;
-  const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
+  const Mat3 f = rebuild_deformation(cell, vs);
   double amax2 = 0.0;
   const auto n = static_cast<std::int64_t>(s.size());
 #pragma omp parallel for reduction(max : amax2) schedule(static) if (n > 512)
   for (std::int64_t i = 0; i < n; ++i) {
-    const double a2 = (s.x[i] - f * vs.x_ref[i]).squaredNorm();
-    amax2 = std::max(amax2, a2);
+    amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
   }
-  return 2.0 * std::sqrt(amax2) + eps * (2.0 * vs.r_max + vs.skin) >= vs.skin;
+  return rebuild_due(amax2, f, vs.r_max, vs.skin);
+}
+
+bool rebuild_due(double amax2, const Mat3& f, double r_max, double skin) {
+  const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
+  return 2.0 * std::sqrt(amax2) + eps * (2.0 * r_max + skin) >= skin;
 }
 
 }  // namespace dem

@@ -35,4 +35,19 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
 /// True when some pair not in the list may have come into contact since the last build.
 [[nodiscard]] bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState& vs);
 
+/// The parts of needs_rebuild, for a caller that runs the loop over spheres inside its own
+/// parallel region: F = H H_ref^-1 (rebuild_deformation), |x_i - F x_ref,i|^2 of each sphere
+/// (rebuild_drift2), then the test on their maximum (rebuild_due). Same result as needs_rebuild
+/// (a maximum is exact in any order); rebuild_due reads vs.r_max and vs.skin as r_max, skin.
+/// @pre vs.x_ref.size() == s.size()
+[[nodiscard]] inline common::Mat3 rebuild_deformation(const PeriodicCell& cell,
+                                                      const VerletState& vs) {
+  return cell.h * vs.h_ref_inv;
+}
+[[nodiscard]] inline double rebuild_drift2(const Spheres& s, const common::Mat3& f,
+                                           const VerletState& vs, std::size_t i) {
+  return (s.x[i] - f * vs.x_ref[i]).squaredNorm();
+}
+[[nodiscard]] bool rebuild_due(double amax2, const common::Mat3& f, double r_max, double skin);
+
 }  // namespace dem

@@ -3,6 +3,7 @@
 #include "dem/simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -14,6 +15,7 @@ namespace dem {
 
 using common::Mat3;
 using common::Vec3;
+using common::Vec3i;
 
 namespace {
 constexpr std::int64_t kStressBlock = 512;      // fixed reduction blocks, independent of threads
@@ -46,8 +48,8 @@ void Simulation::set_friction_deg(double phi_deg, bool existing) {
   }
 }
 
-void Simulation::update_neighbors() {
-  if (force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_)) {
+void Simulation::update_neighbors(bool due) {
+  if (due) {
     remap_and_wrap(spheres_, cell_, contacts_, num_.max_skew);
     build_pairs(spheres_, cell_, contacts_, verlet_);
     force_rebuild_ = false;
@@ -58,6 +60,9 @@ void Simulation::update_neighbors() {
 // the same team (an implicit barrier between them), not separate regions: on 2 threads each
 // region's fork and join cost as much as a few hundred spheres of work (docs/dem.md).
 
+// The pair loop gathers the contacts in overlap of a stress block into batches of
+// CohFrictBatch::kLanes, runs the law on a whole batch at once (vectorised, bit-identical to the
+// per-contact law), then writes the batch back and adds its stress in pair order.
 void Simulation::pair_forces_shared() {
   const auto np = static_cast<std::int64_t>(contacts_.size());
   const Mat3 h = cell_.h;
@@ -66,14 +71,50 @@ void Simulation::pair_forces_shared() {
   Contacts& c = contacts_;
   const Spheres& s = spheres_;
   const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
+  CohFrictBatch batch;  // per thread: each thread has its own frame
+  std::array<std::int64_t, CohFrictBatch::kLanes> pair_of{};
+  // The block's stress sum of f (x) d in nine scalars (in registers; a Mat3 temporary per
+  // contact costs a store-forwarding stall), the same products added in the same order.
+  std::array<double, 9> sum{};
+  const auto flush = [&] {
+    CohFrictLaw::apply_batch(batch, l, dt);
+    for (int q = 0; q < batch.n; ++q) {
+      const auto p = static_cast<std::size_t>(pair_of[static_cast<std::size_t>(q)]);
+      CohFrictHistory& hp = c.hist[p];
+      Vec3& fp = c.force[p];
+      Vec3& t1 = c.torque_i[p];
+      Vec3& t2 = c.torque_j[p];
+      for (int a = 0; a < 3; ++a) {
+        hp.normal[a] = batch.normal[a][q];
+        hp.shear[a] = batch.shear[a][q];
+        hp.roll[a] = batch.roll[a][q];
+        hp.twist[a] = batch.twist[a][q];
+        fp[a] = batch.force[a][q];
+        t1[a] = batch.torque1[a][q];
+        t2[a] = batch.torque2[a][q];
+      }
+      c.fn[p] = batch.fn[q];
+      for (int a = 0; a < 3; ++a) {
+        const double f = batch.force[a][q];
+        for (int e = 0; e < 3; ++e) sum[static_cast<std::size_t>(3 * e + a)] += f * batch.d[e][q];
+      }
+    }
+    batch.n = 0;
+    batch.twist_on = false;
+  };
 #pragma omp for schedule(static)
   for (std::int64_t b = 0; b < nblocks; ++b) {
-    Mat3 sum = Mat3::Zero();
+    sum.fill(0.0);
     const std::int64_t end = std::min(np, (b + 1) * kStressBlock);
+    batch.n = 0;
+    batch.twist_on = false;
     for (std::int64_t p = b * kStressBlock; p < end; ++p) {
       const std::int32_t i = c.i[p];
       const std::int32_t j = c.j[p];
-      const Vec3 d = s.x[j] + h * c.k[p].cast<double>() - s.x[i];
+      const Vec3i& kp = c.k[p];
+      // H k is exactly zero for the (most common) image k = 0: skip the product.
+      const Vec3 d =
+          kp.isZero() ? Vec3(s.x[j] - s.x[i]) : Vec3(s.x[j] + h * kp.cast<double>() - s.x[i]);
       const double rs = s.r[i] + s.r[j];
       const double l2 = d.squaredNorm();
       if (l2 >= rs * rs) {
@@ -91,25 +132,26 @@ void Simulation::pair_forces_shared() {
         c.props[p] = law_.create(s.r[i], s.r[j]);
         c.active[p] = 1;
       }
-      const ContactKinematics kin{d, s.u[j] - s.u[i] + l * d, s.w[i], s.w[j], s.r[i], s.r[j]};
-      ContactResult res;
-      law_.apply(c.props[p], c.hist[p], kin, is_new, dt, res);
-      c.force[p] = res.force;
-      c.torque_i[p] = res.torque1;
-      c.torque_j[p] = res.torque2;
       c.branch[p] = d;
-      c.fn[p] = res.fn;
-      sum += res.force * d.transpose();
+      pair_of[static_cast<std::size_t>(batch.n)] = p;
+      batch.push(d, l2, s.u[j] - s.u[i], s.w[i], s.w[j], s.r[i], s.r[j], c.props[p], c.hist[p],
+                 is_new);
+      if (batch.n == CohFrictBatch::kLanes) flush();
     }
-    block_stress_[static_cast<std::size_t>(b)] = sum;
+    if (batch.n > 0) flush();
+    block_stress_[static_cast<std::size_t>(b)] = Eigen::Map<const Mat3>(sum.data());
   }
 }
 
-void Simulation::prepare_pair_pass() {
-  update_neighbors();
+void Simulation::prepare_pair_pass(bool rebuild_due) {
+  update_neighbors(rebuild_due);
+  size_stress_blocks();
+}
+
+void Simulation::size_stress_blocks() {
+  // Every block's entry is written by the pair loop: only the size matters.
   const auto np = static_cast<std::int64_t>(contacts_.size());
-  block_stress_.assign(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock),
-                       Mat3::Zero());
+  block_stress_.resize(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock));
 }
 
 void Simulation::finish_stress() {
@@ -119,30 +161,39 @@ void Simulation::finish_stress() {
   stress_ = -total / cell_.volume();
 }
 
-// Per-sphere sums in the fixed pair order of the CSR lists.
+// Per-sphere sums in the fixed pair order of the CSR lists, without a branch: the sign of the
+// entry selects -force and torque_i (s == i) or +force and torque_j (s == j); f + (-F) is f - F
+// bit for bit. Pairs out of contact are not skipped: their force and torques are +0 (zeroed when
+// a contact ends, zero in a new list), and adding +0 changes nothing, the sums being never -0
+// (they start at +0, and a sum is -0 only if both terms are).
 inline void Simulation::sum_sphere(std::int64_t q) {
   const Contacts& c = contacts_;
-  Vec3 f = Vec3::Zero();
-  Vec3 t = Vec3::Zero();
+  const Vec3* const force = c.force.data();
+  const Vec3* const torque_i = c.torque_i.data();
+  const Vec3* const torque_j = c.torque_j.data();
+  double f0 = 0.0, f1 = 0.0, f2 = 0.0;
+  double t0 = 0.0, t1 = 0.0, t2 = 0.0;
   for (std::int64_t e = c.sphere_offset[q]; e < c.sphere_offset[q + 1]; ++e) {
-    const std::int64_t p = c.sphere_pairs[e];
-    if (p >= 0) {
-      if (!c.active[p]) continue;
-      f -= c.force[p];
-      t += c.torque_i[p];
-    } else {
-      const std::int64_t pj = -p - 1;
-      if (!c.active[pj]) continue;
-      f += c.force[pj];
-      t += c.torque_j[pj];
-    }
+    const std::int64_t p0 = c.sphere_pairs[e];
+    const bool is_j = p0 < 0;
+    const std::int64_t p = is_j ? -p0 - 1 : p0;
+    const double sg = is_j ? 1.0 : -1.0;
+    const Vec3& fp = force[p];
+    const Vec3& tp = (is_j ? torque_j : torque_i)[p];
+    f0 += sg * fp[0];
+    f1 += sg * fp[1];
+    f2 += sg * fp[2];
+    t0 += tp[0];
+    t1 += tp[1];
+    t2 += tp[2];
   }
-  spheres_.force[q] = f;
-  spheres_.torque[q] = t;
+  spheres_.force[q] = Vec3(f0, f1, f2);
+  spheres_.torque[q] = Vec3(t0, t1, t2);
 }
 
 // Leap-frog with Cundall damping of the fluctuating velocity and the spin (YADE's
-// NewtonIntegrator).
+// NewtonIntegrator). L x is written out in Eigen's order for a 3x3 by 3 product (rows 0 and 1:
+// (l0 x0 + l1 x1) + l2 x2, row 2: l0 x0 + (l1 x1 + l2 x2)), which Eigen calls out of line.
 inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& l) {
   Spheres& s = spheres_;
   const double lambda = num_.damping;
@@ -156,11 +207,18 @@ inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& 
     s.u[q] += dt * a;
     s.w[q] += dt * al;
   }
-  s.x[q] += dt * (s.u[q] + l * s.x[q]);
+  Vec3& x = s.x[q];
+  const Vec3& u = s.u[q];
+  const double lx0 = (l(0, 0) * x[0] + l(0, 1) * x[1]) + l(0, 2) * x[2];
+  const double lx1 = (l(1, 0) * x[0] + l(1, 1) * x[1]) + l(1, 2) * x[2];
+  const double lx2 = l(2, 0) * x[0] + (l(2, 1) * x[1] + l(2, 2) * x[2]);
+  x[0] += dt * (u[0] + lx0);
+  x[1] += dt * (u[1] + lx1);
+  x[2] += dt * (u[2] + lx2);
 }
 
 void Simulation::compute_forces() {
-  prepare_pair_pass();
+  prepare_pair_pass(force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_));
   const auto ns = static_cast<std::int64_t>(spheres_.size());
 #pragma omp parallel if (ns > kParallelSpheres)
   {
@@ -188,40 +246,72 @@ void Simulation::advance_cell_and_clock() {
 
 void Simulation::step() { step(StepHook{}); }
 
-void Simulation::step(const StepHook& between) {
-  prepare_pair_pass();
-  const auto ns = static_cast<std::int64_t>(spheres_.size());
-  std::exception_ptr error;
-#pragma omp parallel if (ns > kParallelSpheres)
-  {
-    pair_forces_shared();
-    if (between) {
+// The forces, (the hook), the per-sphere sums and the integration of step(), called by every
+// thread of its region.
+void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error) {
+  pair_forces_shared();
+  if (between) {
 #pragma omp for schedule(static)
-      for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
+    for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
 #pragma omp single
-      {
-        finish_stress();
-        try {
-          between(*this);
-        } catch (...) {
-          error = std::current_exception();  // an exception must not leave the region
-        }
-      }  // implicit barrier: every thread sees the hook's dt and cell().l
-      if (!error) {
-        const double dt = dt_;
-        const Mat3 l = cell_.l;
-#pragma omp for schedule(static)
-        for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+    {
+      finish_stress();
+      try {
+        between(*this);
+      } catch (...) {
+        error = std::current_exception();  // an exception must not leave the region
       }
-    } else {
+    }  // implicit barrier: every thread sees the hook's dt and cell().l
+    if (!error) {
       const double dt = dt_;
       const Mat3 l = cell_.l;
 #pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+    }
+  } else {
+    const double dt = dt_;
+    const Mat3 l = cell_.l;
+#pragma omp for schedule(static)
+    for (std::int64_t q = 0; q < ns; ++q) {
+      sum_sphere(q);
+      integrate_sphere(q, dt, l);
+    }
+  }
+}
+
+void Simulation::step(const StepHook& between) {
+  const auto ns = static_cast<std::int64_t>(spheres_.size());
+  // The neighbour check (needs_rebuild) runs its loop over spheres in the step's region instead
+  // of a region of its own: one fork per step. Every thread then takes the same decision from
+  // the reduced maximum (inputs copied here: a rebuild changes verlet_), and only a due rebuild
+  // costs a `single` and its barrier.
+  const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
+  const Mat3 f = check ? rebuild_deformation(cell_, verlet_) : Mat3::Identity();
+  const double r_max = verlet_.r_max;
+  const double skin = verlet_.skin;
+  size_stress_blocks();
+  double amax2 = 0.0;
+  std::exception_ptr error;
+#pragma omp parallel if (ns > kParallelSpheres)
+  {
+    if (check) {
+#pragma omp for reduction(max : amax2) schedule(static)
       for (std::int64_t q = 0; q < ns; ++q) {
-        sum_sphere(q);
-        integrate_sphere(q, dt, l);
+        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
       }
     }
+    if (!check || rebuild_due(amax2, f, r_max, skin)) {
+#pragma omp single
+      {
+        try {
+          update_neighbors(true);
+          size_stress_blocks();
+        } catch (...) {
+          error = std::current_exception();
+        }
+      }  // implicit barrier: every thread sees the new pair list (or the error)
+    }
+    if (!error) step_shared(between, ns, error);
   }
   if (error) std::rethrow_exception(error);
   if (!between) finish_stress();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -76,9 +77,15 @@ class Simulation {
   void set_stress(const common::Mat3& s) { stress_ = s; }
 
  private:
-  void update_neighbors();
-  /// Neighbour update and a zeroed stress block per kStressBlock pairs.
-  void prepare_pair_pass();
+  /// Rebuild the pair list if `due`.
+  void update_neighbors(bool due);
+  /// Neighbour update (if `rebuild_due`) and size_stress_blocks().
+  void prepare_pair_pass(bool rebuild_due);
+  /// One stress block per kStressBlock pairs (each written by the pair loop).
+  void size_stress_blocks();
+  /// The part of step() after the neighbour update, run by every thread of its region;
+  /// an exception of the hook is stored in `error`.
+  void step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error);
   /// Work-shared pair loop (called inside a parallel region): forces, torques, block stresses.
   void pair_forces_shared();
   /// Stress from the block sums, in block order (thread-count independent).
