@@ -31,7 +31,9 @@ constexpr SeriesSpec kSeriesTable[] = {
     {"rve/z", false, 1, 'r', "-", "coordination number 2 Nc / N (0 for continuum models)"},
     {"rve/t_p", false, 1, 'r', "s", "quasi-static time of the step, eq. (11)"},
     {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
-    {"rve/guards", true, 1, 'r', "", "guard bits (dem::RveGuard, docs/dem.md)"},
+    {"rve/guards", true, 1, 'r', "",
+     "guard bits (dem::RveGuard, docs/dem.md; bit 16 farm::kGuardSpared: the DEM was not stepped, "
+     "docs/sparing.md)"},
     {"points/x", false, 3, 'p', "m",
      "position of every material point (order of /points/id) [row, point, xyz]"},
     {"points/stress", false, 9, 'p', "Pa",
