@@ -42,6 +42,17 @@ POINT_ARRAYS = sorted(["id", "p", "q", "stress", "void_ratio", "z", "volume", "v
 # Arrays of points.xmf compared value for value with /points/<name> of results.h5.
 POINT_VALUES = ["p", "q", "void_ratio", "z", "stress", "volume", "velocity", "displacement", "F"]
 GRAIN_MEASURES = ["rve/fabric", "rve/z_mech", "rve/unbalanced", "rve/kinetic_energy"]
+# points.xmf also shows the RVEs' grain measures where points and RVEs are one to one.
+GRAIN_ARRAYS = ["fabric", "z_mech", "unbalanced", "kinetic_energy"]
+
+
+def point_arrays(r, np):
+    """The arrays points.xmf must show: the point fields, and the grain measures when every point
+    has its own RVE in the same order (/rve/id equal to /points/id)."""
+    one_to_one = "rve/id" in r and np.array_equal(r["rve/id"], r["points/id"])
+    return sorted(POINT_ARRAYS + (GRAIN_ARRAYS if one_to_one else [])), one_to_one
+
+
 CSV_COLUMNS = ["step", "time_s", "eps_ax", "eps_v", "p_mean_Pa", "q_mean_Pa"]
 
 
@@ -233,15 +244,19 @@ def check_xmf_paraview(xmf, r, np):
                f"results.h5 has {m}")
         expect(np.array_equal(x, r["points/x"][t]), f"points.xmf row {t}: positions != /points/x")
         names = sorted(s["arrays"])
-        expect(names == POINT_ARRAYS, f"points.xmf row {t}: arrays {names}, expected "
-               f"{POINT_ARRAYS}")
+        expected, one_to_one = point_arrays(r, np)
+        expect(names == expected, f"points.xmf row {t}: arrays {names}, expected {expected}")
         expect(np.array_equal(np.array(s["arrays"]["id"]), r["points/id"]),
                f"points.xmf row {t}: id != /points/id")
         for a in POINT_VALUES:
             v = np.array(s["arrays"][a]).reshape(r["points/" + a][t].shape)
             expect(np.array_equal(v, r["points/" + a][t]), f"points.xmf row {t}: {a} differs")
+        for a in GRAIN_ARRAYS if one_to_one else []:
+            v = np.array(s["arrays"][a], dtype=float).reshape(r["rve/" + a][t].shape)
+            expect(np.array_equal(v, r["rve/" + a][t], equal_nan=True),
+                   f"points.xmf row {t}: {a} differs from /rve/{a}")
     log(f"points.xmf (ParaView, reader {got['reader']}): {nt} time steps at /time, rows "
-        f"{sorted(int(i) for i in got['steps'])}: {m} points, arrays {','.join(POINT_ARRAYS)} "
+        f"{sorted(int(i) for i in got['steps'])}: {m} points, arrays {','.join(expected)} "
         "equal to results.h5")
 
 
@@ -256,7 +271,8 @@ def check_xmf_text(xmf, r, np):
         expect(float(g.find("Time").get("Value")) == r["time"][t], f"points.xmf grid {t}: time")
         items = [g.find("Geometry/DataItem")] + [a.find("DataItem") for a in g.findall("Attribute")]
         names = sorted(a.get("Name") for a in g.findall("Attribute"))
-        expect(names == POINT_ARRAYS, f"points.xmf grid {t}: attributes {names}")
+        expected, _ = point_arrays(r, np)
+        expect(names == expected, f"points.xmf grid {t}: attributes {names}, expected {expected}")
         for it in items:
             ref = it.text.strip()
             if "|" in ref:

@@ -47,6 +47,16 @@ void ResultsWriter::write_xdmf() const {
   const char* scalars[] = {"p", "q", "void_ratio", "z", "volume"};
   std::vector<Slab> sc;
   for (const char* a : scalars) sc.push_back(slab((std::string("points/") + a).c_str(), 1));
+  // The RVEs' grain-scale measures, where points and RVEs are one to one (the same ids in the
+  // same order: every point a DEM point): ParaView colours the points by them.
+  bool one_to_one = rve_ids_.size() == m;
+  for (std::size_t k = 0; one_to_one && k < m; ++k) one_to_one = rve_of_point_[k] == k;
+  const char* rve_scalars[] = {"z_mech", "unbalanced", "kinetic_energy"};
+  std::vector<Slab> rsc;
+  if (one_to_one) {
+    for (const char* a : rve_scalars) rsc.push_back(slab((std::string("rve/") + a).c_str(), 1));
+  }
+  const Slab fabric = slab("rve/fabric", 9);
   const std::string id_attr = fmt::format(
       "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
       "Dimensions=\"{}\" NumberType=\"Int\" Precision=\"8\" "
@@ -83,6 +93,18 @@ void ResultsWriter::write_xdmf() const {
                      "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"
                      "</Attribute>\n",
                      scalars[a], sc[a].head, t, sc[a].tail);
+    }
+    if (one_to_one) {
+      fmt::format_to(it,
+                     "<Attribute Name=\"fabric\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
+                     "</Attribute>\n",
+                     fabric.head, t, fabric.tail);
+      for (std::size_t a = 0; a < rsc.size(); ++a) {
+        fmt::format_to(it,
+                       "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"
+                       "</Attribute>\n",
+                       rve_scalars[a], rsc[a].head, t, rsc[a].tail);
+      }
     }
     fmt::format_to(it, "{}</Grid>\n", id_attr);
   }
