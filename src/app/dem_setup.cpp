@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "app/progress.hpp"
 #include "app/schema_params.hpp"
@@ -45,7 +46,12 @@ dem::Packing dem_packing(const Job& job, bool& generated, std::int64_t sample) {
     generated = false;
     std::filesystem::path path(job.text("dem.sample.packing"));
     if (path.is_relative()) path = std::filesystem::path(job.directory()) / path;
-    return dem::read_packing(path.string());
+    std::optional<common::Vec3> cell;
+    if (job.has("dem.sample.cell")) {
+      const auto& c = job.numbers("dem.sample.cell");
+      cell = common::Vec3(c[0], c[1], c[2]);
+    }
+    return dem::read_packing(path.string(), cell);
   }
   generated = true;
   dem::Psd psd;

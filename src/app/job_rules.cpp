@@ -48,6 +48,11 @@ class Rules {
 
 void sample_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.sample")) return;
+  if (job.has("dem.sample.cell") && !job.has("dem.sample.packing")) {
+    r.fail("dem.sample.cell",
+           "only for a packing file (dem.sample.packing): a generated "
+           "sample makes its own cell");
+  }
   if (job.has("dem.sample.packing")) {
     for (const char* k :
          {"dem.sample.spheres", "dem.sample.psd_diameters", "dem.sample.psd_passing"}) {

@@ -30,6 +30,13 @@ void add_dem_sections(Schema& s) {
   s.add("dem.sample.packing", Type::String,
         "Packing text file (x y z r per line, YADE-compatible), relative to the job file. "
         "Absent: a random cloud is generated from `spheres` and the size distribution.");
+  s.add("dem.sample.cell", Type::FloatList,
+        "Sizes Lx, Ly, Lz of the periodic cell, for a packing file without a CELL or HSIZE line "
+        "(YADE's yade.export.text writes none); a cell line of the file that disagrees is "
+        "refused (docs/yade_reference.md).")
+      .unit(Q::Length)
+      .in(0, std::nullopt, true)
+      .len(3, 3);
   s.add("dem.sample.spheres", Type::Int, "Number of spheres of a generated sample.")
       .in(2, std::nullopt);
   s.add("dem.sample.psd_diameters", Type::FloatList,

@@ -65,13 +65,34 @@ std::size_t cell_directive(const std::string& line, std::size_t first) {
 
 }  // namespace
 
-Packing read_packing(const std::string& path) {
+Packing read_packing(const std::string& path) { return read_packing(path, std::nullopt); }
+
+Packing read_packing(const std::string& path, const std::optional<common::Vec3>& cell) {
   std::ifstream in(path);
   if (!in) throw common::InputError(path + ": cannot open packing file");
   Packing pk;
   std::vector<long> lines;  // packing line of each sphere
   bool have_h = false;
   bool have_cell = false;
+  if (cell) pk.cell.h = cell->asDiagonal();
+  const common::Mat3 given = cell ? common::Mat3(cell->asDiagonal()) : common::Mat3::Zero();
+  // A cell line of the file against the job's cell: the same cell to 1e-9 or refused.
+  auto g = [](double v) {
+    std::ostringstream os;
+    os.precision(9);
+    os << v;
+    return os.str();
+  };
+  auto check_given = [&](long at, const common::Mat3& h) {
+    if (!cell) return;
+    const double scale = given.cwiseAbs().maxCoeff();
+    if ((h - given).cwiseAbs().maxCoeff() > 1e-9 * scale) {
+      fail(path, at,
+           "this cell line disagrees with the job's cell (dem.sample.cell = [" + g((*cell)[0]) +
+               ", " + g((*cell)[1]) + ", " + g((*cell)[2]) +
+               "] m): give the cell in one place only");
+    }
+  };
   long yade_format = 0;  // line of YADE's "#format x_y_z_r" (yade.export.text), 0: none
   std::string line;
   long ln = 0;
@@ -89,6 +110,7 @@ Packing read_packing(const std::string& path) {
       for (double d : v) {
         if (!(d > 0.0)) fail(path, ln, "CELL sizes must be > 0");
       }
+      check_given(ln, common::Vec3(v[0], v[1], v[2]).asDiagonal());
       if (!have_h) pk.cell.h = common::Vec3(v[0], v[1], v[2]).asDiagonal();
       have_cell = true;
     } else if (line.compare(first, 5, "HSIZE") == 0) {
@@ -97,9 +119,10 @@ Packing read_packing(const std::string& path) {
         for (int b = 0; b < 3; ++b) pk.cell.h(a, b) = v[3 * a + b];
       }
       if (!(pk.cell.h.determinant() > 0.0)) fail(path, ln, "HSIZE must have det > 0");
+      check_given(ln, pk.cell.h);
       have_h = true;
     } else {
-      if (!have_h && !have_cell) {
+      if (!have_h && !have_cell && !cell) {
         // YADE's text export (yade.export.text) writes the spheres only, never the cell.
         fail(path, ln,
              "sphere line before any cell line: a packing file needs 'CELL Lx Ly Lz' (or 'HSIZE' "
@@ -109,7 +132,8 @@ Packing read_packing(const std::string& path) {
                       ? std::string("; line ") + std::to_string(yade_format) +
                             " says this is a YADE text export (yade.export.text), which carries "
                             "no cell: add the line '# CELL' + O.cell.size (or '# HSIZE' + "
-                            "O.cell.hSize) before the spheres, or export with "
+                            "O.cell.hSize) before the spheres, give the cell sizes in the job "
+                            "(dem.sample.cell = [Lx, Ly, Lz]), or export with "
                             "tools/yade_export_packing.py (docs/yade_reference.md)"
                       : std::string()));
       }
@@ -120,7 +144,11 @@ Packing read_packing(const std::string& path) {
       lines.push_back(ln);
     }
   }
-  if (!have_h && !have_cell) throw common::InputError(path + ": no CELL or HSIZE line");
+  if (!have_h && !have_cell && !cell) {
+    throw common::InputError(path +
+                             ": no CELL or HSIZE line (or give the cell in the job: "
+                             "dem.sample.cell = [Lx, Ly, Lz])");
+  }
   if (pk.r.empty()) throw common::InputError(path + ": no spheres");
   check_packing(pk, path, lines);
   return pk;

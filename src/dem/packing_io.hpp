@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ struct Packing {
 /// Read a packing file and check it (check_packing). Throws common::InputError naming file:line
 /// and the rule broken.
 [[nodiscard]] Packing read_packing(const std::string& path);
+/// The same, with the cell sizes [m] given by the caller (job key dem.sample.cell) for a file
+/// without a CELL or HSIZE line (YADE's yade.export.text carries none): used when the file has no
+/// cell line; a cell line that disagrees with them (relative 1e-9) is refused, naming both.
+[[nodiscard]] Packing read_packing(const std::string& path,
+                                   const std::optional<common::Vec3>& cell);
 /// Checks that a packing can be simulated, and names the first problem as "source:line: rule"
 /// (line = lines[i] of sphere i; without lines, "source: sphere i"): at least 2 spheres; finite
 /// positions, finite radii > 0; every diameter below the cell's smallest perpendicular width (a

@@ -221,4 +221,27 @@ TEST(PackingIo, YadeExportWithoutCellNamesWhatIsMissing) {
   }
 }
 
+// The same export without its cell line, with the cell given by the job (dem.sample.cell): the
+// spheres and cell of the file that carries the line, exactly; a cell line that contradicts the
+// job's cell is refused naming the line; one that agrees is accepted.
+TEST(PackingIo, YadeExportTakesTheCellFromTheJob) {
+  const common::Vec3 cell(1e-3, 1e-3, 1e-3);
+  const dem::Packing with = dem::read_packing(dem_test::data_path("yade_export_periodic.txt"));
+  const dem::Packing given =
+      dem::read_packing(dem_test::data_path("yade_export_no_cell.txt"), cell);
+  EXPECT_EQ(given.cell.h, with.cell.h);
+  EXPECT_EQ(given.x, with.x);
+  EXPECT_EQ(given.r, with.r);
+  EXPECT_NO_THROW((void)dem::read_packing(dem_test::data_path("yade_export_periodic.txt"), cell));
+  const std::string path = dem_test::data_path("yade_export_periodic.txt");
+  try {
+    (void)dem::read_packing(path, common::Vec3(2e-3, 1e-3, 1e-3));
+    FAIL() << "a cell line contradicting the job's cell was accepted";
+  } catch (const common::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(path + ":2: this cell line disagrees with the job's cell"), std::string::npos)
+        << m;
+  }
+}
+
 }  // namespace
