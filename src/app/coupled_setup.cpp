@@ -1,6 +1,7 @@
 // Job -> farm::CoupledConfig: see coupled_setup.hpp.
 #include "app/coupled_setup.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -204,6 +205,32 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
 
   c.output.dir = limits.out_dir;
   fill_from_job(job, farm::kOutputOptions, c.output);
+  if (job.has("output.grains.rves")) {
+    // Only DEM RVEs have grains: an id of another material, or of no point, is refused here
+    // with the job's line, before anything is written.
+    c.grains.rves = job.integers("output.grains.rves");
+    c.grains.every = job.integer("output.grains.every");
+    std::set<std::int64_t> seen;
+    for (std::int64_t id : c.grains.rves) {
+      std::string rule;
+      if (!seen.insert(id).second) {
+        rule = fmt::format("id {} is listed twice", id);
+      } else if (dem_ids.count(id) == 0) {
+        rule =
+            std::find(c.points.id.begin(), c.points.id.end(), id) != c.points.id.end()
+                ? fmt::format(
+                      "point id {} is not a DEM RVE (its material has no grains to "
+                      "draw)",
+                      id)
+                : fmt::format("no material point has id {} (the job has {} point(s){})", id,
+                              c.points.size(),
+                              dem_ids.empty() ? ", none of them DEM"
+                                              : fmt::format(", DEM RVE ids {}..{}",
+                                                            *dem_ids.begin(), *dem_ids.rbegin()));
+      }
+      if (!rule.empty()) throw common::InputError(job.message("output.grains.rves", rule));
+    }
+  }
   fill_from_job(job, farm::kCheckpointOptions, c.checkpoint);
   fill_from_job(job, farm::kBalanceOptions, c.balance);
   c.farm.wait = farm::wait_mode_from(job.text("farm.wait"));

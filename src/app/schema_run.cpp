@@ -13,6 +13,19 @@ void add_run_sections(Schema& s) {
   s.add("output", Type::Table, "What is written and how often.");
   add_params(s, farm::kOutputOptions);      // every, progress_interval
   add_params(s, farm::kCheckpointOptions);  // checkpoint_every, checkpoint_interval, _keep
+  s.add("output.grains", Type::Table,
+        "Grain-scale views of chosen DEM RVEs during the run (spheres, contact network, periodic "
+        "cell as VTK for ParaView), in <out>/grains/: rve_<id>_step_<step>.vtm and one time "
+        "series rve_<id>.pvd per RVE (docs/dem.md).");
+  s.add("output.grains.rves", Type::IntList,
+        "Point ids of the DEM RVEs to draw (the id array of points.xmf, /points/id of results.h5).")
+      .in(0, std::nullopt)
+      .len(1, 4096)
+      .need();
+  s.add("output.grains.every", Type::Int,
+        "MPM steps between two views; step 0 and the last step are drawn too.")
+      .in(1, std::nullopt)
+      .or_default(std::int64_t{100});
 
   s.add("farm", Type::Table, "Distribution of the RVEs over MPI ranks.");
   add_params(s, farm::kBalanceOptions);  // rebalance_threshold, rebalance_check_every

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "farm/grain_views.hpp"
 #include "farm/placement.hpp"
 #include "farm/results.hpp"
 #include "farm/run_schedules.hpp"
@@ -87,6 +88,7 @@ class Master {
   PointIndex index_;
   ResultsWriter results_;
   OutputSchedule output_;
+  GrainViews grains_;
   CheckpointSchedule checkpoints_;
   BalanceSchedule balance_;
   mpm::QuasiStaticWatch quasi_static_;  ///< energy ratio of a mass-scaled run (docs/mpm.md)
@@ -123,6 +125,7 @@ Master::Master(const CoupledConfig& cfg, RveFarm& farm, const std::optional<Chec
       results_(cfg.output.dir, ids, solver_.points(), info ? info->step : -1,
                solver_.constraint_names(), &cfg.points),
       output_(cfg.output.every),
+      grains_(cfg.grains, ids, cfg.output.dir, info ? info->step : -1, info ? info->time : 0.0),
       checkpoints_(cfg.checkpoint, fault_abort_at, info ? info->step : -1, wall_now()),
       balance_(cfg.balance, farm.size()),
       quasi_static_(cfg.solver.quasi_static_ratio, cfg.solver.mass_scaling, cfg.end_time) {}
@@ -130,6 +133,7 @@ Master::Master(const CoupledConfig& cfg, RveFarm& farm, const std::optional<Chec
 void Master::run(RunSummary& sum) {
   const std::int64_t start_step = solver_.step_count();
   if (results_.rows() == 0) output();
+  if (grains_.due(start_step)) grains_.write(farm_, start_step, solver_.time());
   const double t0 = wall_now();
   ProgressSchedule progress_(cfg_.output.log_every_s, t0);
   const double scaling = cfg_.solver.mass_scaling;
@@ -148,6 +152,7 @@ void Master::run(RunSummary& sum) {
       if (!w.empty()) spdlog::warn("{}", w);
     }
     if (output_.due(s)) output();
+    if (grains_.due(s)) grains_.write(farm_, s, solver_.time());
     if (balance_.due(s)) balance(s);
     const double now = wall_now();
     if (checkpoints_.due(s, now)) {
@@ -166,6 +171,9 @@ void Master::run(RunSummary& sum) {
                                  quasi_static_.max_ratio(), 100.0 * mpm::QuasiStaticWatch::kWarmUp)
                    : std::string());
   if (output_.due_at_end(solver_.step_count(), results_.rows())) output();
+  if (grains_.due_at_end(solver_.step_count())) {
+    grains_.write(farm_, solver_.step_count(), solver_.time());
+  }
   results_.flush();
   if (checkpoints_.due_at_end(solver_.step_count())) checkpoint(sum);
   sum.steps = solver_.step_count();

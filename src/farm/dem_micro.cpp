@@ -8,6 +8,7 @@
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
 #include "dem/measures.hpp"
+#include "dem/vtk_export.hpp"
 
 namespace farm {
 
@@ -55,6 +56,14 @@ MicroMeasures DemMicro::measures() const {
   m.unbalanced = d.unbalanced;
   m.kinetic = d.kinetic;
   return m;
+}
+
+std::vector<ViewFile> DemMicro::grain_view(const std::string& stem) const {
+  std::vector<ViewFile> out;
+  for (dem::VtkFile& f : dem::vtk_view(rve_.simulation(), stem)) {
+    out.push_back({std::move(f.name), std::move(f.text)});
+  }
+  return out;
 }
 
 void DemMicro::save(common::StateWriter& w) const {

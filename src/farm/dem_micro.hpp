@@ -26,6 +26,8 @@ class DemMicro final : public MicroModel {
   /// dem::measure of the RVE's state (fabric, Z without rattlers, unbalanced force, kinetic
   /// energy): one more pass over the contacts, for output rows only.
   [[nodiscard]] MicroMeasures measures() const override;
+  /// dem::vtk_view of the RVE's simulation (spheres, contacts, cell; forces of the last step).
+  [[nodiscard]] std::vector<ViewFile> grain_view(const std::string& stem) const override;
   /// dem::Rve::save fields plus farm/dem_fail_guards.
   void save(common::StateWriter& writer) const override;
   /// Number of spheres.

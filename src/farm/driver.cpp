@@ -2,6 +2,8 @@
 // (coupled_run.hpp), which builds the MPM solver on rank 0 around the RVE farm and steps it.
 #include "farm/driver.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "common/param_table.hpp"
 #include "farm/coupled_run.hpp"
@@ -38,6 +40,9 @@ void CoupledConfig::validate() const {
   common::check_ranges(kOutputOptions, output);
   common::check_ranges(kCheckpointOptions, checkpoint);
   common::check_ranges(kBalanceOptions, balance);
+  std::vector<std::int64_t> ids = points.id;
+  std::sort(ids.begin(), ids.end());
+  grains.validate(ids);
 }
 
 RunSummary run_coupled(const CoupledConfig& config, MPI_Comm comm) {

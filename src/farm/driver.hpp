@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "farm/checkpoint.hpp"
+#include "farm/grain_views.hpp"
 #include "farm/micro_model.hpp"
 #include "farm/run_options.hpp"
 #include "farm/rve_farm.hpp"
@@ -33,6 +34,7 @@ struct CoupledConfig {
   MicroKind micro;             ///< creates / restores the RVEs (ElasticMicro::kind, DemMicro::kind)
   std::string job_text;        ///< the job file, stored in checkpoints
   OutputOptions output;
+  GrainViewOptions grains;  ///< grain-scale views of chosen RVEs during the run (none by default)
   CheckpointOptions checkpoint;
   BalanceOptions balance;
   FarmOptions farm;

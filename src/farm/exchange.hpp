@@ -29,6 +29,7 @@ enum class Command : std::int32_t {
   stop_error = 5,   ///< throw the error whose text is broadcast next
   error_texts = 6,  ///< send the texts of the last step's RVE failures
   measure = 7,      ///< gather the grain-scale measures of my RVEs (an output row is written)
+  grains = 8,       ///< write the grain-scale views of the chosen RVEs I own (list broadcast next)
 };
 
 /// In front of every rank's command message (24 bytes).

@@ -7,6 +7,8 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "common/state_io.hpp"
 #include "common/types.hpp"
@@ -38,6 +40,12 @@ struct MicroMeasures {
   [[nodiscard]] static MicroMeasures none();
 };
 
+/// One file of a grain-scale view: its name inside the view directory and its whole content.
+struct ViewFile {
+  std::string name;
+  std::string text;
+};
+
 /// One RVE. Implementations are deterministic: the same calls on the same state give the same
 /// bits on any rank and thread.
 class MicroModel {
@@ -56,6 +64,13 @@ class MicroModel {
   /// Grain-scale measures of the current state (an extra pass over the contacts for DEM: called
   /// only for output rows). MicroMeasures::none() for continuum models.
   [[nodiscard]] virtual MicroMeasures measures() const = 0;
+  /// The grain-scale view of the current state as files for ParaView, named from `stem` (a plain
+  /// file name): for DEM the spheres, the contact network and the periodic cell
+  /// (dem/vtk_export.hpp, docs/dem.md "Grain-scale views"). Continuum models have none (empty).
+  [[nodiscard]] virtual std::vector<ViewFile> grain_view(const std::string& stem) const {
+    (void)stem;
+    return {};
+  }
   /// Whole state as named fields; the loader of the same kind rebuilds an equal model.
   virtual void save(common::StateWriter& writer) const = 0;
   /// Cost estimate before any timing exists (particle count for DEM) [arbitrary units, > 0].

@@ -452,6 +452,9 @@ void RveFarm::serve() {
       case Command::measure:
         (void)exec_measure();
         break;
+      case Command::grains:
+        (void)exec_grains(h, {}, std::string());
+        break;
       case Command::stop:
         stopped_ = true;
         return;

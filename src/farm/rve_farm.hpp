@@ -73,6 +73,14 @@ class RveFarm final : public mpm::MaterialModel {
   /// state (MicroModel::measures, OpenMP over a rank's RVEs), by RVE index. Called for output
   /// rows only: the MPM steps in between neither compute nor send them.
   [[nodiscard]] std::vector<MicroMeasures> measure();
+  /// Rank 0 only. Collective (Command::grains): the owner of every RVE index in `indices`
+  /// (ascending) writes its MicroModel::grain_view, stem "rve_<id>_step_<step>" (the farm's MPM
+  /// step), into the existing directory `dir` that every rank sees (a rank's files all or none:
+  /// dem::write_vtk_files). Returns, on rank 0, the indices whose RVE has a view (continuum
+  /// RVEs have none). A rank that cannot write makes rank 0 throw common::IoError naming the RVE
+  /// and the reason, with every worker back in serve(). Implemented in rve_farm_grains.cpp.
+  std::vector<std::size_t> write_grain_views(const std::vector<std::size_t>& indices,
+                                             const std::string& dir);
   /// Rank 0 only: moves the RVEs to `owner` (one rank per RVE index), whatever the costs.
   /// For tests and benchmarks (e.g. round-robin against METIS).
   void migrate_to(std::vector<int> owner);
@@ -129,6 +137,10 @@ class RveFarm final : public mpm::MaterialModel {
   std::vector<std::pair<std::size_t, std::string>> exec_error_texts();
   /// Every rank: the measures of my RVEs, gathered to rank 0 (by RVE index there).
   std::vector<MicroMeasures> exec_measure();
+  /// Every rank: writes the views of my RVEs among `indices` into `dir` (broadcast by rank 0);
+  /// rank 0 gets back which indices have a view and the write failures.
+  std::vector<std::size_t> exec_grains(const CommandHeader& h, std::vector<std::size_t> indices,
+                                       std::string dir);
   void exec_checkpoint(const CommandHeader& h, std::string path, std::string job_text,
                        const common::StateStore* mpm_state);
   void exec_migrate(std::vector<int> new_owner);

@@ -81,6 +81,11 @@ class SparedMicro final : public MicroModel {
   [[nodiscard]] common::Mat3 stress() const override;
   [[nodiscard]] MicroReport report() const override;
   [[nodiscard]] MicroMeasures measures() const override { return inner_->measures(); }
+  /// The inner model's view: the grains as of its last DEM update (a spared step moves no grain;
+  /// the cell's stress there is the DEM's, not the tangent's prediction).
+  [[nodiscard]] std::vector<ViewFile> grain_view(const std::string& stem) const override {
+    return inner_->grain_view(stem);
+  }
   /// The inner model's fields and spare/* (docs/checkpoint.md).
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override { return inner_->cost_estimate(); }

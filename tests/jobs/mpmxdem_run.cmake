@@ -7,3 +7,18 @@ function(mpmxdem_run np)
     message(FATAL_ERROR "mpmxdem run ${ARGN} on ${np} ranks failed (${rc}):\n${out}\n${err}")
   endif()
 endfunction()
+
+# mpmxdem_check(<script> <args>...): runs `PYTHON <script> <args>...` (the caller sets PYTHON) and
+# prints its output; exit 77 (a Python module such as h5py missing) prints "SKIPPED" (the tests'
+# SKIP_REGULAR_EXPRESSION), any other non-zero exit stops the script. Call it last in a script.
+function(mpmxdem_check script)
+  execute_process(COMMAND "${PYTHON}" "${script}" ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${out}${err}")
+  if(rc EQUAL 77)
+    message("SKIPPED: a Python module ${script} needs is missing (h5py)")
+  elseif(NOT rc EQUAL 0)
+    get_filename_component(name "${script}" NAME)
+    message(FATAL_ERROR "${name} failed (${rc})")
+  endif()
+endfunction()
