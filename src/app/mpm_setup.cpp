@@ -97,6 +97,15 @@ MpmSetup mpm_setup(const Job& job) {
       job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
   cfg.strain_smoothing = mpm::strain_smoothing_from_string(job.text("mpm.strain_smoothing"));
   cfg.grid_positions = job.text("mpm.position_update") == "grid";
+  cfg.transfer = mpm::transfer_from_string(job.text("mpm.transfer"));
+  const auto flip = job.entries().find("mpm.flip");
+  if (cfg.transfer == mpm::Transfer::apic && flip != job.entries().end() &&
+      !flip->second.defaulted) {
+    throw common::InputError(
+        job.message("mpm.flip",
+                    "does not apply with mpm.transfer = \"apic\" (APIC's point velocity is the "
+                    "grid's, PIC, with the affine part carried by C_p): remove one of the two"));
+  }
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
   cfg.damping_mode = job.text("mpm.damping_mode") == "component"
                          ? mpm::DampingMode::cundall_component

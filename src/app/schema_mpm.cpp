@@ -47,6 +47,12 @@ void add_mpm_sections(Schema& s) {
         "base (docs/mpm.md, Position update).")
       .one_of({"point", "grid"})
       .or_default(std::string("point"));
+  s.add("mpm.transfer", Type::String,
+        "flip: the FLIP/PIC velocity blend of mpm.flip (the paper's); apic: affine PIC (Jiang et "
+        "al. 2015), each point also carries the grid's velocity gradient, so a homogeneous "
+        "deformation survives with one point per cell (docs/mpm.md, Transfers).")
+      .one_of({"flip", "apic"})
+      .or_default(std::string("flip"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "

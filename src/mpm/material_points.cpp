@@ -23,6 +23,7 @@ void MaterialPoints::add(std::int64_t point_id, const common::Vec3& position, do
   stress.push_back(common::Mat3::Zero());
   F.push_back(common::Mat3::Identity());
   L.push_back(common::Mat3::Zero());
+  C.push_back(common::Mat3::Zero());
   material.push_back(material_id);
 }
 
@@ -37,6 +38,7 @@ void MaterialPoints::resize(std::size_t n) {
   stress.resize(n, common::Mat3::Zero());
   F.resize(n, common::Mat3::Identity());
   L.resize(n, common::Mat3::Zero());
+  C.resize(n, common::Mat3::Zero());
   material.resize(n, 0);
 }
 
@@ -44,7 +46,7 @@ void MaterialPoints::validate() const {
   const std::size_t n = x.size();
   if (id.size() != n || v.size() != n || mass.size() != n || volume.size() != n ||
       volume0.size() != n || half_width0.size() != n || stress.size() != n || F.size() != n ||
-      L.size() != n || material.size() != n) {
+      L.size() != n || C.size() != n || material.size() != n) {
     throw common::InputError("mpm points: the per-point arrays have different sizes");
   }
   std::set<std::int64_t> seen;

@@ -23,7 +23,10 @@ struct MaterialPoints {
   std::vector<common::Mat3> stress;       ///< Cauchy stress, tension positive [Pa]
   std::vector<common::Mat3> F;            ///< deformation gradient [-]
   std::vector<common::Mat3> L;            ///< velocity gradient dv/dx of the last step [1/s]
-  std::vector<std::int32_t> material;     ///< index into the solver's material list
+  /// Affine velocity of the APIC transfer (Jiang et al. 2015), the grid's end-of-step velocity
+  /// gradient at the point; zero (and unused) with the FLIP/PIC transfer [1/s].
+  std::vector<common::Mat3> C;
+  std::vector<std::int32_t> material;  ///< index into the solver's material list
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   /// Appends one point at rest with F = I, zero stress and L.

@@ -190,7 +190,8 @@ void Solver::prepare_grid(std::int64_t step, double t) {
   }
   bin_points(config_.grid, cache_, bins_);
   activate_nodes(config_.grid, cache_, bins_, fields_);
-  p2g_mass_momentum(config_.grid, cache_, bins_, points_, config_.gravity, fields_);
+  p2g_mass_momentum(config_.grid, cache_, bins_, points_, config_.gravity, fields_,
+                    config_.transfer == Transfer::apic);
   scale_inertia(true);  // after P2G: the gravity force above keeps the real mass
   threshold_ = config_.mass_threshold * typical_nodal_mass(fields_);
   compute_nodal_velocity(threshold_, fields_);
@@ -354,6 +355,16 @@ void Solver::internal_force() {
   points_.stress.swap(force_stress_);
 }
 
+void Solver::update_points(double dt) {
+  if (config_.transfer == Transfer::apic) {
+    g2p_update_affine(config_.grid, cache_, fields_, threshold_, config_.move_points, dt, points_);
+  } else {
+    // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
+    g2p_update(config_.grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
+               config_.grid_positions);
+  }
+}
+
 void Solver::step() {
   const double dt = next_dt();
   const double t = time_;
@@ -370,9 +381,7 @@ void Solver::step() {
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
-    // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
-    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
-               config_.grid_positions);
+    update_points(dt);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
@@ -382,9 +391,8 @@ void Solver::step() {
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
-    g2p_update(grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
-               config_.grid_positions);
-    p2g_momentum(grid, cache_, bins_, points_, fields_);
+    update_points(dt);
+    p2g_momentum(grid, cache_, bins_, points_, fields_, config_.transfer == Transfer::apic);
     scale_inertia(false);
     compute_nodal_velocity(threshold_, fields_);
     hold_thickness_velocity();
@@ -453,6 +461,7 @@ void Solver::save(common::StateWriter& w) const {
   w.write("points/stress", flatten(points_.stress));
   w.write("points/F", flatten(points_.F));
   w.write("points/L", flatten(points_.L));
+  if (config_.transfer == Transfer::apic) w.write("points/C", flatten(points_.C));
   std::vector<std::int64_t> mat(points_.material.begin(), points_.material.end());
   w.write("points/material", mat);
   for (std::size_t k = 0; k < traction_points_.size(); ++k) {
@@ -493,6 +502,13 @@ void Solver::load(const common::StateReader& r) {
   unflatten(read_sized(r, "points/stress", 9 * n), pts.stress);
   unflatten(read_sized(r, "points/F", 9 * n), pts.F);
   unflatten(read_sized(r, "points/L", 9 * n), pts.L);
+  // APIC's affine velocities; absent from the state of a FLIP run (zero: a FLIP state continued
+  // with APIC starts from a PIC step).
+  if (r.has("points/C")) {
+    unflatten(read_sized(r, "points/C", 9 * n), pts.C);
+  } else {
+    pts.C.assign(n, common::Mat3::Zero());
+  }
   const std::vector<std::int64_t> mat = r.read_i64("points/material");
   if (mat.size() != n)
     throw common::InputError("mpm checkpoint: points/material has the wrong size");

@@ -34,7 +34,11 @@ struct SolverConfig {
   ShapeKind shape = ShapeKind::linear;  ///< shape function (the paper: linear)
   StressUpdate stress_update = StressUpdate::usf;
   /// FLIP share of the velocity update in [0, 1] [-]: 1 = pure NFLIP (eq. 9, the paper), 0 = PIC.
+  /// Unused with Transfer::apic.
   double flip = 1.0;
+  /// flip: the FLIP/PIC blend above (the paper's); apic: affine PIC (transfers.hpp), which keeps
+  /// a homogeneous deformation with one point per cell (docs/mpm.md, "Transfers").
+  Transfer transfer = Transfer::flip;
   /// true: the points move with the end-of-step grid velocity (x_p += dt sum_v S (V_v + dt a_v)),
   /// which walls constrain; false: with their own blended velocity v_p (eq. 10, the paper).
   bool grid_positions = false;
@@ -171,6 +175,8 @@ class Solver {
   void prepare_grid(std::int64_t step, double t);
   void update_stress(double dt);
   void update_material_stress(double dt);
+  /// G2P of the point velocities (and positions, C_p): FLIP/PIC or APIC by config_.transfer.
+  void update_points(double dt);
   void add_external_loads();
   /// P2G of the internal forces; with strain smoothing from the cell-averaged stresses.
   void internal_force();

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "common/errors.hpp"
 
 namespace mpm {
 namespace {
@@ -171,29 +174,51 @@ void activate_nodes(const Grid& grid, const StencilCache& cache, const PointBins
   std::sort(fields.active.begin(), fields.active.end());
 }
 
+Transfer transfer_from_string(std::string_view name) {
+  if (name == "flip") return Transfer::flip;
+  if (name == "apic") return Transfer::apic;
+  throw common::InputError("mpm.transfer = \"" + std::string(name) +
+                           "\": must be \"flip\" or \"apic\"");
+}
+
+std::string_view to_string(Transfer t) { return t == Transfer::apic ? "apic" : "flip"; }
+
 void p2g_mass_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
                        const MaterialPoints& points, const common::Vec3& gravity,
-                       GridFields& fields) {
+                       GridFields& fields, bool affine) {
   for_points_coloured(bins, [&](std::size_t p) {
     const double m_p = points.mass[p];
     const common::Vec3 mv_p = m_p * points.v[p];
     const common::Vec3 mg_p = m_p * gravity;
+    const common::Mat3 mC_p = m_p * points.C[p];
+    const common::Vec3 x_p = points.x[p];
     for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
       const auto i = static_cast<std::size_t>(node_i);
       fields.mass[i] += S * m_p;
-      fields.momentum[i] += S * mv_p;
+      if (affine) {
+        fields.momentum[i] += S * (mv_p + mC_p * (grid.node_position(node_i) - x_p));
+      } else {
+        fields.momentum[i] += S * mv_p;
+      }
       fields.force[i] += S * mg_p;
     });
   });
 }
 
 void p2g_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
-                  const MaterialPoints& points, GridFields& fields) {
+                  const MaterialPoints& points, GridFields& fields, bool affine) {
   for (const std::int64_t i : fields.active) fields.momentum[static_cast<std::size_t>(i)].setZero();
   for_points_coloured(bins, [&](std::size_t p) {
     const common::Vec3 mv_p = points.mass[p] * points.v[p];
+    const common::Mat3 mC_p = points.mass[p] * points.C[p];
+    const common::Vec3 x_p = points.x[p];
     for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
-      fields.momentum[static_cast<std::size_t>(node_i)] += S * mv_p;
+      const auto i = static_cast<std::size_t>(node_i);
+      if (affine) {
+        fields.momentum[i] += S * (mv_p + mC_p * (grid.node_position(node_i) - x_p));
+      } else {
+        fields.momentum[i] += S * mv_p;
+      }
     });
   });
 }
@@ -250,6 +275,29 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
     // Grid positions: the end-of-step grid velocity, which the walls constrain (a point cannot
     // cross a held node plane within a CFL step); else the point's own (FLIP) velocity.
     if (move_points) points.x[p] += dt * (grid_positions ? v_pic : points.v[p]);
+  });
+}
+
+void g2p_update_affine(const Grid& grid, const StencilCache& cache, const GridFields& fields,
+                       double threshold, bool move_points, double dt, MaterialPoints& points) {
+  const auto n = static_cast<std::int64_t>(points.size());
+  for_each_index(n, [&](std::int64_t q) {
+    const auto p = static_cast<std::size_t>(q);
+    common::Vec3 v_pic = common::Vec3::Zero();
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+      const auto i = static_cast<std::size_t>(node_i);
+      v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+    });
+    common::Mat3 C_p = common::Mat3::Zero();
+    for_each_node(grid, cache, p, [&](std::int64_t node_i, double, const common::Vec3& grad) {
+      const auto i = static_cast<std::size_t>(node_i);
+      if ((fields.mass[i] > 0.0 && fields.mass[i] >= threshold) || fields.fixed[i] == 7) {
+        C_p += (fields.velocity[i] + dt * fields.acceleration[i] - v_pic) * grad.transpose();
+      }
+    });
+    points.v[p] = v_pic;
+    points.C[p] = C_p;
+    if (move_points) points.x[p] += dt * v_pic;
   });
 }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "mpm/grid.hpp"
@@ -13,6 +14,18 @@
 #include "mpm/shape_function.hpp"
 
 namespace mpm {
+
+/// How velocities go between points and grid (docs/mpm.md, "Transfers").
+enum class Transfer {
+  flip,  ///< v_p blended FLIP/PIC (eqs. 9-10, SolverConfig::flip); P2G of m_p v_p
+  /// Affine PIC (Jiang et al. 2015): each point also carries C_p, the grid's velocity gradient at
+  /// it, and P2G sends m_p (v_p + C_p (x_v - x_p)): an affine velocity field goes through a
+  /// G2P-P2G round trip exactly, even with one point per cell (FLIP/PIC then loses it: a cell's
+  /// 8 nodes get the one point's velocity)
+  apic,
+};
+[[nodiscard]] Transfer transfer_from_string(std::string_view name);  ///< "flip" | "apic"
+[[nodiscard]] std::string_view to_string(Transfer t);
 
 /// Per-step cache of each point's 1D weights (positions do not change between P2G and G2P).
 struct StencilCache {
@@ -46,13 +59,15 @@ void activate_nodes(const Grid& grid, const StencilCache& cache, const PointBins
 
 /// Eq. 7 and the gravity part of eq. 6: m_v += m_p S, momentum_v += m_p S v_p,
 /// force_v += m_p S g. Bit-for-bit independent of the number of threads.
+/// `affine` (Transfer::apic): momentum_v += m_p S (v_p + C_p (x_v - x_p)).
 void p2g_mass_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
                        const MaterialPoints& points, const common::Vec3& gravity,
-                       GridFields& fields);
+                       GridFields& fields, bool affine = false);
 
-/// Re-projects momentum only (MUSL's second transfer): momentum_v = sum_p m_p S v_p.
+/// Re-projects momentum only (MUSL's second transfer): momentum_v = sum_p m_p S v_p (with
+/// `affine`, v_p + C_p (x_v - x_p)).
 void p2g_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
-                  const MaterialPoints& points, GridFields& fields);
+                  const MaterialPoints& points, GridFields& fields, bool affine = false);
 
 /// Eq. 5 with the point integration of classical MPM / GIMP: force_v -= V_p sigma_p grad S_v.
 void p2g_internal_force(const Grid& grid, const StencilCache& cache, const PointBins& bins,
@@ -76,5 +91,13 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, bool move_points, double dt, MaterialPoints& points,
                 bool grid_positions = false);
+
+/// The APIC point update: v_p <- sum_v S V'_v and C_p <- sum_v (V'_v - v_p) (x) grad S_v(x_p)
+/// with V'_v = V_v + dt a_v the end-of-step grid velocity, over the nodes that count in
+/// g2p_velocity_gradient (mass >= threshold, or a fully prescribed velocity; the difference form
+/// keeps a rigid translation free of C); x_p <- x_p + dt v_p when `move_points` (the PIC velocity
+/// is the grid's, so a held node plane holds the points too).
+void g2p_update_affine(const Grid& grid, const StencilCache& cache, const GridFields& fields,
+                       double threshold, bool move_points, double dt, MaterialPoints& points);
 
 }  // namespace mpm

@@ -129,10 +129,11 @@ TriaxialResult run_single_cell_triaxial(const TriaxialConfig& tc) {
   cfg.cfl = tc.cfl;
   cfg.move_points = tc.move_points;
   cfg.formulation = tc.formulation;
+  cfg.transfer = tc.transfer;
   const Mat3 s0 = -tc.pressure * Mat3::Identity() + tc.initial_stress_seed;
   LinearElastic material(tc.youngs_modulus, tc.poisson_ratio, tc.density, s0);
   MaterialPoints pts;
-  fill_box(pts, cfg.grid, Vec3::Zero(), Vec3::Ones(), 2, tc.density, 0);
+  fill_box(pts, cfg.grid, Vec3::Zero(), Vec3::Ones(), tc.points_per_cell, tc.density, 0);
   for (std::size_t p = 0; p < pts.size(); ++p) {
     pts.stress[p] = s0;
     if (p < tc.offsets.size()) pts.x[p] += tc.offsets[p];

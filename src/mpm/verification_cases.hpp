@@ -63,6 +63,8 @@ struct TriaxialConfig {
   /// Also constrain the rigid motions in the horizontal plane (3-2-1 support on the bottom
   /// nodes (0,0,0) in x, y and (1,0,0) in y); the paper's set-up leaves them free.
   bool pin_rigid_modes = false;
+  int points_per_cell = 2;             ///< per axis: 2 is the paper's 8 points
+  Transfer transfer = Transfer::flip;  ///< SolverConfig::transfer
 };
 struct TriaxialResult {
   double lateral_error = 0.0;      ///< max over points and steps of |sigma_xx or yy / (-p) - 1|

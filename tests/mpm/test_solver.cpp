@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
@@ -43,10 +44,14 @@ void expect_message(const std::function<void()>& f, const std::vector<std::strin
 }
 
 TEST(Solver, CheckpointContinuesBitForBit) {
-  for (auto scheme : {mpm::StressUpdate::usf, mpm::StressUpdate::musl}) {
+  for (auto [scheme, transfer] : {std::pair{mpm::StressUpdate::usf, mpm::Transfer::flip},
+                                  std::pair{mpm::StressUpdate::musl, mpm::Transfer::flip},
+                                  std::pair{mpm::StressUpdate::usf, mpm::Transfer::apic},
+                                  std::pair{mpm::StressUpdate::musl, mpm::Transfer::apic}}) {
     mpm::SolverConfig cfg = small_config(mpm::ShapeKind::ugimp);
     cfg.stress_update = scheme;
     cfg.flip = 0.95;
+    cfg.transfer = transfer;
     mpm::LinearElastic mat_a(1e5, 0.3, 1800.0);
     mpm::Solver a(cfg, small_block(cfg.grid), {&mat_a});
     a.add_constraint(mpm::face_constraint(cfg.grid, 2, -1, {true, true, true}));
@@ -56,6 +61,7 @@ TEST(Solver, CheckpointContinuesBitForBit) {
     common::StateStore store;
     a.save(store);
     mat_a.save(store, "material/0/");
+    EXPECT_EQ(store.has("points/C"), transfer == mpm::Transfer::apic);
     a.run(8);
 
     mpm::LinearElastic mat_b(1e5, 0.3, 1800.0);
@@ -75,6 +81,7 @@ TEST(Solver, CheckpointContinuesBitForBit) {
       ASSERT_EQ(a.points().stress[p], b.points().stress[p]);
       ASSERT_EQ(a.points().F[p], b.points().F[p]);
       ASSERT_EQ(a.points().volume[p], b.points().volume[p]);
+      ASSERT_EQ(a.points().C[p], b.points().C[p]);
     }
   }
 }
