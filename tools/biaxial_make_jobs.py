@@ -68,6 +68,8 @@ shape_function = "linear"
 update = "usf"
 plane_strain = "y"             # one cell through y, [2, 1, 2] points per cell
 flip = 1.0
+position_update = "grid"       # points move with the grid velocity, which the platens hold: a FLIP
+                               # velocity carried corner points through the platens on fine meshes
 strain_smoothing = "{smoothing}"     # cell: selective reduced integration per cell; without it the rough
                                # platens lock the dilatant specimen (docs/biaxial.md, "Locking")
 damping = 0.2                  # Cundall damping (eq. 8)
@@ -138,7 +140,8 @@ def main():
     ap.add_argument("--strain", type=float, default=0.12)
     ap.add_argument("--rate", type=float, default=0.03, help="axial strain rate V/H [1/s]")
     ap.add_argument("--samples", type=int, default=16)
-    ap.add_argument("--pad", type=int, default=1)
+    ap.add_argument("--pad", type=int, default=None,
+                    help="empty cells each side in x (default: enough for 25 mm, half the width)")
     ap.add_argument("--mass-scaling", type=float, default=1e4)
     ap.add_argument("--every", type=int, default=50)
     ap.add_argument("--platen", default="rough", help="rough (no slip), smooth, or a friction coefficient")
@@ -146,6 +149,8 @@ def main():
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     a = ap.parse_args()
+    if a.pad is None:
+        a.pad = math.ceil(0.025 / (W / a.mesh[0]) - 1e-9)
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
                a.mass_scaling, a.every, a.header, a.platen,
                a.smoothing)
