@@ -11,7 +11,9 @@ Usage: /usr/bin/python3 tools/mpm_column_collapse.py RUN_DIR [RUN_DIR ...] [--da
 Definitions (docs/column_collapse.md): t* = sqrt(H0 / g); every point carries the volume of its
 initial cell share, so the front is the farthest point plus its initial half-width, shifted so
 that L(0) = L0 (as YADE's front is corrected by its t = 0 offset); H is the highest point top in
-the first cell column at the back wall, shifted so that H(0) = H0. The deposit profile h_vol(x) is
+the first cell column at the back wall, shifted so that H(0) = H0. The connected front (dotted)
+ends the deposit at the first gap wider than 1.5 cells between the points sorted by x: points
+detached ahead of it (RVEs that lost all contacts and flew) are left out. The deposit profile h_vol(x) is
 the initial bulk volume of the points in bins of one cell, over the bin's area (the height the
 material would have at its initial density, as YADE's h_vol). Macro inertial number per point:
 I = gamma_dot d50 / sqrt(p / rho_s), gamma_dot = sqrt(2 D':D') from the finite difference of F
@@ -69,6 +71,17 @@ def analyse(run):
     a = H0 / L0
     tstar = np.sqrt(H0 / G)
     front = x[:, :, 0].max(axis=1) - x0[:, 0].max() + L0
+
+    def connected_front(xk):
+        """The end of the continuous deposit: points sorted by x from the back wall, the deposit
+        ends at the first gap wider than 1.5 cells (points detached ahead of it, e.g. RVEs that
+        lost their contacts and flew, do not count); shifted like `front`."""
+        xs_k = np.sort(xk)
+        gaps = np.nonzero(np.diff(xs_k) > 1.5 * dx)[0]
+        last = xs_k[gaps[0]] if gaps.size else xs_k[-1]
+        return last - x0[:, 0].max() + L0
+
+    front_c = np.array([connected_front(x[k, :, 0]) for k in range(len(t))])
     back = x0[:, 0] < dx  # the first column of points
     hback = x[:, back, 2].max(axis=1) - x0[back, 2].max() + H0
     ek = 0.5 * (vol0[None, :] * (vel ** 2).sum(axis=2)).sum(axis=1)  # per unit bulk density
@@ -99,17 +112,21 @@ def analyse(run):
     runout = (front[-1] - L0) / L0
     target = front[0] + 0.99 * (front[-1] - front[0])
     t99 = t[np.argmax(front >= target)] / tstar if front[-1] > front[0] else np.nan
+    runout_c = (front_c[-1] - L0) / L0
+    target_c = front_c[0] + 0.99 * (front_c[-1] - front_c[0])
+    t99_c = t[np.argmax(front_c >= target_c)] / tstar if front_c[-1] > front_c[0] else np.nan
     gate = 0.02
     summ = dict(tag=f"a{a:g}", a=a, rves=x.shape[1], L0_m=L0, H0_m=H0, cell_m=dx, tstar_s=tstar,
                 L_f_m=front[-1], H_f_m=hback[-1], runout_over_L0=runout,
                 Hf_over_L0=hback[-1] / L0, Hf_over_H0=hback[-1] / H0, t99_over_tstar=t99,
+                runout_connected_over_L0=runout_c, t99_connected_over_tstar=t99_c,
                 t_end_over_tstar=t[-1] / tstar, Ekpeak_over_MgH0=ek_norm.max(),
                 t_Ekpeak_over_tstar=t[np.argmax(ek_norm)] / tstar,
                 I_max=np.nanmax(inert), I_p95_max=np.nanmax(np.nanpercentile(inert[1:], 95, axis=1)),
                 flight_max=int(flight.max()), lowp_max=int(lowp.max()), mpm_steps=int(steps[-1]),
                 dem_steps=int(f["rve/dem_steps"][:].sum()))
     del gate
-    return dict(t=t, tstar=tstar, L0=L0, H0=H0, a=a, front=front, hback=hback, ek=ek_norm,
+    return dict(t=t, tstar=tstar, L0=L0, H0=H0, a=a, front=front, front_c=front_c, hback=hback, ek=ek_norm,
                 inert=inert, flight=flight, lowp=lowp, profile=profile, x=x, p=p_pt, summ=summ,
                 dx=dx, dz=dz)
 
@@ -160,14 +177,14 @@ with open(os.path.join(args.data, "summary.csv"), "w") as out:
         with open(os.path.join(args.data, f"{s['tag']}_summary.csv"), "w") as o:
             o.write(",".join(keys) + "\n" + row + "\n")
         with open(os.path.join(args.data, f"{s['tag']}_timeseries.csv"), "w") as o:
-            o.write("t_s,t_over_tstar,L_front_m,H_back_m,kinetic_over_MgH0,I_median,I_p95,I_max,"
-                    "rves_no_contact,rves_p_below_100Pa\n")
+            o.write("t_s,t_over_tstar,L_front_m,L_front_connected_m,H_back_m,kinetic_over_MgH0,"
+                    "I_median,I_p95,I_max,rves_no_contact,rves_p_below_100Pa\n")
             for k in range(len(r["t"])):
                 i = r["inert"][k]
                 med, p95, mx = ((np.nanmedian(i), np.nanpercentile(i, 95), np.nanmax(i)) if k
                                 else (np.nan,) * 3)
                 o.write(f"{r['t'][k]:.6g},{r['t'][k] / r['tstar']:.4f},{r['front'][k]:.6g},"
-                        f"{r['hback'][k]:.6g},{r['ek'][k]:.4g},{med:.4g},{p95:.4g},{mx:.4g},"
+                        f"{r['front_c'][k]:.6g},{r['hback'][k]:.6g},{r['ek'][k]:.4g},{med:.4g},{p95:.4g},{mx:.4g},"
                         f"{r['flight'][k]},{r['lowp'][k]}\n")
         with open(os.path.join(args.data, f"{s['tag']}_profiles.csv"), "w") as o:
             o.write("t_over_tstar,x_m,h_top_m,h_vol_m\n")
@@ -183,6 +200,8 @@ fig, axs = plt.subplots(1, 3, figsize=(14, 4))
 for r in runs:
     c = axs[0].plot(r["t"] / r["tstar"], (r["front"] - r["L0"]) / r["L0"],
                     label=f"MPM x DEM a = {r['a']:.2g}")[0].get_color()
+    axs[0].plot(r["t"] / r["tstar"], (r["front_c"] - r["L0"]) / r["L0"], ":", color=c,
+                label="  continuous deposit")
     axs[1].plot(r["t"] / r["tstar"], r["hback"] / r["H0"], color=c)
     axs[2].plot(r["t"] / r["tstar"], r["ek"], color=c)
     y = yade_for(r["a"])
