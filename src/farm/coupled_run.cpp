@@ -136,6 +136,7 @@ void Master::run(RunSummary& sum) {
   if (grains_.due(start_step)) grains_.write(farm_, start_step, solver_.time());
   const double t0 = wall_now();
   ProgressSchedule progress_(cfg_.output.log_every_s, t0);
+  balance_.start(start_step, t0);
   const double scaling = cfg_.solver.mass_scaling;
   if (scaling != 1.0) {
     spdlog::warn(
@@ -198,8 +199,16 @@ void Master::checkpoint(RunSummary& sum) {
 }
 
 void Master::balance(std::int64_t step) {
-  if (!farm_.rebalance_if_needed(balance_.threshold(), positions())) return;
+  const bool moved = farm_.rebalance_if_needed(balance_.threshold(), positions());
   const RebalancePlan& plan = farm_.last_plan();
+  const std::int64_t wait = balance_.checked(step, wall_now(), plan.metis_s);
+  if (wait > cfg_.balance.check_every) {
+    spdlog::info(
+        "farm: step {}: the METIS proposal took {:.3g} s: next balance check in {} steps (METIS "
+        "kept under {:g} % of the run)",
+        step, plan.metis_s, wait, 100.0 * BalanceSchedule::kMetisShare);
+  }
+  if (!moved) return;
   spdlog::info(
       "farm: step {}: rebalanced with METIS: imbalance {:.3f} -> {:.3f}, {} RVE(s) "
       "moved (predicted saving {:.3g} s, move {:.3g} s); {} moved in total",

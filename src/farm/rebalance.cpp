@@ -2,6 +2,7 @@
 #include "farm/rebalance.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 #include "common/errors.hpp"
 
@@ -32,11 +33,19 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   plan.imbalance_now = imbalance(owner, cost, nparts);
   plan.imbalance_new = plan.imbalance_now;
   if (nparts <= 1 || !(plan.imbalance_now > threshold)) return plan;
+  const auto t0 = std::chrono::steady_clock::now();
   std::vector<int> proposal = partition_metis(graph, cost, nparts, seed);
+  const auto proposal_done = [&] {
+    plan.metis_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   plan.imbalance_new = imbalance(proposal, cost, nparts);
   const double margin = 0.5 * std::max(threshold - 1.0, 0.01);
-  if (!(plan.imbalance_now - plan.imbalance_new > margin)) return plan;
+  if (!(plan.imbalance_now - plan.imbalance_new > margin)) {
+    proposal_done();
+    return plan;
+  }
   plan.moves = keep_owners(owner, proposal, nparts);
+  proposal_done();
   if (plan.moves == 0) return plan;
   // The critical rank's time scales with the largest load; the mean does not change.
   plan.saving_s = pay.step_s * (1.0 - plan.imbalance_new / plan.imbalance_now) * pay.horizon_steps;

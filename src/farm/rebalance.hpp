@@ -54,6 +54,7 @@ struct RebalancePlan {
   std::int64_t moves = 0;      ///< RVEs the proposal moves
   double saving_s = 0.0;       ///< predicted: step_s (1 - new / now) horizon_steps [s]
   double move_s = 0.0;         ///< predicted: moves * move_s_per_rve [s]
+  double metis_s = 0.0;  ///< wall time of the proposal (METIS + renaming); 0: none was made [s]
 };
 
 /// Proposes a METIS partition of `cost` and adopts it when the current imbalance exceeds

@@ -57,4 +57,22 @@ std::string format_duration(double s) {
          std::to_string(t % 60) + "s";
 }
 
+std::int64_t BalanceSchedule::checked(std::int64_t step, double now, double metis_s) {
+  const std::int64_t steps = step - last_step_;
+  const double step_s = steps > 0 ? (now - last_wall_) / static_cast<double>(steps) : 0.0;
+  last_step_ = step;
+  last_wall_ = now;
+  std::int64_t wait = options_.check_every;
+  if (metis_s > 0.0 && step_s > 0.0) {
+    const double need = metis_s / (kMetisShare * step_s);
+    if (need > static_cast<double>(wait)) {
+      // Rounded up to a multiple of check_every: due() also asks step % check_every == 0.
+      const auto k = static_cast<std::int64_t>(std::ceil(need / static_cast<double>(wait)));
+      wait *= std::max<std::int64_t>(k, 1);
+    }
+  }
+  next_ = step + wait;
+  return wait;
+}
+
 }  // namespace farm

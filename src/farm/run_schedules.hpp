@@ -56,15 +56,32 @@ class CheckpointSchedule {
 /// A balance check every check_every steps, when enabled and there is more than one rank.
 class BalanceSchedule {
  public:
+  /// Share of the run a METIS proposal may take: after a check that ran METIS for m seconds with
+  /// steps of s seconds, the next check waits max(check_every, m / (kMetisShare s)) steps
+  /// (docs/scaling.md, finding 3: 0.25 s of METIS at 10^4 RVEs on 1024 parts is 12-17 steps).
+  static constexpr double kMetisShare = 0.01;
   BalanceSchedule(const BalanceOptions& options, int nranks) : options_(options), nranks_(nranks) {}
   [[nodiscard]] bool due(std::int64_t step) const {
-    return options_.enabled && nranks_ > 1 && step % options_.check_every == 0;
+    return options_.enabled && nranks_ > 1 && step % options_.check_every == 0 && step >= next_;
   }
   [[nodiscard]] double threshold() const { return options_.threshold; }
+  /// After a check at `step` (wall clock `now` [s]) whose proposal took `metis_s` [s] (0: none
+  /// made): the step time is measured since the previous check (or `start` steps and wall time
+  /// given to start()); returns the steps until the next check may run (>= check_every).
+  /// Timing only: which steps check never changes a result (docs/farm.md, "Balancing").
+  std::int64_t checked(std::int64_t step, double now, double metis_s);
+  /// The run's first step and wall clock [s] (the first step-time measurement starts there).
+  void start(std::int64_t step, double now) {
+    last_step_ = step;
+    last_wall_ = now;
+  }
 
  private:
   BalanceOptions options_;
   int nranks_;
+  std::int64_t next_ = 0;       ///< no check before this step
+  std::int64_t last_step_ = 0;  ///< step of the previous check (or the start)
+  double last_wall_ = 0.0;      ///< its wall clock [s]
 };
 
 /// A progress line at most every `every_s` seconds of wall time.

@@ -80,4 +80,25 @@ TEST(RunSchedules, EtaAndDurations) {
   EXPECT_EQ(farm::format_duration(-1.0), "?");
 }
 
+// Finding 3 of docs/scaling.md: a check whose METIS proposal took 0.25 s with steps of 15 ms
+// (10^4 RVEs on 1024 ranks) makes the next one wait 0.25 / (0.01 * 0.015) = 1667 steps, rounded
+// up to a multiple of check_every (1680): METIS then costs at most 1 % of the run. A check
+// without a proposal (imbalance below the threshold) or a cheap one keeps check_every.
+TEST(RunSchedules, BalanceChecksAreSpacedByTheMetisTime) {
+  farm::BalanceOptions b;
+  b.check_every = 20;
+  farm::BalanceSchedule s(b, 1024);
+  s.start(0, 100.0);
+  EXPECT_TRUE(s.due(20));
+  EXPECT_EQ(s.checked(20, 100.0 + 20 * 0.015, 0.25), 1680);
+  EXPECT_FALSE(s.due(40));
+  EXPECT_FALSE(s.due(1680));
+  EXPECT_TRUE(s.due(1700));
+  // The next check made no proposal: back to every 20 steps.
+  EXPECT_EQ(s.checked(1700, 100.3 + 1680 * 0.015, 0.0), 20);
+  EXPECT_TRUE(s.due(1720));
+  // A proposal cheaper than 1 % of check_every steps changes nothing.
+  EXPECT_EQ(s.checked(1720, 100.3 + 1700 * 0.015, 0.001), 20);
+}
+
 }  // namespace
