@@ -190,7 +190,7 @@ void p2g_mass_momentum(const Grid& grid, const StencilCache& cache, const PointB
     const double m_p = points.mass[p];
     const common::Vec3 mv_p = m_p * points.v[p];
     const common::Vec3 mg_p = m_p * gravity;
-    const common::Mat3 mC_p = m_p * points.C[p];
+    const common::Mat3 mC_p = affine ? common::Mat3(m_p * points.C[p]) : common::Mat3::Zero();
     const common::Vec3 x_p = points.x[p];
     for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
       const auto i = static_cast<std::size_t>(node_i);
@@ -210,7 +210,8 @@ void p2g_momentum(const Grid& grid, const StencilCache& cache, const PointBins& 
   for (const std::int64_t i : fields.active) fields.momentum[static_cast<std::size_t>(i)].setZero();
   for_points_coloured(bins, [&](std::size_t p) {
     const common::Vec3 mv_p = points.mass[p] * points.v[p];
-    const common::Mat3 mC_p = points.mass[p] * points.C[p];
+    const common::Mat3 mC_p =
+        affine ? common::Mat3(points.mass[p] * points.C[p]) : common::Mat3::Zero();
     const common::Vec3 x_p = points.x[p];
     for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
       const auto i = static_cast<std::size_t>(node_i);
