@@ -115,18 +115,6 @@ std::vector<std::uint64_t> offsets_of(const std::vector<std::int64_t>& counts) {
   return offset;
 }
 
-/// Appends [offset, offset + count) to `blocks`, extending the last block when it ends where this
-/// one starts: a rank's adjacent RVEs become one hyperslab block (docs/scaling.md, finding 4: the
-/// collective filtered-chunk write exchanged one piece per block). The checksums are per element
-/// position, so merging changes none.
-void append_block(std::vector<Block>& blocks, std::uint64_t offset, std::uint64_t count) {
-  if (!blocks.empty() && blocks.back().offset + blocks.back().count == offset) {
-    blocks.back().count += count;
-  } else {
-    blocks.push_back({offset, count});
-  }
-}
-
 /// Collective: /rve/counts/<name> (values per RVE, -1 where absent) and /rve/fields/<name> (every
 /// RVE's values, in RVE index order), each rank writing the blocks of its RVEs.
 template <class T>
@@ -152,7 +140,7 @@ void write_rve_field(h5::File& file, MPI_Comm comm, const CheckpointData& d,
   std::vector<T> data;
   for (std::size_t j = 0; j < d.local_indices.size(); ++j) {
     if (values[j] == nullptr || values[j]->empty()) continue;
-    append_block(blocks, offset[static_cast<std::size_t>(d.local_indices[j])], values[j]->size());
+    blocks.push_back({offset[static_cast<std::size_t>(d.local_indices[j])], values[j]->size()});
     data.insert(data.end(), values[j]->begin(), values[j]->end());
   }
   file.write_blocks<T>("/rve/fields/" + name, offset[n], blocks, data.data());
@@ -183,7 +171,7 @@ void read_rve_field(const h5::File& file, const std::string& name,
       file.fail("dataset /rve/counts/" + name + " has fewer entries than there are RVEs");
     const auto c = counts[static_cast<std::size_t>(k)];
     if (c > 0)
-      append_block(blocks, offset[static_cast<std::size_t>(k)], static_cast<std::uint64_t>(c));
+      blocks.push_back({offset[static_cast<std::size_t>(k)], static_cast<std::uint64_t>(c)});
   }
   const std::vector<T> v = file.read_blocks<T>("/rve/fields/" + name, blocks, partial, stored);
   std::size_t pos = 0;

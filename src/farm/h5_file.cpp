@@ -16,11 +16,27 @@ namespace {
 constexpr hsize_t kChunk = hsize_t{1} << 16U;
 constexpr unsigned kDeflateLevel = 4;
 
+/// `blocks` (ascending, disjoint) with empty ones dropped and adjacent ones merged: one
+/// hyperslab per run of consecutive RVEs, so that the collective filtered-chunk path exchanges
+/// one piece per run instead of one per RVE (docs/scaling.md, finding 4). The file layout and
+/// the checksums (position-keyed) do not depend on how a selection is split.
+std::vector<Block> merged(std::span<const Block> blocks) {
+  std::vector<Block> out;
+  for (const Block& b : blocks) {
+    if (b.count == 0) continue;
+    if (!out.empty() && out.back().offset + out.back().count == b.offset) {
+      out.back().count += b.count;
+    } else {
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
 /// Selects `blocks` in `space` (none selected when they are all empty).
 void select_blocks(hid_t space, std::span<const Block> blocks) {
   bool first = true;
-  for (const Block& b : blocks) {
-    if (b.count == 0) continue;
+  for (const Block& b : merged(blocks)) {
     const hsize_t start[1] = {b.offset};
     const hsize_t count[1] = {b.count};
     check(H5Sselect_hyperslab(space, first ? H5S_SELECT_SET : H5S_SELECT_OR, start, nullptr, count,
