@@ -103,22 +103,6 @@ void check_vtk_dir(const farm::CheckpointInfo& info, const fs::path& dir) {
   }
 }
 
-std::string series_name(std::int64_t id) { return fmt::format("rve_{}.pvd", id); }
-
-/// The entries of an existing time series (none when the file does not exist).
-std::vector<dem::VtkSeriesEntry> read_series(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return {};
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) {
-    throw common::InputError(fmt::format("--vtk: cannot read the time series '{}': {}",
-                                         path.string(), std::strerror(errno)));
-  }
-  return dem::read_vtk_series(text.str(), path.string());
-}
-
 std::string summary(std::int64_t id, const dem::Simulation& sim) {
   const dem::Measures m = dem::measure(sim);
   return fmt::format(
@@ -149,7 +133,7 @@ int command_inspect(const Options& o, const Comm& comm) {
     for (std::int64_t k : chosen) {
       const std::int64_t id = info.ids[static_cast<std::size_t>(k)];
       try {
-        series[id] = read_series(dir / series_name(id));
+        series[id] = dem::read_vtk_series_file(dir / dem::rve_series_name(id));
       } catch (const common::InputError& e) {
         throw common::InputError(fmt::format("checkpoint {}: {}", info.path, e.what()));
       }
@@ -172,10 +156,10 @@ int command_inspect(const Options& o, const Comm& comm) {
         const dem::Simulation sim = dem::load_simulation(states[j]);
         out += summary(id, sim);
         if (o.vtk.empty()) continue;
-        const std::string stem = fmt::format("rve_{}_step_{}", id, info.step);
+        const std::string stem = dem::rve_view_stem(id, info.step);
         for (dem::VtkFile& f : dem::vtk_view(sim, stem)) files.push_back(std::move(f));
         series[id] = dem::merge_vtk_series(std::move(series[id]), {info.time, stem + ".vtm"});
-        files.push_back({series_name(id), dem::vtk_series(series[id])});
+        files.push_back({dem::rve_series_name(id), dem::vtk_series(series[id])});
       } catch (const common::InputError& e) {
         throw common::InputError(
             fmt::format("checkpoint {}: RVE id {}: {}", info.path, id, e.what()));

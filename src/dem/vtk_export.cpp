@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <string_view>
 #include <type_traits>
 
@@ -300,6 +302,24 @@ std::vector<VtkSeriesEntry> read_vtk_series(const std::string& text, const std::
   }
   return out;
 }
+
+std::vector<VtkSeriesEntry> read_vtk_series_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return {};
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) {
+    throw common::InputError("cannot read the time series '" + path.string() +
+                             "': " + std::strerror(errno));
+  }
+  return read_vtk_series(text, path.string());
+}
+
+std::string rve_view_stem(std::int64_t id, std::int64_t step) {
+  return "rve_" + std::to_string(id) + "_step_" + std::to_string(step);
+}
+
+std::string rve_series_name(std::int64_t id) { return "rve_" + std::to_string(id) + ".pvd"; }
 
 std::vector<VtkSeriesEntry> merge_vtk_series(std::vector<VtkSeriesEntry> entries,
                                              const VtkSeriesEntry& add) {

@@ -4,6 +4,7 @@
 // (a hexahedron), grouped by a multiblock file. Format and arrays: docs/dem.md "Grain-scale views".
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -48,6 +49,16 @@ struct VtkSeriesEntry {
 /// (the file) when the text is not such a collection.
 [[nodiscard]] std::vector<VtkSeriesEntry> read_vtk_series(const std::string& text,
                                                           const std::string& what);
+/// The entries of the series file `path`; none when it does not exist. Throws
+/// common::InputError naming the file when it cannot be read or is not such a collection.
+[[nodiscard]] std::vector<VtkSeriesEntry> read_vtk_series_file(const std::filesystem::path& path);
+
+/// The names every grain view of an RVE uses (`inspect --vtk` and the run's [output.grains]): the
+/// stem of the view of RVE `id` at MPM step `step`, "rve_<id>_step_<step>" (its multiblock file is
+/// stem + ".vtm"), and the RVE's time series, "rve_<id>.pvd".
+[[nodiscard]] std::string rve_view_stem(std::int64_t id, std::int64_t step);
+[[nodiscard]] std::string rve_series_name(std::int64_t id);
+
 /// `entries` with `add` put in: an entry of the same file is replaced; sorted by time, then file.
 [[nodiscard]] std::vector<VtkSeriesEntry> merge_vtk_series(std::vector<VtkSeriesEntry> entries,
                                                            const VtkSeriesEntry& add);

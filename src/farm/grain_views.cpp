@@ -18,8 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string series_name(std::int64_t id) { return fmt::format("rve_{}.pvd", id); }
-
 [[noreturn]] void bad(const std::string& key, const std::string& value, const std::string& rule) {
   throw common::InputError(fmt::format("output.grains.{} = {}: {}", key, value, rule));
 }
@@ -60,16 +58,10 @@ GrainViews::GrainViews(const GrainViewOptions& options, const std::vector<std::i
   if (restart_step < 0 || !enabled()) return;
   last_step_ = restart_step;
   for (std::int64_t id : ids_) {
-    const fs::path path = dir_ / series_name(id);
-    std::error_code ec;
-    if (!fs::exists(path, ec)) continue;
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
+    const fs::path path = dir_ / dem::rve_series_name(id);
     try {
-      if (!in) throw common::InputError("cannot read it");
       std::vector<dem::VtkSeriesEntry> kept;
-      for (dem::VtkSeriesEntry& e : dem::read_vtk_series(text.str(), path.string())) {
+      for (dem::VtkSeriesEntry& e : dem::read_vtk_series_file(path)) {
         if (e.time <= restart_time) kept.push_back(std::move(e));
       }
       series_[id] = std::move(kept);
@@ -94,8 +86,8 @@ void GrainViews::write(RveFarm& farm, std::int64_t step, double time) {
     if (!std::binary_search(drawn.begin(), drawn.end(), indices_[j])) continue;
     const std::int64_t id = ids_[j];
     series_[id] = dem::merge_vtk_series(std::move(series_[id]),
-                                        {time, fmt::format("rve_{}_step_{}.vtm", id, step)});
-    files.push_back({series_name(id), dem::vtk_series(series_[id])});
+                                        {time, dem::rve_view_stem(id, step) + ".vtm"});
+    files.push_back({dem::rve_series_name(id), dem::vtk_series(series_[id])});
   }
   if (!files.empty()) dem::write_vtk_files(dir_, files);
   last_step_ = step;

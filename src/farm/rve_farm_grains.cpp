@@ -49,7 +49,7 @@ std::vector<std::size_t> RveFarm::exec_grains(const CommandHeader& h,
     if (!models_[k]) continue;
     const std::int64_t id = placement_.ids()[k];
     try {
-      std::vector<ViewFile> view = model(k).grain_view(fmt::format("rve_{}_step_{}", id, h.step));
+      std::vector<ViewFile> view = model(k).grain_view(dem::rve_view_stem(id, h.step));
       mine.emplace_back(k, view.empty() ? "-" : "");
       for (ViewFile& f : view) files.push_back({std::move(f.name), std::move(f.text)});
     } catch (const std::exception& e) {

@@ -296,4 +296,29 @@ TEST(VtkExport, SeriesRoundTripsMergesAndRefusesForeignFiles) {
   }
 }
 
+// The names shared by `inspect --vtk` and [output.grains], and the series file reader: a missing
+// file is an empty series, a foreign one an InputError naming it.
+TEST(VtkExport, ViewNamesAndSeriesFiles) {
+  EXPECT_EQ(dem::rve_view_stem(3, 40), "rve_3_step_40");
+  EXPECT_EQ(dem::rve_series_name(12), "rve_12.pvd");
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "mpmxdem_vtk_series_file";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  EXPECT_TRUE(dem::read_vtk_series_file(dir / "rve_1.pvd").empty());
+  const std::vector<dem::VtkSeriesEntry> entries = {{0.5, "rve_1_step_10.vtm"}};
+  std::ofstream(dir / "rve_1.pvd") << dem::vtk_series(entries);
+  const auto back = dem::read_vtk_series_file(dir / "rve_1.pvd");
+  ASSERT_EQ(back.size(), 1U);
+  EXPECT_EQ(back[0].file, "rve_1_step_10.vtm");
+  EXPECT_EQ(back[0].time, 0.5);
+  std::ofstream(dir / "rve_2.pvd") << "not a collection";
+  try {
+    (void)dem::read_vtk_series_file(dir / "rve_2.pvd");
+    FAIL() << "a foreign file was read as a series";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rve_2.pvd"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
