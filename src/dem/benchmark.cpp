@@ -49,7 +49,8 @@ std::uint64_t state_hash(const Simulation& sim) {
   f.add(sim.cell().h.data(), 9);
   f.add(sim.stress().data(), 9);
   const Contacts& c = sim.contacts();
-  for (const CohFrictHistory& h : c.hist) {
+  for (std::size_t p = 0; p < c.size(); ++p) {
+    const CohFrictHistory h = c.hist.get(p);
     f.add(h.normal.data(), 3);
     f.add(h.shear.data(), 3);
     f.add(h.roll.data(), 3);
@@ -119,9 +120,10 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   const Spheres& s = sim.spheres();
   double b = bytes(s.x) + bytes(s.u) + bytes(s.w) + bytes(s.force) + bytes(s.torque) + bytes(s.r) +
              bytes(s.m) + bytes(s.inertia) + bytes(s.fixed);
-  b += bytes(c.i) + bytes(c.j) + bytes(c.k) + bytes(c.active) + bytes(c.props) + bytes(c.hist) +
-       bytes(c.force) + bytes(c.torque_i) + bytes(c.torque_j) + bytes(c.branch) + bytes(c.fn) +
-       bytes(c.sphere_offset) + bytes(c.sphere_pairs) + bytes(sim.verlet().x_ref);
+  b += bytes(c.i) + bytes(c.j) + bytes(c.k) + bytes(c.active) + bytes(c.props.kn) * 7 +
+       bytes(c.hist.normal[0]) * 12 + bytes(c.force) + bytes(c.torque_i) + bytes(c.torque_j) +
+       bytes(c.branch) + bytes(c.fn) + bytes(c.sphere_offset) + bytes(c.sphere_pairs) +
+       bytes(sim.verlet().x_ref);
   r.bytes_per_sphere = b / n;
   r.state_hash = state_hash(sim);
   return r;

@@ -68,6 +68,34 @@ inline V3 radial_return(const V3& v, double cap) {
   return select(n2 > cap * cap, scale(cap / std::sqrt(n2), v), v);
 }
 
+inline V3 select(bool c, const V3& a, double b) { return {c ? a.x : b, c ? a.y : b, c ? a.z : b}; }
+
+// Lane q of a batch is pair first + q of the contacts' arrays: pointers shifted to the batch's
+// first pair.
+struct PropsAt {
+  const double *kn, *ks, *kr, *kt, *tan_phi, *roll_cap, *twist_cap;
+  PropsAt(const CohFrictPropsArrays& a, std::size_t f)
+      : kn(a.kn.data() + f),
+        ks(a.ks.data() + f),
+        kr(a.kr.data() + f),
+        kt(a.kt.data() + f),
+        tan_phi(a.tan_phi.data() + f),
+        roll_cap(a.roll_cap.data() + f),
+        twist_cap(a.twist_cap.data() + f) {}
+};
+struct Vec3At {
+  double *x, *y, *z;
+  Vec3At(std::array<std::vector<double>, 3>& a, std::size_t f)
+      : x(a[0].data() + f), y(a[1].data() + f), z(a[2].data() + f) {}
+  [[nodiscard]] V3 load(int q) const { return {x[q], y[q], z[q]}; }
+  // Lanes not touching keep their value: v where c, else the old one.
+  void store_if(bool c, int q, const V3& v) const {
+    x[q] = c ? v.x : x[q];
+    y[q] = c ? v.y : y[q];
+    z[q] = c ? v.z : z[q];
+  }
+};
+
 inline V3 load(const double (&a)[3][CohFrictBatch::kLanes], int q) {
   return {a[0][q], a[1][q], a[2][q]};
 }
@@ -78,14 +106,25 @@ inline void store(double (&a)[3][CohFrictBatch::kLanes], int q, const V3& v) {
 }
 
 template <bool kTwist>
-[[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const common::Mat3& lm,
+[[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const CohFrictPropsArrays& pa,
+                                               CohFrictHistoryArrays& ha, const common::Mat3& lm,
                                                double dt) {
   const double l00 = lm(0, 0), l01 = lm(0, 1), l02 = lm(0, 2);
   const double l10 = lm(1, 0), l11 = lm(1, 1), l12 = lm(1, 2);
   const double l20 = lm(2, 0), l21 = lm(2, 1), l22 = lm(2, 2);
+  const PropsAt pr(pa, b.first);
+  const Vec3At hn(ha.normal, b.first);
+  const Vec3At hs(ha.shear, b.first);
+  const Vec3At hr(ha.roll, b.first);
+  const Vec3At ht(ha.twist, b.first);
+  const V3 zero{0.0, 0.0, 0.0};
   const int nl = b.n;
 #pragma omp simd
   for (int q = 0; q < nl; ++q) {
+    const bool touch = b.touching[q] != 0;
+    // A new contact starts from a zero history (apply() zeroes it and skips the rotation;
+    // rotating zero vectors by finite ones gives +0 again, so a zero history is the same).
+    const bool fresh = b.fresh[q] != 0;
     const V3 d = load(b.d, q);
     const double len = std::sqrt(b.l2[q]);
     const V3 n{d.x / len, d.y / len, d.z / len};
@@ -96,13 +135,13 @@ template <bool kTwist>
     const V3 w2 = load(b.w2, q);
 
     // Carry the tangential vectors with the contact frame.
-    const V3 h = load(b.normal, q);
+    const V3 h = select(fresh, zero, hn.load(q));
     const V3 orth = cross(h, n);
     const V3 ws{w1.x + w2.x, w1.y + w2.y, w1.z + w2.z};
     const V3 twist_axis = scale(dt * 0.5 * dot(h, ws), h);
-    V3 shear = carry(load(b.shear, q), orth, twist_axis);
-    V3 roll = carry(load(b.roll, q), orth, twist_axis);
-    store(b.normal, q, n);
+    V3 shear = carry(select(fresh, zero, hs.load(q)), orth, twist_axis);
+    V3 roll = carry(select(fresh, zero, hr.load(q)), orth, twist_axis);
+    hn.store_if(touch, q, n);
 
     // Relative velocity at the contact: a (u2 - u1 + L d) + w2 x (-r2 n) - w1 x (r1 n).
     const double a = (r1 + r2) / ((r1 + r2) - delta);
@@ -116,33 +155,34 @@ template <bool kTwist>
     const double nv = dot(n, vrel);
     const V3 dus{dt * (vrel.x - nv * n.x), dt * (vrel.y - nv * n.y), dt * (vrel.z - nv * n.z)};
 
-    const double fn = b.kn[q] * delta;
-    shear = sub(shear, scale(b.ks[q], dus));
-    shear = radial_return(shear, fn * b.tan_phi[q]);
-    store(b.shear, q, shear);
-    store(b.force, q, {fn * n.x + shear.x, fn * n.y + shear.y, fn * n.z + shear.z});
-    b.fn[q] = fn;
+    const double fn = pr.kn[q] * delta;
+    shear = sub(shear, scale(pr.ks[q], dus));
+    shear = radial_return(shear, fn * pr.tan_phi[q]);
+    hs.store_if(touch, q, shear);
+    store(b.force, q,
+          select(touch, V3{fn * n.x + shear.x, fn * n.y + shear.y, fn * n.z + shear.z}, 0.0));
+    b.fn[q] = touch ? fn : 0.0;
     const V3 nxf = cross(n, shear);
     V3 t1 = scale(-(r1 - 0.5 * delta), nxf);
     V3 t2 = scale(-(r2 - 0.5 * delta), nxf);
 
     // Rolling and twisting moments.
-    const double kr = b.kr[q];
-    const double kt = b.kt[q];
+    const double kr = pr.kr[q];
+    const double kt = pr.kt[q];
     const V3 wrel = sub(w2, w1);
     const double wn = dot(n, wrel);
     const V3 roll_el =
         sub(roll, scale(kr * dt, {wrel.x - wn * n.x, wrel.y - wn * n.y, wrel.z - wn * n.z}));
-    const V3 roll_pl = radial_return(roll_el, b.roll_cap[q] * fn);
-    roll = select(kr != 0.0, select(b.roll_cap[q] >= 0.0, roll_pl, roll_el), roll);
-    store(b.roll, q, roll);
+    const V3 roll_pl = radial_return(roll_el, pr.roll_cap[q] * fn);
+    roll = select(kr != 0.0, select(pr.roll_cap[q] >= 0.0, roll_pl, roll_el), roll);
+    hr.store_if(touch, q, roll);
     V3 m;
     if constexpr (kTwist) {
-      V3 twist = carry(load(b.twist, q), orth, twist_axis);
+      V3 twist = carry(select(fresh, zero, ht.load(q)), orth, twist_axis);
       const V3 twist_el = sub(twist, scale(kt * dt * wn, n));
-      const V3 twist_pl = radial_return(twist_el, b.twist_cap[q] * fn);
-      twist = select(kt != 0.0, select(b.twist_cap[q] >= 0.0, twist_pl, twist_el), twist);
-      store(b.twist, q, twist);
+      const V3 twist_pl = radial_return(twist_el, pr.twist_cap[q] * fn);
+      twist = select(kt != 0.0, select(pr.twist_cap[q] >= 0.0, twist_pl, twist_el), twist);
+      ht.store_if(touch, q, twist);
       m = {roll.x + twist.x, roll.y + twist.y, roll.z + twist.z};
     } else {
       // The twist is +0 and stays so (rotating +0 gives +0): roll + twist is roll + 0.
@@ -151,9 +191,28 @@ template <bool kTwist>
     const bool moments = kr != 0.0 || kt != 0.0;
     t1 = select(moments, sub(t1, m), t1);
     t2 = select(moments, V3{t2.x + m.x, t2.y + m.y, t2.z + m.z}, t2);
-    store(b.torque1, q, t1);
-    store(b.torque2, q, t2);
+    store(b.torque1, q, select(touch, t1, 0.0));
+    store(b.torque2, q, select(touch, t2, 0.0));
   }
+}
+
+// Whether some lane has twisting stiffness or a twisting moment: else the twisting part is
+// skipped (the twist of every lane is +0 and stays so, as apply() keeps it). Lanes not touching
+// may turn it on: the twisting part then leaves a zero twist +0, the same bits.
+bool twist_on(const CohFrictBatch& b, const CohFrictPropsArrays& pa,
+              const CohFrictHistoryArrays& ha) {
+  const PropsAt pr(pa, b.first);
+  const double* tx = ha.twist[0].data() + b.first;
+  const double* ty = ha.twist[1].data() + b.first;
+  const double* tz = ha.twist[2].data() + b.first;
+  int on = 0;
+  const int nl = b.n;
+#pragma omp simd reduction(| : on)
+  for (int q = 0; q < nl; ++q) {
+    on |= static_cast<int>(pr.kt[q] != 0.0) | static_cast<int>(tx[q] != 0.0) |
+          static_cast<int>(ty[q] != 0.0) | static_cast<int>(tz[q] != 0.0);
+  }
+  return on != 0;
 }
 
 // One clone per instruction set, chosen once at load time by the processor (GCC function
@@ -166,19 +225,23 @@ template <bool kTwist>
 #else
 #define MPMXDEM_LANE_CLONES
 #endif
-MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const common::Mat3& l, double dt) {
-  if (b.twist_on) {
-    apply_lanes<true>(b, l, dt);
+MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const CohFrictPropsArrays& pa,
+                                   CohFrictHistoryArrays& ha, const common::Mat3& l, double dt,
+                                   bool twist_possible) {
+  if (twist_possible && twist_on(b, pa, ha)) {
+    apply_lanes<true>(b, pa, ha, l, dt);
   } else {
-    apply_lanes<false>(b, l, dt);
+    apply_lanes<false>(b, pa, ha, l, dt);
   }
 }
 #undef MPMXDEM_LANE_CLONES
 
 }  // namespace
 
-void CohFrictLaw::apply_batch(CohFrictBatch& b, const common::Mat3& l, double dt) {
-  run_lanes(b, l, dt);
+void CohFrictLaw::apply_batch(CohFrictBatch& b, const CohFrictPropsArrays& props,
+                              CohFrictHistoryArrays& hist, const common::Mat3& l, double dt,
+                              bool twist_possible) {
+  run_lanes(b, props, hist, l, dt, twist_possible);
 }
 
 }  // namespace dem

@@ -5,30 +5,14 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 #include "common/types.hpp"
+#include "dem/cohfrict_arrays.hpp"
 #include "dem/params.hpp"
 
 namespace dem {
-
-/// Constant properties of one contact, fixed when it is created.
-struct CohFrictProps {
-  double kn = 0.0;          ///< normal stiffness [N/m]
-  double ks = 0.0;          ///< shear stiffness [N/m]
-  double kr = 0.0;          ///< rolling stiffness [N m/rad]
-  double kt = 0.0;          ///< twisting stiffness [N m/rad]
-  double tan_phi = 0.0;     ///< Coulomb coefficient [-]
-  double roll_cap = -1.0;   ///< eta_r min(R1, R2) [m]; < 0: no cap
-  double twist_cap = -1.0;  ///< eta_t min(R1, R2) [m]; < 0: no cap
-};
-
-/// History of one contact, carried from step to step.
-struct CohFrictHistory {
-  common::Vec3 normal;  ///< unit normal from 1 to 2 of the previous step [-]
-  common::Vec3 shear;   ///< shear force on sphere 2 [N]
-  common::Vec3 roll;    ///< rolling moment on sphere 2 [N m]
-  common::Vec3 twist;   ///< twisting moment on sphere 2 [N m]
-};
 
 /// Kinematics of one contact this step (what the law sees of the two spheres).
 struct ContactKinematics {
@@ -46,37 +30,32 @@ struct ContactResult {
   double fn = 0.0;       ///< normal force magnitude [N]
 };
 
-/// Contacts in overlap in structure-of-arrays form, for the batched (vectorised) form of the law:
-/// the force loop fills the inputs of up to kLanes contacts, CohFrictLaw::apply_batch computes
-/// them all, and the force loop reads the outputs back. Lane q of every array is one contact.
+/// A run of up to kLanes consecutive Verlet pairs, first .. first + n - 1, for the batched
+/// (vectorised) form of the law. The force loop fills the kinematics of every lane (pairs in
+/// overlap or not), CohFrictLaw::apply_batch computes all lanes at once, reading and writing the
+/// properties and history of pair first + q in the contacts' arrays in place, and the force loop
+/// reads the outputs back. Lane q of every array is pair first + q.
 struct CohFrictBatch {
   static constexpr int kLanes = 64;
-  int n = 0;  ///< lanes in use
-  // Inputs (per contact): branch d, |d|^2, u2 - u1, spins, radii, properties.
+  int n = 0;              ///< lanes in use
+  std::size_t first = 0;  ///< pair of lane 0
+  // Inputs (per pair): branch d, |d|^2, u2 - u1, spins, radii.
   alignas(64) double d[3][kLanes];   ///< branch x2 + H k - x1 [m]
   alignas(64) double l2[kLanes];     ///< |d|^2 [m^2]
   alignas(64) double du[3][kLanes];  ///< fluctuating velocity difference u2 - u1 [m/s]
-  alignas(64) double w1[3][kLanes], w2[3][kLanes];                    ///< spins [rad/s]
-  alignas(64) double r1[kLanes], r2[kLanes];                          ///< radii [m]
-  alignas(64) double kn[kLanes], ks[kLanes], kr[kLanes], kt[kLanes];  ///< CohFrictProps
-  alignas(64) double tan_phi[kLanes], roll_cap[kLanes], twist_cap[kLanes];
-  // History, read and updated in place. A new contact enters with zero vectors.
-  alignas(64) double normal[3][kLanes], shear[3][kLanes], roll[3][kLanes], twist[3][kLanes];
-  // Outputs.
+  alignas(64) double w1[3][kLanes], w2[3][kLanes];  ///< spins [rad/s]
+  alignas(64) double r1[kLanes], r2[kLanes];        ///< radii [m]
+  /// 1: the spheres overlap (a contact this step), 0: they do not (outputs +0, history and
+  /// properties untouched).
+  alignas(64) std::int64_t touching[kLanes];
+  /// 1: the contact is created this step (its history is taken as zero; its properties must be
+  /// in the arrays already).
+  alignas(64) std::int64_t fresh[kLanes];
+  // Outputs (+0 for lanes not touching).
   alignas(64) double force[3][kLanes];    ///< force on sphere 2 [N]
   alignas(64) double torque1[3][kLanes];  ///< [N m]
   alignas(64) double torque2[3][kLanes];  ///< [N m]
   alignas(64) double fn[kLanes];          ///< normal force magnitude [N]
-  /// Whether some lane has twisting stiffness or a twisting moment (else the twist arrays are
-  /// neither read nor written: they stay zero, as apply() keeps them).
-  bool twist_on = false;
-
-  /// Put contact `props`, `hist` into lane n (history zeroed for a new contact), n += 1.
-  void push(const common::Vec3& branch, double len2, const common::Vec3& du_,
-            const common::Vec3& w1_, const common::Vec3& w2_, double r1_, double r2_,
-            const CohFrictProps& props, const CohFrictHistory& hist, bool is_new);
-  /// The history of lane q.
-  [[nodiscard]] CohFrictHistory history(int q) const;
 };
 
 /// The contact law functor. Stateless apart from the material; all history lives in the contact.
@@ -95,8 +74,13 @@ class CohFrictLaw {
 
   /// The same law for the b.n lanes of a batch, lane by lane the same floating-point operations
   /// in the same order as apply() (bit-identical results, tested), in vectorisable loops; the
-  /// relative velocity is u2 - u1 + L d with the cell's velocity gradient l [1/s].
-  static void apply_batch(CohFrictBatch& b, const common::Mat3& l, double dt);
+  /// relative velocity is u2 - u1 + L d with the cell's velocity gradient l [1/s]. Lane q reads
+  /// props and reads and writes hist at pair b.first + q; a lane not touching leaves its history
+  /// as it was and gives zero force and torques. twist_possible = false: no pair has twisting
+  /// stiffness or a twisting moment (the twisting part is skipped without looking).
+  static void apply_batch(CohFrictBatch& b, const CohFrictPropsArrays& props,
+                          CohFrictHistoryArrays& hist, const common::Mat3& l, double dt,
+                          bool twist_possible = true);
 
   [[nodiscard]] const Material& material() const { return mat_; }
   /// Change the friction angle used for new contacts [deg].
@@ -106,55 +90,6 @@ class CohFrictLaw {
   Material mat_;
   double tan_phi_ = 0.0;
 };
-
-inline void CohFrictBatch::push(const common::Vec3& branch, double len2, const common::Vec3& du_,
-                                const common::Vec3& w1_, const common::Vec3& w2_, double r1_,
-                                double r2_, const CohFrictProps& props, const CohFrictHistory& hist,
-                                bool is_new) {
-  const int q = n++;
-  for (int a = 0; a < 3; ++a) {
-    d[a][q] = branch[a];
-    du[a][q] = du_[a];
-    w1[a][q] = w1_[a];
-    w2[a][q] = w2_[a];
-  }
-  l2[q] = len2;
-  r1[q] = r1_;
-  r2[q] = r2_;
-  kn[q] = props.kn;
-  ks[q] = props.ks;
-  kr[q] = props.kr;
-  kt[q] = props.kt;
-  tan_phi[q] = props.tan_phi;
-  roll_cap[q] = props.roll_cap;
-  twist_cap[q] = props.twist_cap;
-  if (is_new) {
-    // apply() zeroes the tangential vectors and skips the rotation; rotating zero vectors by
-    // finite ones gives +0 again, so a zero history is the same.
-    for (int a = 0; a < 3; ++a) {
-      normal[a][q] = 0.0;
-      shear[a][q] = 0.0;
-      roll[a][q] = 0.0;
-      twist[a][q] = 0.0;
-    }
-  } else {
-    for (int a = 0; a < 3; ++a) {
-      normal[a][q] = hist.normal[a];
-      shear[a][q] = hist.shear[a];
-      roll[a][q] = hist.roll[a];
-      twist[a][q] = hist.twist[a];
-    }
-    twist_on = twist_on || hist.twist[0] != 0.0 || hist.twist[1] != 0.0 || hist.twist[2] != 0.0;
-  }
-  twist_on = twist_on || props.kt != 0.0;
-}
-
-inline CohFrictHistory CohFrictBatch::history(int q) const {
-  return {common::Vec3(normal[0][q], normal[1][q], normal[2][q]),
-          common::Vec3(shear[0][q], shear[1][q], shear[2][q]),
-          common::Vec3(roll[0][q], roll[1][q], roll[2][q]),
-          common::Vec3(twist[0][q], twist[1][q], twist[2][q])};
-}
 
 // Defined inline: it is the body of the force loop.
 namespace detail {

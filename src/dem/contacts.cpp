@@ -9,13 +9,23 @@ void Contacts::resize(std::size_t n) {
   k.resize(n, common::Vec3i::Zero());
   active.resize(n, 0);
   props.resize(n);
-  hist.resize(n, CohFrictHistory{common::Vec3::Zero(), common::Vec3::Zero(), common::Vec3::Zero(),
-                                 common::Vec3::Zero()});
+  hist.resize(n);
   force.resize(n, common::Vec3::Zero());
   torque_i.resize(n, common::Vec3::Zero());
   torque_j.resize(n, common::Vec3::Zero());
   branch.resize(n, common::Vec3::Zero());
   fn.resize(n, 0.0);
+  twist = Twist::unknown;
+}
+
+void Contacts::classify_twist() {
+  if (twist != Twist::unknown) return;
+  bool some = false;
+  for (std::size_t p = 0; p < size() && !some; ++p) {
+    some = props.kt[p] != 0.0 || hist.twist[0][p] != 0.0 || hist.twist[1][p] != 0.0 ||
+           hist.twist[2][p] != 0.0;
+  }
+  twist = some ? Twist::some : Twist::none;
 }
 
 void Contacts::build_sphere_lists(std::size_t n_spheres) {

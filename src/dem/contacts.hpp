@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "dem/contact_law_cohfrict.hpp"
+#include "dem/cohfrict_arrays.hpp"
 
 namespace dem {
 
@@ -15,9 +15,9 @@ struct Contacts {
   std::vector<std::int32_t> i, j;  ///< sphere ids, i < j
   std::vector<common::Vec3i> k;    ///< image: branch = x_j + H k - x_i
   // Contact state.
-  std::vector<std::uint8_t> active;   ///< 1 while in overlap
-  std::vector<CohFrictProps> props;   ///< fixed at creation
-  std::vector<CohFrictHistory> hist;  ///< normal, shear force, rolling and twisting moments
+  std::vector<std::uint8_t> active;  ///< 1 while in overlap
+  CohFrictPropsArrays props;         ///< fixed at creation (props.get(p), props.set(p, v))
+  CohFrictHistoryArrays hist;  ///< normal, shear force, rolling and twisting moments (hist.get(p))
   // Output of the last force computation (zero for inactive pairs).
   std::vector<common::Vec3> force;               ///< force on j [N]
   std::vector<common::Vec3> torque_i, torque_j;  ///< [N m]
@@ -29,8 +29,17 @@ struct Contacts {
   std::vector<std::int64_t> sphere_offset;
   std::vector<std::int64_t> sphere_pairs;
 
+  /// Whether some pair may twist: unknown until looked at (resize makes it unknown), none when
+  /// every twisting stiffness and twisting moment is zero (the law then skips its twisting part;
+  /// it stays so while new contacts get kt = 0), some otherwise. Whoever writes a non-zero kt or
+  /// twist into the arrays other than through resize must set it to some (or unknown).
+  enum class Twist : std::uint8_t { unknown, none, some };
+  Twist twist = Twist::unknown;
+
   [[nodiscard]] std::size_t size() const { return i.size(); }
   void resize(std::size_t n);
+  /// Resolves twist = unknown by looking at every pair.
+  void classify_twist();
   /// Build the per-sphere CSR for n_spheres spheres.
   void build_sphere_lists(std::size_t n_spheres);
 };

@@ -26,8 +26,8 @@ void MixedController::update(Simulation& sim) {
     for (std::size_t p = 0; p < c.size(); ++p) {
       if (!c.active[p]) continue;
       const Vec3& d = c.branch[p];
-      const Vec3& n = c.hist[p].normal;
-      for (int a = 0; a < 3; ++a) m[a] += c.props[p].kn * (n[a] * d[a]) * (n[a] * d[a]);
+      const Vec3 n = at(c.hist.normal, p);
+      for (int a = 0; a < 3; ++a) m[a] += c.props.kn[p] * (n[a] * d[a]) * (n[a] * d[a]);
     }
     modulus_ = m / sim.cell().volume();
     last_modulus_step_ = sim.steps();

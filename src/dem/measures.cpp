@@ -33,7 +33,7 @@ Measures measure(const Simulation& sim) {
     ++m.n_contacts;
     ++deg[c.i[p]];
     ++deg[c.j[p]];
-    const Vec3& nn = c.hist[p].normal;
+    const Vec3 nn = at(c.hist.normal, p);
     m.fabric += nn * nn.transpose();
     sum_fc += c.force[p].norm();
   }

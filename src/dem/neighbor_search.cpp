@@ -181,8 +181,8 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
       if (q < old_active.size() && key_of(c, old_active[q]) == kp) {
         const std::size_t o = old_active[q++];
         fresh.active[p] = 1;
-        fresh.props[p] = c.props[o];
-        fresh.hist[p] = c.hist[o];
+        fresh.props.set(p, c.props.get(o));
+        fresh.hist.set(p, c.hist.get(o));
         fresh.force[p] = c.force[o];
         fresh.torque_i[p] = c.torque_i[o];
         fresh.torque_j[p] = c.torque_j[o];

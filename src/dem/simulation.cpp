@@ -21,7 +21,6 @@ namespace {
 constexpr std::int64_t kStressBlock = 512;      // fixed reduction blocks, independent of threads
 constexpr std::int64_t kParallelSpheres = 512;  // fewer spheres: one thread (fork costs more)
 
-inline double sgn(double v) { return (v > 0.0) - (v < 0.0); }
 }  // namespace
 
 Simulation::Simulation(Spheres spheres, const PeriodicCell& cell, const Material& mat,
@@ -44,7 +43,7 @@ void Simulation::set_friction_deg(double phi_deg, bool existing) {
   law_.set_friction_deg(phi_deg);
   if (existing) {
     const double t = law_.create(1.0, 1.0).tan_phi;
-    for (auto& p : contacts_.props) p.tan_phi = t;
+    for (double& p : contacts_.props.tan_phi) p = t;
   }
 }
 
@@ -60,9 +59,12 @@ void Simulation::update_neighbors(bool due) {
 // the same team (an implicit barrier between them), not separate regions: on 2 threads each
 // region's fork and join cost as much as a few hundred spheres of work (docs/dem.md).
 
-// The pair loop gathers the contacts in overlap of a stress block into batches of
-// CohFrictBatch::kLanes, runs the law on a whole batch at once (vectorised, bit-identical to the
-// per-contact law), then writes the batch back and adds its stress in pair order.
+// The pair loop takes the Verlet pairs of a stress block in runs of CohFrictBatch::kLanes
+// consecutive pairs: it gathers their kinematics (every pair, in overlap or not: no branch on the
+// overlap, which is unpredictable), creates and ends contacts, runs the law on the whole run at
+// once (vectorised, bit-identical to the per-contact law, reading and writing the pairs' property
+// and history arrays in place), then copies the outputs back and adds the stress in pair order.
+// Pairs out of overlap get +0 force and torques, which add nothing to the sums.
 void Simulation::pair_forces_shared() {
   const auto np = static_cast<std::int64_t>(contacts_.size());
   const Mat3 h = cell_.h;
@@ -72,73 +74,83 @@ void Simulation::pair_forces_shared() {
   const Spheres& s = spheres_;
   const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
   CohFrictBatch batch;  // per thread: each thread has its own frame
-  std::array<std::int64_t, CohFrictBatch::kLanes> pair_of{};
-  // The block's stress sum of f (x) d in nine scalars (in registers; a Mat3 temporary per
-  // contact costs a store-forwarding stall), the same products added in the same order.
-  std::array<double, 9> sum{};
-  const auto flush = [&] {
-    CohFrictLaw::apply_batch(batch, l, dt);
-    for (int q = 0; q < batch.n; ++q) {
-      const auto p = static_cast<std::size_t>(pair_of[static_cast<std::size_t>(q)]);
-      CohFrictHistory& hp = c.hist[p];
-      Vec3& fp = c.force[p];
-      Vec3& t1 = c.torque_i[p];
-      Vec3& t2 = c.torque_j[p];
-      for (int a = 0; a < 3; ++a) {
-        hp.normal[a] = batch.normal[a][q];
-        hp.shear[a] = batch.shear[a][q];
-        hp.roll[a] = batch.roll[a][q];
-        hp.twist[a] = batch.twist[a][q];
-        fp[a] = batch.force[a][q];
-        t1[a] = batch.torque1[a][q];
-        t2[a] = batch.torque2[a][q];
-      }
-      c.fn[p] = batch.fn[q];
-      for (int a = 0; a < 3; ++a) {
-        const double f = batch.force[a][q];
-        for (int e = 0; e < 3; ++e) sum[static_cast<std::size_t>(3 * e + a)] += f * batch.d[e][q];
-      }
-    }
-    batch.n = 0;
-    batch.twist_on = false;
-  };
 #pragma omp for schedule(static)
   for (std::int64_t b = 0; b < nblocks; ++b) {
-    sum.fill(0.0);
+    // The block's stress sum of f (x) d, column-major (entry 3 e + a is f_a d_e), in nine local
+    // scalars that stay in registers (an array or a Mat3 is kept in memory: a store-forwarding
+    // stall per contact); each entry adds the same products in pair order.
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, s4 = 0.0, s5 = 0.0, s6 = 0.0, s7 = 0.0, s8 = 0.0;
     const std::int64_t end = std::min(np, (b + 1) * kStressBlock);
-    batch.n = 0;
-    batch.twist_on = false;
-    for (std::int64_t p = b * kStressBlock; p < end; ++p) {
-      const std::int32_t i = c.i[p];
-      const std::int32_t j = c.j[p];
-      const Vec3i& kp = c.k[p];
-      // H k is exactly zero for the (most common) image k = 0: skip the product.
-      const Vec3 d =
-          kp.isZero() ? Vec3(s.x[j] - s.x[i]) : Vec3(s.x[j] + h * kp.cast<double>() - s.x[i]);
-      const double rs = s.r[i] + s.r[j];
-      const double l2 = d.squaredNorm();
-      if (l2 >= rs * rs) {
-        if (c.active[p]) {
-          c.active[p] = 0;
-          c.force[p].setZero();
-          c.torque_i[p].setZero();
-          c.torque_j[p].setZero();
-          c.fn[p] = 0.0;
+    for (std::int64_t p0 = b * kStressBlock; p0 < end; p0 += CohFrictBatch::kLanes) {
+      const int n = static_cast<int>(std::min<std::int64_t>(CohFrictBatch::kLanes, end - p0));
+      batch.n = n;
+      batch.first = static_cast<std::size_t>(p0);
+      // Kinematics of every pair of the run; contacts begin and end (rare: a well-predicted
+      // branch). The component loops are written out (-O2 does not unroll them).
+      for (int q = 0; q < n; ++q) {
+        const std::int64_t p = p0 + q;
+        const std::int32_t i = c.i[p];
+        const std::int32_t j = c.j[p];
+        const Vec3i& kp = c.k[p];
+        // H k is exactly zero for the (most common) image k = 0: skip the product.
+        const Vec3 d =
+            kp.isZero() ? Vec3(s.x[j] - s.x[i]) : Vec3(s.x[j] + h * kp.cast<double>() - s.x[i]);
+        const double ri = s.r[i];
+        const double rj = s.r[j];
+        const double rs = ri + rj;
+        const double l2 = d.squaredNorm();
+        const bool touching = l2 < rs * rs;
+        const Vec3& ui = s.u[i];
+        const Vec3& uj = s.u[j];
+        const Vec3& wi = s.w[i];
+        const Vec3& wj = s.w[j];
+        batch.d[0][q] = d[0];
+        batch.d[1][q] = d[1];
+        batch.d[2][q] = d[2];
+        batch.du[0][q] = uj[0] - ui[0];
+        batch.du[1][q] = uj[1] - ui[1];
+        batch.du[2][q] = uj[2] - ui[2];
+        batch.w1[0][q] = wi[0];
+        batch.w1[1][q] = wi[1];
+        batch.w1[2][q] = wi[2];
+        batch.w2[0][q] = wj[0];
+        batch.w2[1][q] = wj[1];
+        batch.w2[2][q] = wj[2];
+        batch.l2[q] = l2;
+        batch.r1[q] = ri;
+        batch.r2[q] = rj;
+        const bool was = c.active[p] != 0;
+        batch.touching[q] = touching ? 1 : 0;
+        batch.fresh[q] = touching && !was ? 1 : 0;
+        if (touching != was) {
+          c.active[p] = touching ? 1 : 0;
+          if (touching) c.props.set(static_cast<std::size_t>(p), law_.create(ri, rj));
         }
-        continue;
       }
-      const bool is_new = c.active[p] == 0;
-      if (is_new) {
-        c.props[p] = law_.create(s.r[i], s.r[j]);
-        c.active[p] = 1;
+      CohFrictLaw::apply_batch(batch, c.props, c.hist, l, dt, c.twist != Contacts::Twist::none);
+      for (int q = 0; q < n; ++q) {
+        const auto p = static_cast<std::size_t>(p0 + q);
+        const bool touching = batch.touching[q] != 0;
+        const double f0 = batch.force[0][q], f1 = batch.force[1][q], f2 = batch.force[2][q];
+        const double d0 = batch.d[0][q], d1 = batch.d[1][q], d2 = batch.d[2][q];
+        c.force[p] = Vec3(f0, f1, f2);
+        c.torque_i[p] = Vec3(batch.torque1[0][q], batch.torque1[1][q], batch.torque1[2][q]);
+        c.torque_j[p] = Vec3(batch.torque2[0][q], batch.torque2[1][q], batch.torque2[2][q]);
+        Vec3& br = c.branch[p];  // the branch of the last step in contact
+        br = Vec3(touching ? d0 : br[0], touching ? d1 : br[1], touching ? d2 : br[2]);
+        c.fn[p] = batch.fn[q];
+        s0 += f0 * d0;
+        s1 += f1 * d0;
+        s2 += f2 * d0;
+        s3 += f0 * d1;
+        s4 += f1 * d1;
+        s5 += f2 * d1;
+        s6 += f0 * d2;
+        s7 += f1 * d2;
+        s8 += f2 * d2;
       }
-      c.branch[p] = d;
-      pair_of[static_cast<std::size_t>(batch.n)] = p;
-      batch.push(d, l2, s.u[j] - s.u[i], s.w[i], s.w[j], s.r[i], s.r[j], c.props[p], c.hist[p],
-                 is_new);
-      if (batch.n == CohFrictBatch::kLanes) flush();
     }
-    if (batch.n > 0) flush();
+    const std::array<double, 9> sum{s0, s1, s2, s3, s4, s5, s6, s7, s8};
     block_stress_[static_cast<std::size_t>(b)] = Eigen::Map<const Mat3>(sum.data());
   }
 }
@@ -152,6 +164,10 @@ void Simulation::size_stress_blocks() {
   // Every block's entry is written by the pair loop: only the size matters.
   const auto np = static_cast<std::int64_t>(contacts_.size());
   block_stress_.resize(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock));
+  // Whether the law may skip its twisting part: no pair twists, and new contacts will not
+  // (the material gives them no twisting stiffness).
+  contacts_.classify_twist();
+  if (law_.create(1.0, 1.0).kt != 0.0) contacts_.twist = Contacts::Twist::some;
 }
 
 void Simulation::finish_stress() {
@@ -196,25 +212,36 @@ inline void Simulation::sum_sphere(std::int64_t q) {
 // (l0 x0 + l1 x1) + l2 x2, row 2: l0 x0 + (l1 x1 + l2 x2)), which Eigen calls out of line.
 inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& l) {
   Spheres& s = spheres_;
-  const double lambda = num_.damping;
   if (!s.fixed[q]) {
-    Vec3 a = s.force[q] / s.m[q];
-    Vec3 al = s.torque[q] / s.inertia[q];
-    for (int k = 0; k < 3; ++k) {
-      a[k] *= 1.0 - lambda * sgn(a[k] * (s.u[q][k] + 0.5 * dt * a[k]));
-      al[k] *= 1.0 - lambda * sgn(al[k] * (s.w[q][k] + 0.5 * dt * al[k]));
-    }
-    s.u[q] += dt * a;
-    s.w[q] += dt * al;
+    // a_k (1 - lambda sgn(a_k v_k)), sgn in integer arithmetic: no branch (the sign is
+    // unpredictable; a select of three constants compiled to branches was 35 % slower).
+    const double lambda = num_.damping;
+    const auto damp = [lambda](double a, double v) {
+      const double g = a * v;
+      return a * (1.0 - lambda * static_cast<double>((g > 0.0) - (g < 0.0)));
+    };
+    const Vec3& f = s.force[q];
+    const Vec3& t = s.torque[q];
+    Vec3& u = s.u[q];
+    Vec3& w = s.w[q];
+    const double m = s.m[q];
+    const double in = s.inertia[q];
+    const double a0 = f[0] / m, a1 = f[1] / m, a2 = f[2] / m;
+    const double b0 = t[0] / in, b1 = t[1] / in, b2 = t[2] / in;
+    const double h = 0.5 * dt;
+    const double da0 = damp(a0, u[0] + h * a0), da1 = damp(a1, u[1] + h * a1);
+    const double da2 = damp(a2, u[2] + h * a2);
+    const double db0 = damp(b0, w[0] + h * b0), db1 = damp(b1, w[1] + h * b1);
+    const double db2 = damp(b2, w[2] + h * b2);
+    u = Vec3(u[0] + dt * da0, u[1] + dt * da1, u[2] + dt * da2);
+    w = Vec3(w[0] + dt * db0, w[1] + dt * db1, w[2] + dt * db2);
   }
   Vec3& x = s.x[q];
   const Vec3& u = s.u[q];
   const double lx0 = (l(0, 0) * x[0] + l(0, 1) * x[1]) + l(0, 2) * x[2];
   const double lx1 = (l(1, 0) * x[0] + l(1, 1) * x[1]) + l(1, 2) * x[2];
   const double lx2 = l(2, 0) * x[0] + (l(2, 1) * x[1] + l(2, 2) * x[2]);
-  x[0] += dt * (u[0] + lx0);
-  x[1] += dt * (u[1] + lx1);
-  x[2] += dt * (u[2] + lx2);
+  x = Vec3(x[0] + dt * (u[0] + lx0), x[1] + dt * (u[1] + lx1), x[2] + dt * (u[2] + lx2));
 }
 
 void Simulation::compute_forces() {
@@ -334,8 +361,10 @@ double Simulation::critical_dt() const {
         const std::int64_t p = p0 >= 0 ? p0 : -p0 - 1;
         if (!c.active[p]) continue;
         any = true;
-        const CohFrictProps& pr = c.props[p];
-        const Vec3 n2 = c.hist[p].normal.cwiseAbs2();
+        const auto pu = static_cast<std::size_t>(p);
+        const CohFrictProps pr = c.props.get(pu);
+        const Vec3 n2 =
+            Vec3(c.hist.normal[0][pu], c.hist.normal[1][pu], c.hist.normal[2][pu]).cwiseAbs2();
         const double r = s.r[q];
         for (int k = 0; k < 3; ++k) {
           kt[k] += pr.ks + (pr.kn - pr.ks) * n2[k];

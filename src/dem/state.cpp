@@ -136,12 +136,13 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
     pair[2 * p + 1] = c.j[p];
     for (int a = 0; a < 3; ++a) image[3 * p + a] = c.k[p][a];
     active[p] = c.active[p];
-    for (std::size_t a = 0; a < props.size(); ++a)
-      props[a][p] = c.props[p].*kContactPropsFields[a].member;
-    normal[p] = c.hist[p].normal;
-    shear[p] = c.hist[p].shear;
-    roll[p] = c.hist[p].roll;
-    twist[p] = c.hist[p].twist;
+    const CohFrictProps pr = c.props.get(p);
+    for (std::size_t a = 0; a < props.size(); ++a) props[a][p] = pr.*kContactPropsFields[a].member;
+    const CohFrictHistory h = c.hist.get(p);
+    normal[p] = h.normal;
+    shear[p] = h.shear;
+    roll[p] = h.roll;
+    twist[p] = h.twist;
   }
   w.write(pre + "contacts/pair", pair);
   w.write(pre + "contacts/image", image);
@@ -222,9 +223,10 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
     c.k[p] = common::Vec3i(static_cast<int>(image[3 * p]), static_cast<int>(image[3 * p + 1]),
                            static_cast<int>(image[3 * p + 2]));
     c.active[p] = static_cast<std::uint8_t>(active[p]);
-    for (std::size_t a = 0; a < props.size(); ++a)
-      c.props[p].*kContactPropsFields[a].member = props[a][p];
-    c.hist[p] = CohFrictHistory{normal[p], shear[p], roll[p], twist[p]};
+    CohFrictProps pr;
+    for (std::size_t a = 0; a < props.size(); ++a) pr.*kContactPropsFields[a].member = props[a][p];
+    c.props.set(p, pr);
+    c.hist.set(p, CohFrictHistory{normal[p], shear[p], roll[p], twist[p]});
   }
   c.force = rd.vec3("contacts/force", np);
   c.torque_i = rd.vec3("contacts/torque_i", np);

@@ -158,7 +158,7 @@ std::string contacts_file(const Simulation& sim, const std::vector<Vec3>& xw) {
     const Vec3 d = s.x[j] + h * c.k[p].cast<double>() - s.x[i];
     ends[2 * k] = xw[i];
     ends[2 * k + 1] = xw[i] + d;
-    const CohFrictHistory& hist = c.hist[p];
+    const CohFrictHistory hist = c.hist.get(p);
     fn[k] = c.fn[p];
     fn_vec[k] = c.fn[p] * hist.normal;
     shear[k] = hist.shear;

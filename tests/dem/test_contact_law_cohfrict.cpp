@@ -144,15 +144,15 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
       if (!c.active[p]) continue;
       got[4] = r1 + r2 - c.branch[p].norm();
       got[5] = c.fn[p];
-      got[6] = c.hist[p].shear.y();
-      got[7] = c.hist[p].shear.norm();
-      got[8] = c.hist[p].roll.z();
-      got[9] = c.hist[p].roll.norm();
-      got[10] = c.hist[p].twist.norm();
-      got[11] = c.props[p].kn;
-      got[12] = c.props[p].ks;
-      got[13] = c.props[p].kr;
-      got[14] = c.props[p].roll_cap;
+      got[6] = c.hist.shear[1][p];
+      got[7] = dem::at(c.hist.shear, p).norm();
+      got[8] = c.hist.roll[2][p];
+      got[9] = dem::at(c.hist.roll, p).norm();
+      got[10] = dem::at(c.hist.twist, p).norm();
+      got[11] = c.props.kn[p];
+      got[12] = c.props.ks[p];
+      got[13] = c.props.kr[p];
+      got[14] = c.props.roll_cap[p];
     }
     const auto& mx = phase_max[r.phase];
     for (std::size_t k = 0; k < cols.size(); ++k) {
@@ -172,8 +172,10 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
 
 // apply_batch (the force loop's vectorised form) against apply(), bit for bit: random contacts of
 // four materials (reference: rolling capped, no twist; twisting on with caps; rolling uncapped;
-// no moments), new and old, sliding and sticking, carried over 40 steps of random motion. No
-// tolerance: every output and history double must have the same bits (signed zeros included).
+// no moments), new and old, sliding and sticking, carried over 40 steps of random motion, with
+// lanes out of overlap among them (their history untouched, their outputs +0), read from and
+// written to the pair arrays at an offset. No tolerance: every output and history double must
+// have the same bits (signed zeros included).
 TEST(ContactLaw, BatchIsBitIdenticalToApply) {
   std::mt19937_64 gen(12345);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -198,40 +200,64 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
   for (int with_twist = 0; with_twist < 2; ++with_twist) {
     SCOPED_TRACE(with_twist ? "twisting on" : "twisting off");
     const int n = dem::CohFrictBatch::kLanes - 3;  // a partial batch: remainder lanes too
-    std::vector<dem::CohFrictProps> props(n);
-    std::vector<dem::CohFrictHistory> hist(n);
+    const std::size_t first = 5;                   // lane q is pair first + q of the arrays
+    const auto pair = [&](int q) { return first + static_cast<std::size_t>(q); };
+    dem::CohFrictPropsArrays props;
+    dem::CohFrictHistoryArrays hist;
+    props.resize(first + static_cast<std::size_t>(n));
+    hist.resize(first + static_cast<std::size_t>(n));
     std::vector<double> r1(n), r2(n);
     for (int q = 0; q < n; ++q) {
       r1[q] = 1e-4 * (0.5 + u01(gen));
       r2[q] = 1e-4 * (0.5 + u01(gen));
       const int m = with_twist ? q % 4 : std::array<int, 3>{0, 2, 3}[q % 3];
-      props[q] = laws[static_cast<std::size_t>(m)].create(r1[q], r2[q]);
+      props.set(pair(q), laws[static_cast<std::size_t>(m)].create(r1[q], r2[q]));
     }
     const double dt = 8.5e-8;
     int slides = 0;
     int rolls_capped = 0;
+    int apart = 0;
     common::Mat3 l;
     for (int e = 0; e < 9; ++e) l(e) = sym(50.0);
     for (int step = 0; step < 40; ++step) {
       dem::CohFrictBatch b;
+      b.n = n;
+      b.first = first;
       std::vector<dem::ContactResult> want(n);
-      std::vector<dem::CohFrictHistory> want_hist = hist;
+      std::vector<dem::CohFrictHistory> want_hist(n);
+      for (int q = 0; q < n; ++q) want_hist[q] = hist.get(pair(q));
       for (int q = 0; q < n; ++q) {
-        // Overlap up to 1 % of the radii sum; velocities that make some contacts slide.
-        const double len = (r1[q] + r2[q]) * (1.0 - 0.01 * u01(gen));
+        // Overlap up to 1 % of the radii sum (a gap as large for lanes apart); velocities that
+        // make some contacts slide.
+        const bool touching = step == 0 || (q + 3 * step) % 7 != 0;
+        const double len = (r1[q] + r2[q]) * (1.0 + (touching ? -0.01 : 0.01) * u01(gen));
         const Vec3 d = vec(1.0).normalized() * len;
         const Vec3 du = vec(step % 3 == 0 ? 1.0 : 1e-3);
         const Vec3 w1 = vec(step % 4 == 0 ? 1e3 : 1.0);
         const Vec3 w2 = vec(1e2);
         const bool is_new = step == 0 || (q + step) % 17 == 0;
-        const dem::ContactKinematics kin{d, du + l * d, w1, w2, r1[q], r2[q]};
-        laws[0].apply(props[q], want_hist[q], kin, is_new, dt, want[q]);
-        b.push(d, d.squaredNorm(), du, w1, w2, r1[q], r2[q], props[q], hist[q], is_new);
+        if (touching) {
+          const dem::ContactKinematics kin{d, du + l * d, w1, w2, r1[q], r2[q]};
+          laws[0].apply(props.get(pair(q)), want_hist[q], kin, is_new, dt, want[q]);
+        } else {
+          want[q] = dem::ContactResult{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0.0};
+          ++apart;
+        }
+        for (int a = 0; a < 3; ++a) {
+          b.d[a][q] = d[a];
+          b.du[a][q] = du[a];
+          b.w1[a][q] = w1[a];
+          b.w2[a][q] = w2[a];
+        }
+        b.l2[q] = d.squaredNorm();
+        b.r1[q] = r1[q];
+        b.r2[q] = r2[q];
+        b.touching[q] = touching ? 1 : 0;
+        b.fresh[q] = touching && is_new ? 1 : 0;
       }
-      EXPECT_EQ(b.twist_on, with_twist == 1);
-      dem::CohFrictLaw::apply_batch(b, l, dt);
+      dem::CohFrictLaw::apply_batch(b, props, hist, l, dt);
       for (int q = 0; q < n; ++q) {
-        const dem::CohFrictHistory got = b.history(q);
+        const dem::CohFrictHistory got = hist.get(pair(q));
         EXPECT_TRUE(same3(want[q].force, b.force, q)) << "step " << step << " lane " << q;
         EXPECT_TRUE(same3(want[q].torque1, b.torque1, q)) << "step " << step << " lane " << q;
         EXPECT_TRUE(same3(want[q].torque2, b.torque2, q)) << "step " << step << " lane " << q;
@@ -242,16 +268,16 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
           EXPECT_TRUE(same(want_hist[q].roll[a], got.roll[a]));
           EXPECT_TRUE(same(want_hist[q].twist[a], got.twist[a]));
         }
-        hist[q] = got;
         const double fn = want[q].fn;
-        slides += got.shear.norm() >= 0.999999 * fn * props[q].tan_phi ? 1 : 0;
-        rolls_capped +=
-            props[q].roll_cap > 0 && got.roll.norm() >= 0.999999 * props[q].roll_cap * fn;
+        const double roll_cap = props.roll_cap[pair(q)];
+        slides += fn > 0.0 && got.shear.norm() >= 0.999999 * fn * props.tan_phi[pair(q)] ? 1 : 0;
+        rolls_capped += fn > 0.0 && roll_cap > 0 && got.roll.norm() >= 0.999999 * roll_cap * fn;
       }
     }
-    // Both sides of the selects were exercised: Coulomb sliding and the rolling cap.
+    // Both sides of the selects were exercised: Coulomb sliding, the rolling cap, lanes apart.
     EXPECT_GT(slides, 0);
     EXPECT_GT(rolls_capped, 0);
+    EXPECT_GT(apart, 0);
   }
 }
 

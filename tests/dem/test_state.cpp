@@ -104,8 +104,8 @@ TEST(State, ContactPropertiesAreNamedPerContactFields) {
   const auto roll = s.read_f64("contacts/roll_cap");
   ASSERT_EQ(kn.size(), c.size());
   for (std::size_t p = 0; p < c.size(); ++p) {
-    EXPECT_EQ(kn[p], c.props[p].kn);
-    EXPECT_EQ(roll[p], c.props[p].roll_cap);
+    EXPECT_EQ(kn[p], c.props.kn[p]);
+    EXPECT_EQ(roll[p], c.props.roll_cap[p]);
   }
 }
 
