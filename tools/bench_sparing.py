@@ -11,6 +11,9 @@ scene's reference quantity against the reference run:
            z of the first constraint) at the end and its largest deviation over the rows; point
            stresses: max over points and rows of max|sigma - sigma_ref| / p_ref (p_ref >= 1 kPa)
   element  (jobs/triaxial_mpmxdem_small.toml): q(eps_ax) of /means/q, max |q - q_ref| / max q_ref
+  collapse (jobs/column_collapse_a0.5.toml, to rest): the runout of the connected deposit
+           (L_f - L0) / L0 and the final height at the back wall H_f / H0
+           (tools/mpm_column_collapse.py), differences relative to the reference run's
 Prints a markdown table (medians over the repetitions) and writes it, with a CSV and a figure of
 DEM steps against error, to --out.
 
@@ -39,6 +42,8 @@ SCENES = {
                    [("spheres = 100\n", "spheres = 1000\n"),
                     ('end_time = "0.2 s"', 'end_time = "0.4 s"')], "column"),
     "element": ("jobs/triaxial_mpmxdem_small.toml", [], "element"),
+    # The column collapse a = 0.5 to rest (10 t*): the deposit idles for its last ~7 t*.
+    "collapse": ("jobs/column_collapse_a0.5.toml", [], "collapse"),
 }
 
 
@@ -73,7 +78,7 @@ def run(args, scene, tol, max_spared, rep):
     return out, float(m.group(1)), float(m.group(2))
 
 
-def measures(out):
+def measures(out, kind):
     with h5py.File(os.path.join(out, "results.h5")) as f:
         d = {
             "dem_steps": int(f["rve/dem_steps"][:].sum()),
@@ -82,10 +87,19 @@ def measures(out):
             "stress": f["points/stress"][:].copy(),
             "q": f["means/q"][:].copy(),
         }
+    if kind == "collapse":
+        sys.path.insert(0, os.path.join(ROOT, "tools"))
+        import mpm_column_collapse  # noqa: E402 (a tool beside this one)
+        summ = mpm_column_collapse.analyse(out)["summ"]
+        d["runout"] = summ["runout_connected_over_L0"]
+        d["height"] = summ["Hf_over_H0"]
     return d
 
 
 def errors(kind, m, ref):
+    if kind == "collapse":
+        return {"runout": abs(m["runout"] - ref["runout"]) / abs(ref["runout"]),
+                "height": abs(m["height"] - ref["height"]) / abs(ref["height"])}
     if kind == "column":
         r, r0 = m["reaction"][1:], ref["reaction"][1:]
         s, s0 = m["stress"], ref["stress"]
@@ -129,11 +143,11 @@ def main():
                 res[v].append((out, wall, rve))
                 print("%s tol %g max %d rep %d: wall %.2f s, RVE %.2f s" % (scene, v[0], v[1], rep,
                                                                             wall, rve), flush=True)
-        ref = measures(res[variants[0]][0][0])
+        ref = measures(res[variants[0]][0][0], kind)
         for v in variants:
-            m = measures(res[v][0][0])
+            m = measures(res[v][0][0], kind)
             for other in res[v][1:]:  # every repetition gives the same bits: same DEM steps
-                assert measures(other[0])["dem_steps"] == m["dem_steps"]
+                assert measures(other[0], kind)["dem_steps"] == m["dem_steps"]
             row = {"scene": scene, "tolerance": v[0], "max_spared_steps": v[1],
                    "dem_steps": m["dem_steps"], "fewer": ref["dem_steps"] / max(m["dem_steps"], 1),
                    "spared": m["spared"],
@@ -153,6 +167,8 @@ def main():
     for r in rows:
         if "q max" in r:
             err = "q: %.2f %%" % (100 * r["q max"])
+        elif "runout" in r:
+            err = "runout %.2f %%, H_f %.2f %%" % (100 * r["runout"], 100 * r["height"])
         else:
             err = "reaction %.1e (max %.1e); stress max %.2f %%, rms %.2f %% of p" % (
                 r["reaction end"], r["reaction max"], 100 * r["stress max"], 100 * r["stress rms"])
@@ -174,6 +190,7 @@ def main():
             if not rs:
                 continue
             series = [("q max", "%s: q(eps)")] if "q max" in rs[0] else [
+                ("runout", "%s: runout"), ("height", "%s: final height")] if "runout" in rs[0] else [
                 ("stress max", "%s: point stress, max"), ("reaction end", "%s: base reaction")]
             for key, label in series:
                 e = [max(100 * r[key], 1e-4) for r in rs]

@@ -22,6 +22,9 @@ import tomllib
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import band_fit  # noqa: E402 (the fit beside this tool)
+
 P_CONF_DEFAULT = 1e5
 
 
@@ -114,34 +117,6 @@ class Run:
         return hencky_dev(self.F[row])
 
 
-def band_fit(x, z, e, h, angles=(1.0, 179.5)):
-    """Radon-like orientation of the band: for each angle theta of the band from the +x axis,
-    the sum of the excess strain (e - median) of the points in each strip d = -x sin + z cos of
-    width h / 2; the band is the strip and angle with the largest sum. Returns theta [deg, from
-    +x, in (0, 180)], the strip offset d, and the equivalent thickness (integral of the mean
-    excess across the band over its peak) from the profile across the chosen line."""
-    ex = np.clip(e - np.median(e), 0.0, None)
-    best = (-1.0, 0.0, 0.0)
-    bw = h / 2.0
-    for th in np.arange(angles[0], angles[1], 0.5):
-        t = math.radians(th)
-        d = -x * math.sin(t) + z * math.cos(t)
-        k = np.floor(d / bw).astype(int)
-        sums = np.bincount(k - k.min(), weights=ex)
-        j = int(np.argmax(sums))
-        if sums[j] > best[0]:
-            best = (sums[j], th, (j + k.min() + 0.5) * bw)
-    _, th, d0 = best
-    t = math.radians(th)
-    d = -x * math.sin(t) + z * math.cos(t) - d0
-    # Profile across the band: mean excess strain per strip of width h / 2 within +/- 4 h.
-    edges = np.arange(-4 * h, 4 * h + 1e-12, bw)
-    k = np.digitize(d, edges)
-    prof = np.array([ex[k == i].mean() if np.any(k == i) else 0.0 for i in range(1, len(edges))])
-    width = prof.sum() * bw / prof.max() if prof.max() > 0 else float("nan")
-    return th, d0, width
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="+")
@@ -186,7 +161,7 @@ def main():
     print()
     print("| run | cells | RVEs | first peak ratio (eps_a) | ratio at 10 % | pre-peak error vs DEM, max (RMS) "
           "| platen reaction vs int sigma_zz dV (RMS) | band angle | band thickness | thickness / h "
-          "| conjugate line: angle, thickness | band measured at eps_a |")
+          "| conjugate X: angle, other band's thickness, balance | band measured at eps_a |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in runs:
         # The run's first peak: its running maximum before the ratio first falls 5 % below it
@@ -209,13 +184,15 @@ def main():
         # (the rough platens' dead zones and corners) are left out of the fit.
         top = r.H * math.exp(-r.eps[r.row])
         inner = (z > r.h) & (z < top - r.h)
-        th, d0, width = band_fit(x[inner], z[inner], e[inner], r.h)
+        th, d0, _ = band_fit.single(x[inner], z[inner], e[inner], r.h)
+        width = band_fit.thickness(x[inner], z[inner], e[inner], r.h, th, d0)
         r.band = (th, d0, width, e)
-        # The conjugate direction (an X of two bands, as rough platens make): the best line
-        # of the other sense of inclination.
-        rng = (90.5, 179.5) if th < 90 else (1.0, 90.0)
-        th2, _, width2 = band_fit(x[inner], z[inner], e[inner], r.h, rng)
-        r.conj = (min(th2, 180 - th2), width2)
+        # The conjugate pair (an X of two mirror bands, as rough platens make).
+        c = band_fit.conjugate(x[inner], z[inner], e[inner], r.h)
+        th2 = c["angle"] if th >= 90 else 180.0 - c["angle"]  # the other sense than `th`
+        d2 = c["d_rising"] if th >= 90 else c["d_falling"]
+        width2 = band_fit.thickness(x[inner], z[inner], e[inner], r.h, th2, d2)
+        r.conj = (c["angle"], width2, c["balance"])
         t = math.radians(th)
         dist = np.abs(-x * math.sin(t) + z * math.cos(t) - d0)
         r.in_band = inner & (dist <= max(width, r.h) / 2.0)
@@ -223,7 +200,7 @@ def main():
         incl = min(th, 180.0 - th)
         print(f"| {r.label} | {r.cells[0]} x {r.cells[1]} | {len(x)} | {r.ratio[i]:.2f} "
               f"({100 * r.eps[i]:.2f} %) | {r10:.2f} | {err} | {100 * bal:.1f} % | {incl:.1f} deg | "
-              f"{1e3 * width:.1f} mm | {width / r.h:.2f} | {r.conj[0]:.1f} deg, {1e3 * r.conj[1]:.1f} mm | {100 * r.eps[r.row]:.2f} % |")
+              f"{1e3 * width:.1f} mm | {width / r.h:.2f} | {r.conj[0]:.1f} deg, {1e3 * r.conj[1]:.1f} mm, {r.conj[2]:.2f} | {100 * r.eps[r.row]:.2f} % |")
     print()
     print()
     print("| run | RVEs with p < 1 kPa at the end | e in / out of the band | Z in / out | "
