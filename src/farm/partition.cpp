@@ -5,9 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "common/errors.hpp"
 
@@ -154,6 +159,93 @@ void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, in
     load[static_cast<std::size_t>(h)] -= cost[best];
     load[static_cast<std::size_t>(l)] += cost[best];
   }
+}
+
+std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
+                                       const std::vector<double>& cost, int nparts) {
+  const std::size_t n = owner.size();
+  MPMXDEM_CHECK(cost.size() == n && graph.size() == n,
+                "one cost and one owner per RVE of the graph");
+  MPMXDEM_CHECK(nparts >= 1, "nparts >= 1");
+  for (std::size_t k = 0; k < n; ++k) {
+    MPMXDEM_CHECK(owner[k] >= 0 && owner[k] < nparts, "owners must lie in [0, nparts)");
+    MPMXDEM_CHECK(std::isfinite(cost[k]) && cost[k] >= 0.0, "RVE costs must be finite and >= 0");
+  }
+  if (nparts == 1 || n == 0) return owner;
+  const auto np = static_cast<std::size_t>(nparts);
+  std::vector<double> load(np, 0.0);
+  std::vector<std::vector<std::size_t>> members(np);
+  std::vector<std::size_t> slot(n);  // position of RVE k in members[owner[k]]
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto o = static_cast<std::size_t>(owner[k]);
+    load[o] += cost[k];
+    slot[k] = members[o].size();
+    members[o].push_back(k);
+  }
+  // Parts ordered by (load, label): the lightest is the first, the heaviest the lowest label at
+  // the last load.
+  std::set<std::pair<double, int>> by_load;
+  for (std::size_t p = 0; p < np; ++p) by_load.emplace(load[p], static_cast<int>(p));
+  // A move's rank (see header): global max after it, not-a-neighbour, pair max, RVE, part.
+  using Key = std::tuple<double, int, double, std::size_t, int>;
+  std::vector<int> near;
+  // Every move lowers the sum of squared loads; the cap only guards against the unforeseen.
+  for (std::size_t move = 0; move < 4 * n + np; ++move) {
+    const double top = by_load.rbegin()->first;
+    const int h = by_load.lower_bound({top, std::numeric_limits<int>::min()})->second;
+    const int lightest = by_load.begin()->second;
+    // The largest load of the other parts (h excluded): what the global max falls to at best.
+    const auto last = std::prev(by_load.end());
+    const double second = last->second != h         ? last->first
+                          : last == by_load.begin() ? 0.0
+                                                    : std::prev(last)->first;
+    bool found = false;
+    Key best{};
+    for (const std::size_t k : members[static_cast<std::size_t>(h)]) {
+      const double c = cost[k];
+      if (!(c > 0.0)) continue;
+      near.clear();
+      for (std::int64_t e = graph.xadj[k]; e < graph.xadj[k + 1]; ++e) {
+        const int o = owner[static_cast<std::size_t>(graph.adjncy[static_cast<std::size_t>(e)])];
+        if (o != h) near.push_back(o);
+      }
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      const auto consider = [&](int d, bool neighbour) {
+        const double to = load[static_cast<std::size_t>(d)] + c;
+        if (!(to < top)) return;  // the pair's max must fall
+        const double pair = std::max(top - c, to);
+        const Key key{std::max(pair, second), neighbour ? 0 : 1, pair, k, d};
+        if (!found || key < best) {
+          best = key;
+          found = true;
+        }
+      };
+      for (const int d : near) consider(d, true);
+      if (lightest != h && !std::binary_search(near.begin(), near.end(), lightest))
+        consider(lightest, false);
+    }
+    if (!found) break;
+    const std::size_t k = std::get<3>(best);
+    const int d = std::get<4>(best);
+    const auto hu = static_cast<std::size_t>(h);
+    const auto du = static_cast<std::size_t>(d);
+    by_load.erase({load[hu], h});
+    by_load.erase({load[du], d});
+    load[hu] -= cost[k];
+    load[du] += cost[k];
+    by_load.emplace(load[hu], h);
+    by_load.emplace(load[du], d);
+    // Swap-remove k from its part's members (their order does not matter: the key decides).
+    std::vector<std::size_t>& from = members[hu];
+    from[slot[k]] = from.back();
+    slot[from.back()] = slot[k];
+    from.pop_back();
+    slot[k] = members[du].size();
+    members[du].push_back(k);
+    owner[k] = d;
+  }
+  return owner;
 }
 
 std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& proposal, int nparts) {
