@@ -161,8 +161,9 @@ void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, in
   }
 }
 
-std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
-                                       const std::vector<double>& cost, int nparts) {
+std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::vector<int>& start,
+                                             const std::vector<double>& cost, int nparts) {
+  std::vector<int> owner = start;
   const std::size_t n = owner.size();
   MPMXDEM_CHECK(cost.size() == n && graph.size() == n,
                 "one cost and one owner per RVE of the graph");
@@ -171,9 +172,11 @@ std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> o
     MPMXDEM_CHECK(owner[k] >= 0 && owner[k] < nparts, "owners must lie in [0, nparts)");
     MPMXDEM_CHECK(std::isfinite(cost[k]) && cost[k] >= 0.0, "RVE costs must be finite and >= 0");
   }
-  if (nparts == 1 || n == 0) return owner;
+  std::vector<DescentStep> steps;
+  if (nparts == 1 || n == 0) return steps;
   const auto np = static_cast<std::size_t>(nparts);
   std::vector<double> load(np, 0.0);
+  std::int64_t moved = 0;
   std::vector<std::vector<std::size_t>> members(np);
   std::vector<std::size_t> slot(n);  // position of RVE k in members[owner[k]]
   for (std::size_t k = 0; k < n; ++k) {
@@ -188,7 +191,10 @@ std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> o
   for (std::size_t p = 0; p < np; ++p) by_load.emplace(load[p], static_cast<int>(p));
   // A move's rank (see header): global max after it, not-a-neighbour, pair max, RVE, part.
   using Key = std::tuple<double, int, double, std::size_t, int>;
+  // A swap's rank: global max after it, pair max, RVE of the heaviest part, RVE of the lightest.
+  using SwapKey = std::tuple<double, double, std::size_t, std::size_t>;
   std::vector<int> near;
+  std::vector<std::pair<double, std::size_t>> by_cost;
   // Every move lowers the sum of squared loads; the cap only guards against the unforeseen.
   for (std::size_t move = 0; move < 4 * n + np; ++move) {
     const double top = by_load.rbegin()->first;
@@ -225,27 +231,95 @@ std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> o
       if (lightest != h && !std::binary_search(near.begin(), near.end(), lightest))
         consider(lightest, false);
     }
-    if (!found) break;
-    const std::size_t k = std::get<3>(best);
-    const int d = std::get<4>(best);
     const auto hu = static_cast<std::size_t>(h);
-    const auto du = static_cast<std::size_t>(d);
-    by_load.erase({load[hu], h});
-    by_load.erase({load[du], d});
-    load[hu] -= cost[k];
-    load[du] += cost[k];
-    by_load.emplace(load[hu], h);
-    by_load.emplace(load[du], d);
-    // Swap-remove k from its part's members (their order does not matter: the key decides).
-    std::vector<std::size_t>& from = members[hu];
-    from[slot[k]] = from.back();
-    slot[from.back()] = slot[k];
-    from.pop_back();
-    slot[k] = members[du].size();
-    members[du].push_back(k);
-    owner[k] = d;
+    const auto relocate = [&](std::size_t k, int to) {
+      // Swap-remove k from its part's members (their order does not matter: the keys decide).
+      std::vector<std::size_t>& from = members[static_cast<std::size_t>(owner[k])];
+      from[slot[k]] = from.back();
+      slot[from.back()] = slot[k];
+      from.pop_back();
+      slot[k] = members[static_cast<std::size_t>(to)].size();
+      members[static_cast<std::size_t>(to)].push_back(k);
+      moved += (owner[k] == start[k] ? 1 : 0) - (to == start[k] ? 1 : 0);
+      owner[k] = to;
+      steps.push_back({k, to, true, by_load.rbegin()->first, moved});
+    };
+    const auto shift = [&](int d, double delta) {  // delta of load from h to d
+      const auto du = static_cast<std::size_t>(d);
+      by_load.erase({load[hu], h});
+      by_load.erase({load[du], d});
+      load[hu] -= delta;
+      load[du] += delta;
+      by_load.emplace(load[hu], h);
+      by_load.emplace(load[du], d);
+    };
+    if (found) {
+      const std::size_t k = std::get<3>(best);
+      const int d = std::get<4>(best);
+      shift(d, cost[k]);
+      relocate(k, d);
+      continue;
+    }
+    // No RVE of h fits anywhere: swap one of h with a cheaper one of the lightest part, the pair
+    // whose cost difference delta is nearest to half their gap (delta in (0, gap) lowers the
+    // pair's max). For each RVE of h the two costs nearest to the ideal, found by bisection in
+    // the lightest part's sorted costs, are the only candidates (the pair max is convex in delta).
+    if (lightest == h) break;
+    const auto lu = static_cast<std::size_t>(lightest);
+    const double gap = top - load[lu];
+    by_cost.clear();
+    for (const std::size_t b : members[lu]) by_cost.emplace_back(cost[b], b);
+    std::sort(by_cost.begin(), by_cost.end());
+    bool swap_found = false;
+    SwapKey best_swap{};
+    for (const std::size_t a : members[hu]) {
+      const auto at = std::lower_bound(by_cost.begin(), by_cost.end(),
+                                       std::make_pair(cost[a] - 0.5 * gap, std::size_t{0}));
+      for (auto it = at == by_cost.begin() ? at : std::prev(at); it != by_cost.end() && it <= at;
+           ++it) {
+        const double delta = cost[a] - it->first;
+        if (!(delta > 0.0 && delta < gap)) continue;
+        const double pair = std::max(top - delta, load[lu] + delta);
+        const SwapKey key{std::max(pair, second), pair, a, it->second};
+        if (!swap_found || key < best_swap) {
+          best_swap = key;
+          swap_found = true;
+        }
+      }
+    }
+    if (!swap_found) break;
+    const std::size_t a = std::get<2>(best_swap);
+    const std::size_t b = std::get<3>(best_swap);
+    shift(lightest, cost[a] - cost[b]);
+    relocate(a, lightest);
+    steps.back().ends_a_move = false;
+    relocate(b, h);
   }
+  return steps;
+}
+
+std::vector<int> apply_descent(std::vector<int> owner, const std::vector<DescentStep>& steps,
+                               std::size_t count) {
+  MPMXDEM_CHECK(count <= steps.size(), "at most the steps of the descent");
+  for (std::size_t s = 0; s < count; ++s) owner[steps[s].rve] = steps[s].to;
   return owner;
+}
+
+std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
+                                       const std::vector<double>& cost, int nparts, double slack) {
+  MPMXDEM_CHECK(slack >= 0.0, "slack >= 0");
+  const std::vector<DescentStep> steps = incremental_descent(graph, owner, cost, nparts);
+  if (steps.empty()) return owner;
+  const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
+  const double target = steps.back().max_load + slack * mean;
+  std::size_t count = steps.size();
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    if (steps[s].ends_a_move && steps[s].max_load <= target) {
+      count = s + 1;
+      break;
+    }
+  }
+  return apply_descent(std::move(owner), steps, count);
 }
 
 std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& proposal, int nparts) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 
 #include "common/errors.hpp"
 
@@ -57,10 +58,33 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
     p.move_s = static_cast<double>(p.moves) * pay.move_s_per_rve;
     p.beats_margin = plan.imbalance_now - p.imbalance > margin && p.moves > 0;
   };
+  const bool known = pay.step_s > 0.0 && pay.move_s_per_rve > 0.0;
   auto t0 = Clock::now();
-  std::vector<int> incremental = partition_incremental(graph, owner, cost, nparts);
-  for (std::size_t k = 0; k < owner.size(); ++k)
-    plan.incremental.moves += incremental[k] != owner[k] ? 1 : 0;
+  const std::vector<DescentStep> steps = incremental_descent(graph, owner, cost, nparts);
+  // Where to stop the descent: the prefix of the best net payback among those that beat the
+  // margin when the pay is known, else the shortest within kDescentSlack of where it ends.
+  const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
+  std::size_t count = 0;
+  if (known && mean > 0.0) {
+    double best_net = 0.0;
+    for (std::size_t s = 0; s < steps.size(); ++s) {
+      const double imb = steps[s].max_load / mean;
+      if (!steps[s].ends_a_move || !(plan.imbalance_now - imb > margin)) continue;
+      const double net = pay.step_s * (1.0 - imb / plan.imbalance_now) * pay.horizon_steps -
+                         static_cast<double>(steps[s].moved) * pay.move_s_per_rve;
+      if (count == 0 || net > best_net) {
+        best_net = net;
+        count = s + 1;
+      }
+    }
+  }
+  if (count == 0 && !steps.empty()) {
+    const double target = steps.back().max_load + kDescentSlack * mean;
+    for (std::size_t s = 0; s < steps.size() && count == 0; ++s)
+      if (steps[s].ends_a_move && steps[s].max_load <= target) count = s + 1;
+  }
+  std::vector<int> incremental = apply_descent(owner, steps, count);
+  plan.incremental.moves = count > 0 ? steps[count - 1].moved : 0;
   plan.incremental.time_s = seconds(t0);
   judge(plan.incremental, incremental);
   t0 = Clock::now();
@@ -72,7 +96,6 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
 
   const RebalanceProposal& inc = plan.incremental;
   const RebalanceProposal& met = plan.metis;
-  const bool known = pay.step_s > 0.0 && pay.move_s_per_rve > 0.0;
   if (inc.beats_margin && met.beats_margin) {
     bool take_metis = false;
     if (known) {

@@ -129,7 +129,8 @@ struct Perturbed {
 
 // Random owners (some parts own nothing, sometimes more parts than RVEs), random costs with
 // zeros, random graphs: the descent never raises the maximum load, moves no zero-cost RVE, gives
-// the same answer twice, and ends where no RVE of the heaviest part fits on the lightest one.
+// the same answer twice, and ends where no move or swap between the heaviest and the lightest
+// part would lower the larger of their loads; its shortest prefix to that load moves no more.
 TEST(Partition, IncrementalNeverRaisesTheMaxLoadAndStopsAtALocalOptimum) {
   std::mt19937 gen(11);
   for (int trial = 0; trial < 300; ++trial) {
@@ -143,41 +144,74 @@ TEST(Partition, IncrementalNeverRaisesTheMaxLoadAndStopsAtALocalOptimum) {
       cost[static_cast<std::size_t>(k)] = gen() % 7 == 0 ? 0.0 : 0.1 + 0.001 * (gen() % 3000);
     }
     const farm::RveGraph g = farm::cell_graph(grid4(), points(n));
-    const std::vector<int> got = farm::partition_incremental(g, owner, cost, parts);
+    const std::vector<farm::DescentStep> steps = farm::incremental_descent(g, owner, cost, parts);
+    const std::vector<int> got = farm::apply_descent(owner, steps, steps.size());
     ASSERT_EQ(got.size(), owner.size());
     for (int k = 0; k < n; ++k) {
       const auto ku = static_cast<std::size_t>(k);
       ASSERT_GE(got[ku], 0);
       ASSERT_LT(got[ku], parts);
-      if (cost[ku] == 0.0) ASSERT_EQ(got[ku], owner[ku]) << "trial " << trial;
+      if (cost[ku] == 0.0) {
+        ASSERT_EQ(got[ku], owner[ku]) << "trial " << trial;
+      }
     }
     const double before = max_load(owner, cost, parts);
     const double after = max_load(got, cost, parts);
-    ASSERT_LE(after, before * (1.0 + 1e-12)) << "trial " << trial;
-    ASSERT_EQ(farm::partition_incremental(g, owner, cost, parts), got) << "trial " << trial;
-    // Local optimum: every RVE of a heaviest part would lift the lightest part to the maximum.
+    const double tol = 1e-9 * std::max(after, 1.0);
+    ASSERT_LE(after, before + tol) << "trial " << trial;
+    if (!steps.empty()) {
+      ASSERT_NEAR(steps.back().max_load, after, tol) << "trial " << trial;
+      ASSERT_EQ(steps.back().moved, moves(owner, got)) << "trial " << trial;
+    }
+    // The shortest prefix to the same maximum load (slack 0), and the same answer twice.
+    const std::vector<int> shortest = farm::partition_incremental(g, owner, cost, parts);
+    ASSERT_NEAR(max_load(shortest, cost, parts), after, tol) << "trial " << trial;
+    ASSERT_LE(moves(owner, shortest), moves(owner, got)) << "trial " << trial;
+    ASSERT_EQ(farm::partition_incremental(g, owner, cost, parts), shortest) << "trial " << trial;
+    ASSERT_EQ(farm::incremental_descent(g, owner, cost, parts).size(), steps.size());
+    // Local optimum: no RVE of the heaviest part fits on the lightest part, and no swap with a
+    // cheaper RVE there lowers the larger of the two loads (for some pair of parts at the
+    // extremes: ties are broken on loads summed in another order).
+    if (parts == 1) continue;
     const std::vector<double> load = farm::part_loads(got, cost, parts);
     const double lightest = *std::min_element(load.begin(), load.end());
-    for (int k = 0; k < n; ++k) {
-      const auto ku = static_cast<std::size_t>(k);
-      if (parts > 1 && cost[ku] > 0.0 && load[static_cast<std::size_t>(got[ku])] == after)
-        ASSERT_GE(lightest + cost[ku], after * (1.0 - 1e-12)) << "trial " << trial;
+    const auto stuck = [&](int h, int l) {
+      const double gap = after - lightest;
+      for (std::size_t a = 0; a < got.size(); ++a) {
+        if (got[a] != h || cost[a] == 0.0) continue;
+        if (cost[a] < gap - tol) return false;
+        for (std::size_t b = 0; b < got.size(); ++b) {
+          const double delta = cost[a] - cost[b];
+          if (got[b] == l && delta > tol && delta < gap - tol) return false;
+        }
+      }
+      return true;
+    };
+    bool some_stuck = false;
+    for (int h = 0; h < parts; ++h) {
+      for (int l = 0; l < parts; ++l) {
+        if (load[static_cast<std::size_t>(h)] >= after - tol &&
+            load[static_cast<std::size_t>(l)] <= lightest + tol && h != l)
+          some_stuck = some_stuck || stuck(h, l);
+      }
     }
+    ASSERT_TRUE(some_stuck) << "trial " << trial;
   }
 }
 
 // A balanced partition with one part 10 % overloaded: METIS + renaming moves most RVEs, the
-// incremental repartition a handful, to an imbalance within 0.005 of METIS's.
+// incremental repartition (stopped within 0.005 of its end, as plan_rebalance does) a few per
+// cent, to an imbalance within 0.005 of METIS's.
 TEST(Partition, IncrementalMovesFewRvesAfterASmallPerturbation) {
   const Perturbed p;
   const double before = imbalance_of(p.owner, p.cost, 32);
-  const std::vector<int> inc = farm::partition_incremental(p.g, p.owner, p.cost, 32);
+  const std::vector<int> inc = farm::partition_incremental(p.g, p.owner, p.cost, 32, 0.005);
   std::vector<int> metis = farm::partition_metis(p.g, p.cost, 32);
   const std::int64_t metis_moves = farm::keep_owners(p.owner, metis, 32);
   const double imb_inc = imbalance_of(inc, p.cost, 32);
   const double imb_metis = imbalance_of(metis, p.cost, 32);
   EXPECT_GT(before, 1.08);
-  EXPECT_LE(moves(p.owner, inc), 10);
+  EXPECT_LE(moves(p.owner, inc), 50);  // 5 % of the RVEs (about 3 carry the excess)
   EXPECT_LT(10 * moves(p.owner, inc), metis_moves);
   EXPECT_LE(imb_inc, imb_metis + 0.005) << "METIS " << imb_metis;
 }
