@@ -162,7 +162,8 @@ void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, in
 }
 
 std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::vector<int>& start,
-                                             const std::vector<double>& cost, int nparts) {
+                                             const std::vector<double>& cost, int nparts,
+                                             double stop_imbalance) {
   std::vector<int> owner = start;
   const std::size_t n = owner.size();
   MPMXDEM_CHECK(cost.size() == n && graph.size() == n,
@@ -185,6 +186,8 @@ std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::v
     slot[k] = members[o].size();
     members[o].push_back(k);
   }
+  const double stop_load =
+      stop_imbalance * std::accumulate(load.begin(), load.end(), 0.0) / static_cast<double>(np);
   // Parts ordered by (load, label): the lightest is the first, the heaviest the lowest label at
   // the last load.
   std::set<std::pair<double, int>> by_load;
@@ -198,6 +201,7 @@ std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::v
   // Every move lowers the sum of squared loads; the cap only guards against the unforeseen.
   for (std::size_t move = 0; move < 4 * n + np; ++move) {
     const double top = by_load.rbegin()->first;
+    if (top <= stop_load) break;
     const int h = by_load.lower_bound({top, std::numeric_limits<int>::min()})->second;
     const int lightest = by_load.begin()->second;
     // The largest load of the other parts (h excluded): what the global max falls to at best.
@@ -308,7 +312,8 @@ std::vector<int> apply_descent(std::vector<int> owner, const std::vector<Descent
 std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
                                        const std::vector<double>& cost, int nparts, double slack) {
   MPMXDEM_CHECK(slack >= 0.0, "slack >= 0");
-  const std::vector<DescentStep> steps = incremental_descent(graph, owner, cost, nparts);
+  const std::vector<DescentStep> steps =
+      incremental_descent(graph, owner, cost, nparts, 1.0 + slack);
   if (steps.empty()) return owner;
   const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
   const double target = steps.back().max_load + slack * mean;

@@ -51,21 +51,23 @@ struct DescentStep {
 /// lightest, (3) the larger of the two changed loads, (4) the lowest RVE index, (5) the lowest
 /// part. When no RVE of the heaviest part fits anywhere (few RVEs per part), it swaps one with a
 /// cheaper RVE of the lightest part, the pair whose cost difference best evens the two loads.
-/// Stops when neither lowers the pair's max. Returns the steps in order. Deterministic (no
+/// Stops when neither lowers the pair's max, or once the imbalance (max/mean load) is at most
+/// `stop_imbalance` (1: only at the local optimum). Returns the steps in order. Deterministic (no
 /// threads; the order of the members does not matter); the maximum load never increases (every
 /// move or swap lowers the sum of squared loads, so the descent ends); RVEs of zero cost stay.
 /// @pre owner.size() == cost.size() == graph.size(), owners in [0, nparts), costs finite and >= 0
 [[nodiscard]] std::vector<DescentStep> incremental_descent(const RveGraph& graph,
                                                            const std::vector<int>& owner,
                                                            const std::vector<double>& cost,
-                                                           int nparts);
+                                                           int nparts, double stop_imbalance = 1.0);
 /// `owner` after the first `count` steps of a descent started from it.
 [[nodiscard]] std::vector<int> apply_descent(std::vector<int> owner,
                                              const std::vector<DescentStep>& steps,
                                              std::size_t count);
-/// The shortest prefix of incremental_descent whose imbalance (max/mean load) is within `slack`
-/// of where the whole descent ends: its last steps (swaps of nearly equal RVEs) gain little per
-/// RVE moved. slack = 0: the shortest prefix that reaches the final maximum load.
+/// The shortest prefix of incremental_descent (stopped at imbalance 1 + slack) whose imbalance
+/// (max/mean load) is within `slack` of where the descent ends: its last steps (swaps of nearly
+/// equal RVEs) gain little per RVE moved. slack = 0: the shortest prefix that reaches the final
+/// maximum load of the whole descent.
 /// @pre as incremental_descent; slack >= 0
 [[nodiscard]] std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
                                                      const std::vector<double>& cost, int nparts,

@@ -60,7 +60,8 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   };
   const bool known = pay.step_s > 0.0 && pay.move_s_per_rve > 0.0;
   auto t0 = Clock::now();
-  const std::vector<DescentStep> steps = incremental_descent(graph, owner, cost, nparts);
+  const std::vector<DescentStep> steps =
+      incremental_descent(graph, owner, cost, nparts, 1.0 + kDescentSlack);
   // Where to stop the descent: the prefix of the best net payback among those that beat the
   // margin when the pay is known, else the shortest within kDescentSlack of where it ends.
   const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;

@@ -78,21 +78,22 @@ struct RebalancePlan {
   RebalanceProposal metis;                         ///< partition_metis + keep_owners
 };
 
-/// Where plan_rebalance stops the incremental descent when the pay is unknown: at its first
-/// state within this much imbalance of where it ends (the smallest noise margin, 0.01 / 2). Its
-/// last steps, swaps of nearly equal RVEs, gain less than that for many RVEs moved.
+/// How far plan_rebalance runs the incremental descent: to imbalance 1 + kDescentSlack at most,
+/// and when the pay is unknown it stops at the first state within kDescentSlack of where the
+/// descent ended (the smallest noise margin, 0.01 / 2): the last steps, swaps of nearly equal
+/// RVEs, gain less than that for many RVEs moved.
 inline constexpr double kDescentSlack = 0.005;
 
 /// Proposes two partitions of `cost` once the current imbalance exceeds `threshold`: the
-/// incremental repartition from `owner` (incremental_descent, stopped where the net payback is
-/// best among its states that beat the margin when `pay` is known, else within kDescentSlack of
-/// its end) and a fresh METIS partition renamed after `owner`. A
-/// proposal qualifies when it lowers the imbalance by more than the margin
-/// max(threshold - 1, 0.01) / 2 (a smaller gain is the noise a threshold is set against) and moves
-/// something. Where `pay` is known (step_s and move_s_per_rve > 0) the qualifying proposal with
-/// the larger net payback (saving_s - move_s) is chosen (ties: fewer moves, then incremental) and
-/// adopted only if its net is positive; where it is not, the one that moves fewer RVEs is chosen
-/// (ties: incremental) unless the other's imbalance is lower by more than the margin, and adopted.
+/// incremental repartition from `owner` (incremental_descent to 1 + kDescentSlack, then cut
+/// where the net payback is best among its states that beat the margin when `pay` is known, else
+/// at its first state within kDescentSlack of its end) and a fresh METIS partition renamed after
+/// `owner`. A proposal qualifies when it lowers the imbalance by more than the margin max(threshold
+/// - 1, 0.01) / 2 (a smaller gain is the noise a threshold is set against) and moves something.
+/// Where `pay` is known (step_s and move_s_per_rve > 0) the qualifying proposal with the larger net
+/// payback (saving_s - move_s) is chosen (ties: fewer moves, then incremental) and adopted only if
+/// its net is positive; where it is not, the one that moves fewer RVEs is chosen (ties:
+/// incremental) unless the other's imbalance is lower by more than the margin, and adopted.
 /// threshold <= 1 only keeps the 0.005 margin.
 /// @pre cost.size() == owner.size() == graph.size()
 [[nodiscard]] RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,

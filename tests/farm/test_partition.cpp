@@ -169,6 +169,22 @@ TEST(Partition, IncrementalNeverRaisesTheMaxLoadAndStopsAtALocalOptimum) {
     ASSERT_LE(moves(owner, shortest), moves(owner, got)) << "trial " << trial;
     ASSERT_EQ(farm::partition_incremental(g, owner, cost, parts), shortest) << "trial " << trial;
     ASSERT_EQ(farm::incremental_descent(g, owner, cost, parts).size(), steps.size());
+    // Stopped at imbalance 1.02: a prefix of the whole descent, cut at its first state there.
+    const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / parts;
+    const std::vector<farm::DescentStep> cut =
+        farm::incremental_descent(g, owner, cost, parts, 1.02);
+    ASSERT_LE(cut.size(), steps.size());
+    for (std::size_t s = 0; s < cut.size(); ++s) {
+      ASSERT_EQ(cut[s].rve, steps[s].rve);
+      ASSERT_EQ(cut[s].to, steps[s].to);
+      if (s + 1 < cut.size() && cut[s].ends_a_move) {
+        ASSERT_GT(cut[s].max_load, 1.02 * mean);
+      }
+    }
+    if (cut.size() < steps.size()) {
+      const double stopped = cut.empty() ? before : cut.back().max_load;
+      ASSERT_LE(stopped, 1.02 * mean * (1.0 + 1e-12)) << "trial " << trial;
+    }
     // Local optimum: no RVE of the heaviest part fits on the lightest part, and no swap with a
     // cheaper RVE there lowers the larger of the two loads (for some pair of parts at the
     // extremes: ties are broken on loads summed in another order).
