@@ -309,22 +309,22 @@ std::vector<int> apply_descent(std::vector<int> owner, const std::vector<Descent
   return owner;
 }
 
+std::size_t descent_cut(const std::vector<DescentStep>& steps, double mean_load, double slack) {
+  if (steps.empty()) return 0;
+  const double target = steps.back().max_load + 0.5 * slack * mean_load;
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    if (steps[s].ends_a_move && steps[s].max_load <= target) return s + 1;
+  }
+  return steps.size();
+}
+
 std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
                                        const std::vector<double>& cost, int nparts, double slack) {
   MPMXDEM_CHECK(slack >= 0.0, "slack >= 0");
   const std::vector<DescentStep> steps =
-      incremental_descent(graph, owner, cost, nparts, 1.0 + slack);
-  if (steps.empty()) return owner;
+      incremental_descent(graph, owner, cost, nparts, 1.0 + 0.5 * slack);
   const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
-  const double target = steps.back().max_load + slack * mean;
-  std::size_t count = steps.size();
-  for (std::size_t s = 0; s < steps.size(); ++s) {
-    if (steps[s].ends_a_move && steps[s].max_load <= target) {
-      count = s + 1;
-      break;
-    }
-  }
-  return apply_descent(std::move(owner), steps, count);
+  return apply_descent(std::move(owner), steps, descent_cut(steps, mean, slack));
 }
 
 std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& proposal, int nparts) {

@@ -64,10 +64,15 @@ struct DescentStep {
 [[nodiscard]] std::vector<int> apply_descent(std::vector<int> owner,
                                              const std::vector<DescentStep>& steps,
                                              std::size_t count);
-/// The shortest prefix of incremental_descent (stopped at imbalance 1 + slack) whose imbalance
-/// (max/mean load) is within `slack` of where the descent ends: its last steps (swaps of nearly
-/// equal RVEs) gain little per RVE moved. slack = 0: the shortest prefix that reaches the final
-/// maximum load of the whole descent.
+/// How many leading steps of a descent to keep: up to its first complete state whose maximum
+/// load is within slack / 2 x `mean_load` of where it ended (0 if it made none). The last steps
+/// of a descent, swaps of nearly equal RVEs, gain little per RVE moved.
+[[nodiscard]] std::size_t descent_cut(const std::vector<DescentStep>& steps, double mean_load,
+                                      double slack);
+/// The incremental repartition within `slack` of a perfect balance where the descent can get
+/// there: incremental_descent stopped at imbalance 1 + slack / 2, then cut by descent_cut (within
+/// slack / 2 of its end). slack = 0: the shortest prefix of the whole descent that reaches its
+/// final maximum load.
 /// @pre as incremental_descent; slack >= 0
 [[nodiscard]] std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
                                                      const std::vector<double>& cost, int nparts,

@@ -61,9 +61,9 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   const bool known = pay.step_s > 0.0 && pay.move_s_per_rve > 0.0;
   auto t0 = Clock::now();
   const std::vector<DescentStep> steps =
-      incremental_descent(graph, owner, cost, nparts, 1.0 + kDescentSlack);
+      incremental_descent(graph, owner, cost, nparts, 1.0 + 0.5 * kDescentSlack);
   // Where to stop the descent: the prefix of the best net payback among those that beat the
-  // margin when the pay is known, else the shortest within kDescentSlack of where it ends.
+  // margin when the pay is known, else its first within kDescentSlack / 2 of where it ended.
   const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
   std::size_t count = 0;
   if (known && mean > 0.0) {
@@ -79,11 +79,7 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
       }
     }
   }
-  if (count == 0 && !steps.empty()) {
-    const double target = steps.back().max_load + kDescentSlack * mean;
-    for (std::size_t s = 0; s < steps.size() && count == 0; ++s)
-      if (steps[s].ends_a_move && steps[s].max_load <= target) count = s + 1;
-  }
+  if (count == 0) count = descent_cut(steps, mean, kDescentSlack);
   std::vector<int> incremental = apply_descent(owner, steps, count);
   plan.incremental.moves = count > 0 ? steps[count - 1].moved : 0;
   plan.incremental.time_s = seconds(t0);

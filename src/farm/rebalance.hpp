@@ -78,16 +78,18 @@ struct RebalancePlan {
   RebalanceProposal metis;                         ///< partition_metis + keep_owners
 };
 
-/// How far plan_rebalance runs the incremental descent: to imbalance 1 + kDescentSlack at most,
-/// and when the pay is unknown it stops at the first state within kDescentSlack of where the
-/// descent ended (the smallest noise margin, 0.01 / 2): the last steps, swaps of nearly equal
-/// RVEs, gain less than that for many RVEs moved.
+/// How close to a perfect balance plan_rebalance takes the incremental descent: it runs to
+/// imbalance 1 + kDescentSlack / 2 at most, and when the pay is unknown it is cut at its first
+/// state within kDescentSlack / 2 of where it ended (descent_cut). So where the descent gets
+/// there, its proposal is within kDescentSlack, the smallest noise margin (0.01 / 2), of any
+/// partition METIS can find: the last steps, swaps of nearly equal RVEs, gain less than that for
+/// many RVEs moved.
 inline constexpr double kDescentSlack = 0.005;
 
 /// Proposes two partitions of `cost` once the current imbalance exceeds `threshold`: the
-/// incremental repartition from `owner` (incremental_descent to 1 + kDescentSlack, then cut
+/// incremental repartition from `owner` (incremental_descent to 1 + kDescentSlack / 2, then cut
 /// where the net payback is best among its states that beat the margin when `pay` is known, else
-/// at its first state within kDescentSlack of its end) and a fresh METIS partition renamed after
+/// by descent_cut with kDescentSlack) and a fresh METIS partition renamed after
 /// `owner`. A proposal qualifies when it lowers the imbalance by more than the margin max(threshold
 /// - 1, 0.01) / 2 (a smaller gain is the noise a threshold is set against) and moves something.
 /// Where `pay` is known (step_s and move_s_per_rve > 0) the qualifying proposal with the larger net
