@@ -201,18 +201,21 @@ void Master::checkpoint(RunSummary& sum) {
 void Master::balance(std::int64_t step) {
   const bool moved = farm_.rebalance_if_needed(balance_.threshold(), positions());
   const RebalancePlan& plan = farm_.last_plan();
-  const std::int64_t wait = balance_.checked(step, wall_now(), plan.metis_s);
+  const std::int64_t wait = balance_.checked(step, wall_now(), plan.proposal_s);
   if (wait > cfg_.balance.check_every) {
     spdlog::info(
-        "farm: step {}: the METIS proposal took {:.3g} s: next balance check in {} steps (METIS "
-        "kept under {:g} % of the run)",
-        step, plan.metis_s, wait, 100.0 * BalanceSchedule::kMetisShare);
+        "farm: step {}: the rebalance proposals (incremental + METIS) took {:.3g} s: next balance "
+        "check in {} steps (kept under {:g} % of the run)",
+        step, plan.proposal_s, wait, 100.0 * BalanceSchedule::kMetisShare);
   }
   if (!moved) return;
+  const bool metis = plan.method == RebalanceMethod::metis;
+  const RebalanceProposal& other = metis ? plan.incremental : plan.metis;
   spdlog::info(
-      "farm: step {}: rebalanced with METIS: imbalance {:.3f} -> {:.3f}, {} RVE(s) "
-      "moved (predicted saving {:.3g} s, move {:.3g} s); {} moved in total",
-      step, plan.imbalance_now, plan.imbalance_new, plan.moves, plan.saving_s, plan.move_s,
+      "farm: step {}: rebalanced with {}: imbalance {:.3f} -> {:.3f}, {} RVE(s) moved (predicted "
+      "saving {:.3g} s, move {:.3g} s; {}: {:.3f}, {} RVE(s)); {} moved in total",
+      step, to_string(plan.method), plan.imbalance_now, plan.imbalance_new, plan.moves,
+      plan.saving_s, plan.move_s, metis ? "incremental" : "METIS", other.imbalance, other.moves,
       farm_.rves_moved());
 }
 

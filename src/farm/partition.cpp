@@ -5,9 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "common/errors.hpp"
 
@@ -154,6 +159,172 @@ void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, in
     load[static_cast<std::size_t>(h)] -= cost[best];
     load[static_cast<std::size_t>(l)] += cost[best];
   }
+}
+
+std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::vector<int>& start,
+                                             const std::vector<double>& cost, int nparts,
+                                             double stop_imbalance) {
+  std::vector<int> owner = start;
+  const std::size_t n = owner.size();
+  MPMXDEM_CHECK(cost.size() == n && graph.size() == n,
+                "one cost and one owner per RVE of the graph");
+  MPMXDEM_CHECK(nparts >= 1, "nparts >= 1");
+  for (std::size_t k = 0; k < n; ++k) {
+    MPMXDEM_CHECK(owner[k] >= 0 && owner[k] < nparts, "owners must lie in [0, nparts)");
+    MPMXDEM_CHECK(std::isfinite(cost[k]) && cost[k] >= 0.0, "RVE costs must be finite and >= 0");
+  }
+  std::vector<DescentStep> steps;
+  if (nparts == 1 || n == 0) return steps;
+  const auto np = static_cast<std::size_t>(nparts);
+  std::vector<double> load(np, 0.0);
+  std::int64_t moved = 0;
+  std::vector<std::vector<std::size_t>> members(np);
+  std::vector<std::size_t> slot(n);  // position of RVE k in members[owner[k]]
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto o = static_cast<std::size_t>(owner[k]);
+    load[o] += cost[k];
+    slot[k] = members[o].size();
+    members[o].push_back(k);
+  }
+  const double stop_load =
+      stop_imbalance * std::accumulate(load.begin(), load.end(), 0.0) / static_cast<double>(np);
+  // Parts ordered by (load, label): the lightest is the first, the heaviest the lowest label at
+  // the last load.
+  std::set<std::pair<double, int>> by_load;
+  for (std::size_t p = 0; p < np; ++p) by_load.emplace(load[p], static_cast<int>(p));
+  // A move's rank (see header): global max after it, not-a-neighbour, pair max, RVE, part.
+  using Key = std::tuple<double, int, double, std::size_t, int>;
+  // A swap's rank: global max after it, pair max, RVE of the heaviest part, RVE of the lightest.
+  using SwapKey = std::tuple<double, double, std::size_t, std::size_t>;
+  std::vector<int> near;
+  std::vector<std::pair<double, std::size_t>> by_cost;
+  // Every move lowers the sum of squared loads; the cap only guards against the unforeseen.
+  for (std::size_t move = 0; move < 4 * n + np; ++move) {
+    const double top = by_load.rbegin()->first;
+    if (top <= stop_load) break;
+    const int h = by_load.lower_bound({top, std::numeric_limits<int>::min()})->second;
+    const int lightest = by_load.begin()->second;
+    // The largest load of the other parts (h excluded): what the global max falls to at best.
+    const auto last = std::prev(by_load.end());
+    const double second = last->second != h         ? last->first
+                          : last == by_load.begin() ? 0.0
+                                                    : std::prev(last)->first;
+    bool found = false;
+    Key best{};
+    for (const std::size_t k : members[static_cast<std::size_t>(h)]) {
+      const double c = cost[k];
+      if (!(c > 0.0)) continue;
+      near.clear();
+      for (std::int64_t e = graph.xadj[k]; e < graph.xadj[k + 1]; ++e) {
+        const int o = owner[static_cast<std::size_t>(graph.adjncy[static_cast<std::size_t>(e)])];
+        if (o != h) near.push_back(o);
+      }
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      const auto consider = [&](int d, bool neighbour) {
+        const double to = load[static_cast<std::size_t>(d)] + c;
+        if (!(to < top)) return;  // the pair's max must fall
+        const double pair = std::max(top - c, to);
+        const Key key{std::max(pair, second), neighbour ? 0 : 1, pair, k, d};
+        if (!found || key < best) {
+          best = key;
+          found = true;
+        }
+      };
+      for (const int d : near) consider(d, true);
+      if (lightest != h && !std::binary_search(near.begin(), near.end(), lightest))
+        consider(lightest, false);
+    }
+    const auto hu = static_cast<std::size_t>(h);
+    const auto relocate = [&](std::size_t k, int to) {
+      // Swap-remove k from its part's members (their order does not matter: the keys decide).
+      std::vector<std::size_t>& from = members[static_cast<std::size_t>(owner[k])];
+      from[slot[k]] = from.back();
+      slot[from.back()] = slot[k];
+      from.pop_back();
+      slot[k] = members[static_cast<std::size_t>(to)].size();
+      members[static_cast<std::size_t>(to)].push_back(k);
+      moved += (owner[k] == start[k] ? 1 : 0) - (to == start[k] ? 1 : 0);
+      owner[k] = to;
+      steps.push_back({k, to, true, by_load.rbegin()->first, moved});
+    };
+    const auto shift = [&](int d, double delta) {  // delta of load from h to d
+      const auto du = static_cast<std::size_t>(d);
+      by_load.erase({load[hu], h});
+      by_load.erase({load[du], d});
+      load[hu] -= delta;
+      load[du] += delta;
+      by_load.emplace(load[hu], h);
+      by_load.emplace(load[du], d);
+    };
+    if (found) {
+      const std::size_t k = std::get<3>(best);
+      const int d = std::get<4>(best);
+      shift(d, cost[k]);
+      relocate(k, d);
+      continue;
+    }
+    // No RVE of h fits anywhere: swap one of h with a cheaper one of the lightest part, the pair
+    // whose cost difference delta is nearest to half their gap (delta in (0, gap) lowers the
+    // pair's max). For each RVE of h the two costs nearest to the ideal, found by bisection in
+    // the lightest part's sorted costs, are the only candidates (the pair max is convex in delta).
+    if (lightest == h) break;
+    const auto lu = static_cast<std::size_t>(lightest);
+    const double gap = top - load[lu];
+    by_cost.clear();
+    for (const std::size_t b : members[lu]) by_cost.emplace_back(cost[b], b);
+    std::sort(by_cost.begin(), by_cost.end());
+    bool swap_found = false;
+    SwapKey best_swap{};
+    for (const std::size_t a : members[hu]) {
+      const auto at = std::lower_bound(by_cost.begin(), by_cost.end(),
+                                       std::make_pair(cost[a] - 0.5 * gap, std::size_t{0}));
+      for (auto it = at == by_cost.begin() ? at : std::prev(at); it != by_cost.end() && it <= at;
+           ++it) {
+        const double delta = cost[a] - it->first;
+        if (!(delta > 0.0 && delta < gap)) continue;
+        const double pair = std::max(top - delta, load[lu] + delta);
+        const SwapKey key{std::max(pair, second), pair, a, it->second};
+        if (!swap_found || key < best_swap) {
+          best_swap = key;
+          swap_found = true;
+        }
+      }
+    }
+    if (!swap_found) break;
+    const std::size_t a = std::get<2>(best_swap);
+    const std::size_t b = std::get<3>(best_swap);
+    shift(lightest, cost[a] - cost[b]);
+    relocate(a, lightest);
+    steps.back().ends_a_move = false;
+    relocate(b, h);
+  }
+  return steps;
+}
+
+std::vector<int> apply_descent(std::vector<int> owner, const std::vector<DescentStep>& steps,
+                               std::size_t count) {
+  MPMXDEM_CHECK(count <= steps.size(), "at most the steps of the descent");
+  for (std::size_t s = 0; s < count; ++s) owner[steps[s].rve] = steps[s].to;
+  return owner;
+}
+
+std::size_t descent_cut(const std::vector<DescentStep>& steps, double mean_load, double slack) {
+  if (steps.empty()) return 0;
+  const double target = steps.back().max_load + 0.5 * slack * mean_load;
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    if (steps[s].ends_a_move && steps[s].max_load <= target) return s + 1;
+  }
+  return steps.size();
+}
+
+std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
+                                       const std::vector<double>& cost, int nparts, double slack) {
+  MPMXDEM_CHECK(slack >= 0.0, "slack >= 0");
+  const std::vector<DescentStep> steps =
+      incremental_descent(graph, owner, cost, nparts, 1.0 + 0.5 * slack);
+  const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
+  return apply_descent(std::move(owner), steps, descent_cut(steps, mean, slack));
 }
 
 std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& proposal, int nparts) {

@@ -1,5 +1,6 @@
 // Partition of the RVEs over ranks: METIS k-way on the graph of RVEs (vertex weight = cost, an
-// edge between two RVEs whose material points share a grid cell), plus simple reference splits.
+// edge between two RVEs whose material points share a grid cell), an incremental repartition from
+// the current owners, plus simple reference splits.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +33,50 @@ struct RveGraph {
 /// moves RVEs from the heaviest part to the lightest while that lowers their maximum. Only
 /// balance counts here (RVEs exchange nothing with each other; the cut is a secondary goal).
 void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, int nparts);
+/// One step of the incremental descent (incremental_descent).
+struct DescentStep {
+  std::size_t rve = 0;      ///< the RVE moved
+  int to = 0;               ///< its new part
+  bool ends_a_move = true;  ///< false for the first half of a swap: not a state to stop in
+  double max_load = 0.0;    ///< largest part load after the step (where ends_a_move)
+  std::int64_t moved = 0;   ///< RVEs away from their starting part after the step
+};
+
+/// Incremental (diffusive) repartition from the current owners: moves RVEs one at a time out of
+/// the heaviest part (ties: lowest label) while a move lowers the larger of the two loads it
+/// changes, so it moves only what the balance needs (a fresh METIS partition moves 35-95 % of the
+/// RVEs for a few per cent of gain: docs/scaling.md, finding 2). A move takes an RVE of the
+/// heaviest part to the lightest part or to a part owning one of its graph neighbours; the move
+/// chosen is the first by (1) the largest part load after it, (2) a neighbour part before the
+/// lightest, (3) the larger of the two changed loads, (4) the lowest RVE index, (5) the lowest
+/// part. When no RVE of the heaviest part fits anywhere (few RVEs per part), it swaps one with a
+/// cheaper RVE of the lightest part, the pair whose cost difference best evens the two loads.
+/// Stops when neither lowers the pair's max, or once the imbalance (max/mean load) is at most
+/// `stop_imbalance` (1: only at the local optimum). Returns the steps in order. Deterministic (no
+/// threads; the order of the members does not matter); the maximum load never increases (every
+/// move or swap lowers the sum of squared loads, so the descent ends); RVEs of zero cost stay.
+/// @pre owner.size() == cost.size() == graph.size(), owners in [0, nparts), costs finite and >= 0
+[[nodiscard]] std::vector<DescentStep> incremental_descent(const RveGraph& graph,
+                                                           const std::vector<int>& owner,
+                                                           const std::vector<double>& cost,
+                                                           int nparts, double stop_imbalance = 1.0);
+/// `owner` after the first `count` steps of a descent started from it.
+[[nodiscard]] std::vector<int> apply_descent(std::vector<int> owner,
+                                             const std::vector<DescentStep>& steps,
+                                             std::size_t count);
+/// How many leading steps of a descent to keep: up to its first complete state whose maximum
+/// load is within slack / 2 x `mean_load` of where it ended (0 if it made none). The last steps
+/// of a descent, swaps of nearly equal RVEs, gain little per RVE moved.
+[[nodiscard]] std::size_t descent_cut(const std::vector<DescentStep>& steps, double mean_load,
+                                      double slack);
+/// The incremental repartition within `slack` of a perfect balance where the descent can get
+/// there: incremental_descent stopped at imbalance 1 + slack / 2, then cut by descent_cut (within
+/// slack / 2 of its end). slack = 0: the shortest prefix of the whole descent that reaches its
+/// final maximum load.
+/// @pre as incremental_descent; slack >= 0
+[[nodiscard]] std::vector<int> partition_incremental(const RveGraph& graph, std::vector<int> owner,
+                                                     const std::vector<double>& cost, int nparts,
+                                                     double slack = 0.0);
 /// Renames the parts of `proposal` so that as many RVEs as possible keep their `current` owner
 /// (part labels are arbitrary to METIS; ranks are interchangeable for balance): greedy matching
 /// of new to old labels by the RVEs they share, largest first (ties: lowest labels).

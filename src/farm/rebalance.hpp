@@ -45,22 +45,57 @@ struct Payback {
   double move_s_per_rve = 0.0;  ///< measured time to move one RVE [s]; 0: not measured (free)
 };
 
-/// The decision of one check.
+/// Which proposal a check chose: none (no proposal, or none beat the noise margin), the
+/// incremental repartition from the current owners (partition_incremental), or a fresh METIS
+/// partition renamed after the current owners (partition_metis + keep_owners).
+enum class RebalanceMethod { none, incremental, metis };
+/// "none", "incremental", "METIS" (log lines).
+[[nodiscard]] const char* to_string(RebalanceMethod m);
+
+/// One candidate partition of a check.
+struct RebalanceProposal {
+  double imbalance = 1.0;     ///< max/mean of its part loads [-]
+  std::int64_t moves = 0;     ///< RVEs it moves (after renaming, for METIS)
+  double saving_s = 0.0;      ///< predicted: step_s (1 - imbalance / now) horizon_steps [s]
+  double move_s = 0.0;        ///< predicted: moves * move_s_per_rve [s]
+  double time_s = 0.0;        ///< wall time to compute it (METIS: with the renaming) [s]
+  bool beats_margin = false;  ///< lowers the imbalance by more than the noise margin, moves > 0
+};
+
+/// The decision of one check. The imbalance_new / moves / saving_s / move_s fields describe the
+/// chosen proposal (`method`), adopted or not (payback may refuse it); both candidates are kept.
 struct RebalancePlan {
   bool migrate = false;
   std::vector<int> owner;      ///< the new owners when migrate, else the current ones
   double imbalance_now = 1.0;  ///< max/mean of part loads with the current owners [-]
-  double imbalance_new = 1.0;  ///< the same for METIS's proposal [-]
-  std::int64_t moves = 0;      ///< RVEs the proposal moves
+  double imbalance_new = 1.0;  ///< the same for the chosen proposal [-]
+  std::int64_t moves = 0;      ///< RVEs the chosen proposal moves
   double saving_s = 0.0;       ///< predicted: step_s (1 - new / now) horizon_steps [s]
   double move_s = 0.0;         ///< predicted: moves * move_s_per_rve [s]
-  double metis_s = 0.0;  ///< wall time of the proposal (METIS + renaming); 0: none was made [s]
+  double proposal_s = 0.0;     ///< wall time of both proposals (METIS dominates); 0: none made [s]
+  RebalanceMethod method = RebalanceMethod::none;  ///< the chosen proposal
+  RebalanceProposal incremental;                   ///< partition_incremental from the owners
+  RebalanceProposal metis;                         ///< partition_metis + keep_owners
 };
 
-/// Proposes a METIS partition of `cost` and adopts it when the current imbalance exceeds
-/// `threshold` AND the proposal lowers it by more than max(threshold - 1, 0.01) / 2 (the gain must
-/// be above the noise a threshold is set against) AND, where `pay` is known (step_s and
-/// move_s_per_rve > 0), the predicted saving over the horizon exceeds the time of the move.
+/// How close to a perfect balance plan_rebalance takes the incremental descent: it runs to
+/// imbalance 1 + kDescentSlack / 2 at most, and when the pay is unknown it is cut at its first
+/// state within kDescentSlack / 2 of where it ended (descent_cut). So where the descent gets
+/// there, its proposal is within kDescentSlack, the smallest noise margin (0.01 / 2), of any
+/// partition METIS can find: the last steps, swaps of nearly equal RVEs, gain less than that for
+/// many RVEs moved.
+inline constexpr double kDescentSlack = 0.005;
+
+/// Proposes two partitions of `cost` once the current imbalance exceeds `threshold`: the
+/// incremental repartition from `owner` (incremental_descent to 1 + kDescentSlack / 2, then cut
+/// where the net payback is best among its states that beat the margin when `pay` is known, else
+/// by descent_cut with kDescentSlack) and a fresh METIS partition renamed after
+/// `owner`. A proposal qualifies when it lowers the imbalance by more than the margin max(threshold
+/// - 1, 0.01) / 2 (a smaller gain is the noise a threshold is set against) and moves something.
+/// Where `pay` is known (step_s and move_s_per_rve > 0) the qualifying proposal with the larger net
+/// payback (saving_s - move_s) is chosen (ties: fewer moves, then incremental) and adopted only if
+/// its net is positive; where it is not, the one that moves fewer RVEs is chosen (ties:
+/// incremental) unless the other's imbalance is lower by more than the margin, and adopted.
 /// threshold <= 1 only keeps the 0.005 margin.
 /// @pre cost.size() == owner.size() == graph.size()
 [[nodiscard]] RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,

@@ -63,8 +63,9 @@ class RveFarm final : public mpm::MaterialModel {
                   bool abort_mid_write);
   /// Rank 0 only. Closes a cost window (the RVE step times since the last call) into the per-RVE
   /// cost average (rebalance.hpp); once the average is settled (3 windows), if the imbalance of
-  /// that average exceeds `threshold` and a METIS partition (graph from `x`, current positions by
-  /// RVE index) lowers it by more than the noise margin of plan_rebalance and pays back its move
+  /// that average exceeds `threshold` and the proposal plan_rebalance chooses (the incremental
+  /// repartition from the current owners or a METIS partition; graph from `x`, current positions
+  /// by RVE index) lowers it by more than the noise margin and pays back its move
   /// (Payback: the critical rank's step time of the last window, a horizon of the steps the
   /// current partition has lasted, the measured time per RVE moved), migrates the RVEs. Returns
   /// true if RVEs moved; last_plan() tells the decision.

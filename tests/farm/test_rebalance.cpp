@@ -1,7 +1,9 @@
 // Unit tests of the rebalancing policy (farm/rebalance.hpp): no migration on timing noise, one
-// migration on a real change of cost, none that does not pay back its move.
+// migration on a real change of cost, none that does not pay back its move, and the choice between
+// the incremental and the METIS proposal.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -202,4 +204,108 @@ TEST(Rebalance, KeepOwnersEqualsTheDenseGreedyScan) {
     ASSERT_EQ(farm::keep_owners(current, got, parts), moves) << "trial " << trial;
     ASSERT_EQ(got, expected) << "trial " << trial;
   }
+}
+
+namespace {
+
+/// 1000 RVEs on a 10^3 lattice (8 per grid cell), costs uniform in [1, 2], balanced over 32 parts
+/// by METIS; then part 0's RVEs become 10 % dearer.
+struct Perturbed {
+  farm::RveGraph g;
+  std::vector<double> cost;
+  std::vector<int> owner;
+  Perturbed() {
+    const mpm::Grid grid{common::Vec3::Zero(), common::Vec3::Constant(0.2), common::Vec3i(5, 5, 5)};
+    std::vector<common::Vec3> x;
+    for (int k = 0; k < 1000; ++k)
+      x.emplace_back((k % 10 + 0.5) / 10, ((k / 10) % 10 + 0.5) / 10, (k / 100 + 0.5) / 10);
+    g = farm::cell_graph(grid, x);
+    std::mt19937 gen(3);
+    std::uniform_real_distribution<double> u(1.0, 2.0);
+    for (int k = 0; k < 1000; ++k) cost.push_back(u(gen));
+    owner = farm::partition_metis(g, cost, 32);
+    for (std::size_t k = 0; k < cost.size(); ++k) cost[k] *= owner[k] == 0 ? 1.1 : 1.0;
+  }
+};
+
+/// Two parts: {3, 3, 0.4, 0.4, 0.4} and {2, 2} (imbalance 7.2 / 5.6 = 1.286). The incremental
+/// descent moves the three 0.4 and is then stuck at 6 / 5.6 = 1.071 (no single RVE fits); METIS
+/// also swaps a 3 and a 2: 5.8 / 5.6 = 1.036, with at least as many moves.
+struct Stuck {
+  farm::RveGraph g = farm::RveGraph{std::vector<std::int64_t>(8, 0), {}};
+  std::vector<int> owner{0, 0, 0, 0, 0, 1, 1};
+  std::vector<double> cost{3.0, 3.0, 0.4, 0.4, 0.4, 2.0, 2.0};
+};
+
+}  // namespace
+
+// A small perturbation of a balanced partition: both proposals beat the margin, the incremental
+// one moves far fewer RVEs to about the same imbalance, and is chosen (payback unknown or known).
+TEST(Rebalance, SmallPerturbationIsFixedIncrementally) {
+  const Perturbed p;
+  const farm::RebalancePlan plan = farm::plan_rebalance(p.g, p.owner, p.cost, 32, 1.05, 1);
+  EXPECT_GT(plan.imbalance_now, 1.08);
+  EXPECT_TRUE(plan.incremental.beats_margin);
+  EXPECT_TRUE(plan.metis.beats_margin);
+  EXPECT_LT(10 * plan.incremental.moves, plan.metis.moves);
+  EXPECT_TRUE(plan.migrate);
+  EXPECT_EQ(plan.method, farm::RebalanceMethod::incremental);
+  EXPECT_STREQ(farm::to_string(plan.method), "incremental");
+  EXPECT_EQ(plan.moves, plan.incremental.moves);
+  EXPECT_DOUBLE_EQ(plan.imbalance_new, plan.incremental.imbalance);
+  EXPECT_DOUBLE_EQ(farm::imbalance(plan.owner, p.cost, 32), plan.imbalance_new);
+  EXPECT_LT(plan.imbalance_new, 1.025);
+  EXPECT_GT(plan.proposal_s, 0.0);
+  // Payback known, 1 ms per step over 1000 steps, 1 ms per moved RVE: the incremental proposal
+  // nets more (it saves about as much and moves a fraction).
+  const farm::Payback pay{1e-3, 1000.0, 1e-3};
+  const farm::RebalancePlan paid = farm::plan_rebalance(p.g, p.owner, p.cost, 32, 1.05, 1, pay);
+  EXPECT_EQ(paid.method, farm::RebalanceMethod::incremental);
+  EXPECT_TRUE(paid.migrate);
+  const double net = paid.incremental.saving_s - paid.incremental.move_s;
+  EXPECT_GT(net, paid.metis.saving_s - paid.metis.move_s);
+  // The descent is stopped where its net is best: at least the net of the slack rule's stop.
+  const double slack_net =
+      pay.step_s * (1.0 - plan.incremental.imbalance / plan.imbalance_now) * pay.horizon_steps -
+      static_cast<double>(plan.incremental.moves) * pay.move_s_per_rve;
+  EXPECT_GE(net, slack_net - 1e-9);
+  EXPECT_DOUBLE_EQ(farm::imbalance(paid.owner, p.cost, 32), paid.imbalance_new);
+}
+
+// Where the incremental descent is stuck well above what METIS reaches, METIS is chosen: by the
+// imbalance rule when payback is unknown, by the net saving when it is known.
+TEST(Rebalance, MetisIsChosenWhereTheIncrementalProposalIsStuck) {
+  const Stuck s;
+  const farm::RebalancePlan plan = farm::plan_rebalance(s.g, s.owner, s.cost, 2, 1.05, 1);
+  EXPECT_NEAR(plan.imbalance_now, 7.2 / 5.6, 1e-12);
+  EXPECT_NEAR(plan.incremental.imbalance, 6.0 / 5.6, 1e-12);
+  EXPECT_EQ(plan.incremental.moves, 3);
+  EXPECT_TRUE(plan.incremental.beats_margin);
+  EXPECT_NEAR(plan.metis.imbalance, 5.8 / 5.6, 1e-12);
+  EXPECT_GE(plan.metis.moves, plan.incremental.moves);
+  EXPECT_EQ(plan.method, farm::RebalanceMethod::metis);
+  EXPECT_TRUE(plan.migrate);
+  EXPECT_NEAR(farm::imbalance(plan.owner, s.cost, 2), 5.8 / 5.6, 1e-12);
+  // Payback known: METIS saves 0.1 s x (1 - 1.036 / 1.286) = 19.4 ms, the incremental proposal
+  // 16.7 ms, for the same 3 ms of moves.
+  const farm::Payback pay{1e-3, 100.0, 1e-3};
+  const farm::RebalancePlan paid = farm::plan_rebalance(s.g, s.owner, s.cost, 2, 1.05, 1, pay);
+  EXPECT_EQ(paid.method, farm::RebalanceMethod::metis);
+  EXPECT_TRUE(paid.migrate);
+  // At a threshold of 1.1 (margin 0.05) METIS's advantage (0.036) is noise: the incremental
+  // proposal, which moves no more RVEs, is chosen.
+  const farm::RebalancePlan loose = farm::plan_rebalance(s.g, s.owner, s.cost, 2, 1.1, 1);
+  EXPECT_EQ(loose.method, farm::RebalanceMethod::incremental);
+  EXPECT_TRUE(loose.migrate);
+  EXPECT_EQ(loose.moves, 3);
+}
+
+// Below the threshold nothing is proposed; a gain inside the margin is not adopted.
+TEST(Rebalance, NoProposalIsMadeOrChosenWithoutAGain) {
+  const Perturbed p;
+  const farm::RebalancePlan calm = farm::plan_rebalance(p.g, p.owner, p.cost, 32, 1.2, 1);
+  EXPECT_FALSE(calm.migrate);
+  EXPECT_EQ(calm.method, farm::RebalanceMethod::none);
+  EXPECT_EQ(calm.proposal_s, 0.0);
+  EXPECT_STREQ(farm::to_string(calm.method), "none");
 }

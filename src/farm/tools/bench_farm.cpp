@@ -6,6 +6,7 @@
 //       [--owners metis|blocks]
 //   mpiexec -n 4 --bind-to none bench_farm exchange --rves 10000 [--steps 50] [--migrate 1]
 //   bench_farm partition --rves 10000 [--parts 1024] [--bytes-per-rve 266000]
+//       [--perturb noise|overload] [--overload 0.1] [--threshold 1.0]
 // (exchange, partition, checkpoint --micro elastic: what grows with the RVE count; docs/scaling.md)
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default:
 // the 1000-sphere reference of jobs/packings),
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 
 #include "common/state_store.hpp"
@@ -437,12 +439,16 @@ void exchange(const Args& a, MPI_Comm comm) {
 }
 
 // METIS on the RVE graph at --rves RVEs (serial, as on rank 0): graph build, the start-up
-// partition, then a rebalance check after the costs changed by +/-30 % (deterministic noise):
-// time, RVEs moved and the bytes they carry (--bytes-per-rve: a 1000-sphere RVE's state).
+// partition, then a rebalance check after the costs changed: --perturb noise (default: every cost
+// x [0.7, 1.3], deterministic) or --perturb overload (part 0's RVEs x (1 + --overload, 0.1)).
+// Prints both proposals of the check (incremental from the current owners; METIS + renaming):
+// RVEs moved, imbalance, time, and the bytes the chosen one carries (--bytes-per-rve: a
+// 1000-sphere RVE's state).
 void partition(const Args& a) {
   const int n = std::stoi(a.get("rves", "1000"));
   const int parts = std::stoi(a.get("parts", "32"));
   const double bytes_per_rve = std::stod(a.get("bytes-per-rve", "266000"));
+  const std::string perturb = a.get("perturb", "noise");
   const Lattice lat = lattice(n);
   double t = now();
   const farm::RveGraph g = farm::cell_graph(lat.grid, lat.x);
@@ -458,8 +464,15 @@ void partition(const Args& a) {
   const std::vector<int> owner = farm::partition_metis(g, cost, parts);
   const double t_metis = now() - t;
   const double balance = farm::balance_efficiency(owner, cost, parts);
-  for (double& c : cost) c *= 0.7 + 0.6 * uniform();
-  // The check's two parts: a fresh METIS partition and the renaming of its parts (keep_owners).
+  if (perturb == "noise") {
+    for (double& c : cost) c *= 0.7 + 0.6 * uniform();
+  } else if (perturb == "overload") {
+    const double over = std::stod(a.get("overload", "0.1"));
+    for (std::size_t k = 0; k < cost.size(); ++k) cost[k] *= owner[k] == 0 ? 1.0 + over : 1.0;
+  } else {
+    throw std::runtime_error("--perturb " + perturb + ": must be noise or overload");
+  }
+  // The renaming alone (keep_owners, finding 1 of docs/scaling.md) on a fresh METIS partition.
   std::vector<int> proposal = farm::partition_metis(g, cost, parts);
   t = now();
   const std::int64_t kept_moves = farm::keep_owners(owner, proposal, parts);
@@ -473,13 +486,23 @@ void partition(const Args& a) {
       "  cell_graph %.4f s, partition_metis %.4f s (balance %.3f), plan_rebalance %.4f s "
       "(of which keep_owners %.4f s)\n",
       t_graph, t_metis, balance, t_plan, t_keep);
+  std::printf("  rebalance check after %s (threshold %.2f): imbalance now %.4f\n",
+              perturb == "noise" ? "+/-30 % cost noise" : "an overload of part 0", threshold,
+              plan.imbalance_now);
+  const auto row = [&](const char* name, const farm::RebalanceProposal& p) {
+    std::printf("    %-12s imbalance %.4f, %lld RVEs moved (%.2f %%), %.4f s%s\n", name,
+                p.imbalance, static_cast<long long>(p.moves),
+                100.0 * static_cast<double>(p.moves) / n, p.time_s,
+                p.beats_margin ? "" : " (gain within the noise margin)");
+  };
+  row("incremental", plan.incremental);
+  row("METIS", plan.metis);
   std::printf(
-      "  rebalance after +/-30 %% cost noise (threshold %.2f): imbalance %.3f -> %.3f, "
-      "migrate %d, %lld RVEs moved (%.1f %%; renamed proposal %lld) = %.1f "
-      "MB at %.0f B per RVE\n",
-      threshold, plan.imbalance_now, plan.imbalance_new, plan.migrate ? 1 : 0,
-      static_cast<long long>(plan.moves), 100.0 * plan.moves / n,
-      static_cast<long long>(kept_moves), plan.moves * bytes_per_rve / 1e6, bytes_per_rve);
+      "  chosen: %s, migrate %d, %lld RVEs moved (%.1f %%; renamed METIS proposal alone %lld) = "
+      "%.1f MB at %.0f B per RVE\n",
+      farm::to_string(plan.method), plan.migrate ? 1 : 0, static_cast<long long>(plan.moves),
+      100.0 * static_cast<double>(plan.moves) / n, static_cast<long long>(kept_moves),
+      static_cast<double>(plan.moves) * bytes_per_rve / 1e6, bytes_per_rve);
 }
 
 // What moving an RVE costs: 8 DEM RVEs of the reference packing under the paper's strain rate;
