@@ -56,8 +56,8 @@ class CheckpointSchedule {
 /// A balance check every check_every steps, when enabled and there is more than one rank.
 class BalanceSchedule {
  public:
-  /// Share of the run the proposals may take (METIS dominates them; the incremental one is
-  /// 1-2 % of it from 256 parts on): after a check whose proposals took m seconds with
+  /// Share of the run the proposals may take (METIS dominates them; the incremental one takes
+  /// 0.3-12 % of its time from 256 parts on): after a check whose proposals took m seconds with
   /// steps of s seconds, the next check waits max(check_every, m / (kMetisShare s)) steps
   /// (docs/scaling.md, finding 3: 0.25 s of METIS at 10^4 RVEs on 1024 parts is 12-17 steps).
   static constexpr double kMetisShare = 0.01;
