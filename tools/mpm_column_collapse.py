@@ -39,14 +39,6 @@ D50 = 200e-6
 RHO_S = 2650.0
 P_LOW = 100.0  # [Pa] "near-zero pressure"
 
-ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-ap.add_argument("runs", nargs="+")
-ap.add_argument("--data", default="docs/data/column_collapse_mpm")
-ap.add_argument("--yade", default="docs/data/column_collapse_yade")
-ap.add_argument("--fig", default="docs/figures")
-args = ap.parse_args()
-os.makedirs(args.data, exist_ok=True)
-os.makedirs(args.fig, exist_ok=True)
 
 
 def analyse(run):
@@ -152,7 +144,8 @@ def yade_runs():
     return runs
 
 
-YADE = yade_runs()
+args = None  # set by main()
+YADE = []  # filled by main() from --yade
 
 
 def yade_for(a):
@@ -166,112 +159,128 @@ def yade_for(a):
     return best
 
 
-runs = sorted((analyse(r) for r in args.runs), key=lambda r: r["a"])
-keys = list(runs[0]["summ"].keys())
-with open(os.path.join(args.data, "summary.csv"), "w") as out:
-    out.write(",".join(keys) + "\n")
+def main():
+    global args
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--data", default="docs/data/column_collapse_mpm")
+    ap.add_argument("--yade", default="docs/data/column_collapse_yade")
+    ap.add_argument("--fig", default="docs/figures")
+    args = ap.parse_args()
+    os.makedirs(args.data, exist_ok=True)
+    os.makedirs(args.fig, exist_ok=True)
+    YADE[:] = yade_runs()
+    runs = sorted((analyse(r) for r in args.runs), key=lambda r: r["a"])
+    keys = list(runs[0]["summ"].keys())
+    with open(os.path.join(args.data, "summary.csv"), "w") as out:
+        out.write(",".join(keys) + "\n")
+        for r in runs:
+            s = r["summ"]
+            row = ",".join(f"{s[k]:.4g}" if isinstance(s[k], float) else str(s[k]) for k in keys)
+            out.write(row + "\n")
+            with open(os.path.join(args.data, f"{s['tag']}_summary.csv"), "w") as o:
+                o.write(",".join(keys) + "\n" + row + "\n")
+            with open(os.path.join(args.data, f"{s['tag']}_timeseries.csv"), "w") as o:
+                o.write("t_s,t_over_tstar,L_front_m,L_front_connected_m,H_back_m,kinetic_over_MgH0,"
+                        "I_median,I_p95,I_max,rves_no_contact,rves_p_below_100Pa\n")
+                for k in range(len(r["t"])):
+                    i = r["inert"][k]
+                    med, p95, mx = ((np.nanmedian(i), np.nanpercentile(i, 95), np.nanmax(i)) if k
+                                    else (np.nan,) * 3)
+                    o.write(f"{r['t'][k]:.6g},{r['t'][k] / r['tstar']:.4f},{r['front'][k]:.6g},"
+                            f"{r['front_c'][k]:.6g},{r['hback'][k]:.6g},{r['ek'][k]:.4g},{med:.4g},{p95:.4g},{mx:.4g},"
+                            f"{r['flight'][k]},{r['lowp'][k]}\n")
+            with open(os.path.join(args.data, f"{s['tag']}_profiles.csv"), "w") as o:
+                o.write("t_over_tstar,x_m,h_top_m,h_vol_m\n")
+                for k in sorted({0, len(r["t"]) - 1}):
+                    xc, hv, ht = r["profile"](k)
+                    lab = "final" if k else "0"
+                    for j in range(len(xc)):
+                        o.write(f"{lab},{xc[j]:.6g},{ht[j]:.6g},{hv[j]:.6g}\n")
+    print(open(os.path.join(args.data, "summary.csv")).read())
+
+    # Figures.
+    fig, axs = plt.subplots(1, 3, figsize=(14, 4))
     for r in runs:
-        s = r["summ"]
-        row = ",".join(f"{s[k]:.4g}" if isinstance(s[k], float) else str(s[k]) for k in keys)
-        out.write(row + "\n")
-        with open(os.path.join(args.data, f"{s['tag']}_summary.csv"), "w") as o:
-            o.write(",".join(keys) + "\n" + row + "\n")
-        with open(os.path.join(args.data, f"{s['tag']}_timeseries.csv"), "w") as o:
-            o.write("t_s,t_over_tstar,L_front_m,L_front_connected_m,H_back_m,kinetic_over_MgH0,"
-                    "I_median,I_p95,I_max,rves_no_contact,rves_p_below_100Pa\n")
-            for k in range(len(r["t"])):
-                i = r["inert"][k]
-                med, p95, mx = ((np.nanmedian(i), np.nanpercentile(i, 95), np.nanmax(i)) if k
-                                else (np.nan,) * 3)
-                o.write(f"{r['t'][k]:.6g},{r['t'][k] / r['tstar']:.4f},{r['front'][k]:.6g},"
-                        f"{r['front_c'][k]:.6g},{r['hback'][k]:.6g},{r['ek'][k]:.4g},{med:.4g},{p95:.4g},{mx:.4g},"
-                        f"{r['flight'][k]},{r['lowp'][k]}\n")
-        with open(os.path.join(args.data, f"{s['tag']}_profiles.csv"), "w") as o:
-            o.write("t_over_tstar,x_m,h_top_m,h_vol_m\n")
-            for k in sorted({0, len(r["t"]) - 1}):
-                xc, hv, ht = r["profile"](k)
-                lab = "final" if k else "0"
-                for j in range(len(xc)):
-                    o.write(f"{lab},{xc[j]:.6g},{ht[j]:.6g},{hv[j]:.6g}\n")
-print(open(os.path.join(args.data, "summary.csv")).read())
+        c = axs[0].plot(r["t"] / r["tstar"], (r["front"] - r["L0"]) / r["L0"],
+                        label=f"MPM x DEM a = {r['a']:.2g}")[0].get_color()
+        axs[0].plot(r["t"] / r["tstar"], (r["front_c"] - r["L0"]) / r["L0"], ":", color=c,
+                    label="  continuous deposit")
+        axs[1].plot(r["t"] / r["tstar"], r["hback"] / r["H0"], color=c)
+        axs[2].plot(r["t"] / r["tstar"], r["ek"], color=c)
+        y = yade_for(r["a"])
+        if y:
+            ts = np.genfromtxt(y[0] + "_timeseries.csv", delimiter=",", names=True)
+            L0y = y[2]
+            lab = f"YADE {os.path.basename(y[0])}"
+            axs[0].plot(ts["t_over_tstar"], (ts["L_front_m"] - ts["L_front_m"][0]) / L0y, "--",
+                        color=c, label=lab)
+            axs[1].plot(ts["t_over_tstar"], ts["H_back_m"] / ts["H_back_m"][0], "--", color=c)
+            axs[2].plot(ts["t_over_tstar"], ts["kinetic_over_MgH0"], "--", color=c)
+    axs[0].set_ylabel("(L(t) - L0) / L0")
+    axs[1].set_ylabel("H(t) / H0 (back wall)")
+    axs[2].set_ylabel("E_k / (M g H0)")
+    axs[2].set_yscale("log")
+    for ax in axs:
+        ax.set_xlabel("t / t*")
+        ax.grid(alpha=0.3)
+    axs[0].legend(fontsize=7)
+    fig.suptitle("Column collapse: MPM x DEM (solid, translational E_k) against YADE (dashed)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.fig, "column_mpm_front.png"), dpi=130)
 
-# Figures.
-fig, axs = plt.subplots(1, 3, figsize=(14, 4))
-for r in runs:
-    c = axs[0].plot(r["t"] / r["tstar"], (r["front"] - r["L0"]) / r["L0"],
-                    label=f"MPM x DEM a = {r['a']:.2g}")[0].get_color()
-    axs[0].plot(r["t"] / r["tstar"], (r["front_c"] - r["L0"]) / r["L0"], ":", color=c,
-                label="  continuous deposit")
-    axs[1].plot(r["t"] / r["tstar"], r["hback"] / r["H0"], color=c)
-    axs[2].plot(r["t"] / r["tstar"], r["ek"], color=c)
-    y = yade_for(r["a"])
-    if y:
-        ts = np.genfromtxt(y[0] + "_timeseries.csv", delimiter=",", names=True)
-        L0y = y[2]
-        lab = f"YADE {os.path.basename(y[0])}"
-        axs[0].plot(ts["t_over_tstar"], (ts["L_front_m"] - ts["L_front_m"][0]) / L0y, "--",
-                    color=c, label=lab)
-        axs[1].plot(ts["t_over_tstar"], ts["H_back_m"] / ts["H_back_m"][0], "--", color=c)
-        axs[2].plot(ts["t_over_tstar"], ts["kinetic_over_MgH0"], "--", color=c)
-axs[0].set_ylabel("(L(t) - L0) / L0")
-axs[1].set_ylabel("H(t) / H0 (back wall)")
-axs[2].set_ylabel("E_k / (M g H0)")
-axs[2].set_yscale("log")
-for ax in axs:
-    ax.set_xlabel("t / t*")
-    ax.grid(alpha=0.3)
-axs[0].legend(fontsize=7)
-fig.suptitle("Column collapse: MPM x DEM (solid, translational E_k) against YADE (dashed)")
-fig.tight_layout()
-fig.savefig(os.path.join(args.fig, "column_mpm_front.png"), dpi=130)
+    fig, axs = plt.subplots(len(runs), 1, figsize=(9, 2.6 * len(runs)), squeeze=False)
+    for ax, r in zip(axs[:, 0], runs):
+        xc, hv, ht = r["profile"](0)
+        ax.step(xc / r["L0"], hv / r["L0"], where="mid", color="0.6", label="MPM x DEM t = 0")
+        xc, hv, ht = r["profile"](len(r["t"]) - 1)
+        ax.step(xc / r["L0"], hv / r["L0"], where="mid", color="C0",
+                label=f"MPM x DEM t = {r['t'][-1] / r['tstar']:.2f} t* (h_vol)")
+        ax.plot(r["x"][-1, :, 0] / r["L0"], r["x"][-1, :, 2] / r["L0"], ".", ms=2, color="C0")
+        y = yade_for(r["a"])
+        if y:
+            pr = pd.read_csv(y[0] + "_profiles.csv", dtype={"t_over_tstar": str})
+            L0y = y[2]
+            fin = pr[pr.t_over_tstar == "final"]
+            if len(fin) == 0:  # a run still going: its latest profile
+                last = max(float(v) for v in pr.t_over_tstar)
+                fin = pr[pr.t_over_tstar.astype(float) == last]
+            ax.plot(fin.x_m / L0y, fin.h_vol_m / L0y, color="C3",
+                    label=f"YADE {os.path.basename(y[0])}, t = {fin.t_over_tstar.iloc[0]} t* "
+                    f"(run to {y[1]:.2f} t*)")
+        xmax = r["x"][-1, :, 0].max() / r["L0"] + 0.5
+        if y:
+            xmax = max(xmax, fin.x_m[fin.h_vol_m > 0].max() / L0y + 0.3)
+        ax.set_xlim(0, xmax)
+        ax.set_ylabel("h / L0")
+        ax.set_title(f"a = {r['a']:.2g}", fontsize=9)
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+    axs[-1, 0].set_xlabel("x / L0")
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.fig, "column_mpm_profiles.png"), dpi=130)
 
-fig, axs = plt.subplots(len(runs), 1, figsize=(9, 2.6 * len(runs)), squeeze=False)
-for ax, r in zip(axs[:, 0], runs):
-    xc, hv, ht = r["profile"](0)
-    ax.step(xc / r["L0"], hv / r["L0"], where="mid", color="0.6", label="MPM x DEM t = 0")
-    xc, hv, ht = r["profile"](len(r["t"]) - 1)
-    ax.step(xc / r["L0"], hv / r["L0"], where="mid", color="C0",
-            label=f"MPM x DEM t = {r['t'][-1] / r['tstar']:.2f} t* (h_vol)")
-    ax.plot(r["x"][-1, :, 0] / r["L0"], r["x"][-1, :, 2] / r["L0"], ".", ms=2, color="C0")
-    y = yade_for(r["a"])
-    if y:
-        pr = pd.read_csv(y[0] + "_profiles.csv", dtype={"t_over_tstar": str})
-        L0y = y[2]
-        fin = pr[pr.t_over_tstar == "final"]
-        if len(fin) == 0:  # a run still going: its latest profile
-            last = max(float(v) for v in pr.t_over_tstar)
-            fin = pr[pr.t_over_tstar.astype(float) == last]
-        ax.plot(fin.x_m / L0y, fin.h_vol_m / L0y, color="C3",
-                label=f"YADE {os.path.basename(y[0])}, t = {fin.t_over_tstar.iloc[0]} t* "
-                f"(run to {y[1]:.2f} t*)")
-    xmax = r["x"][-1, :, 0].max() / r["L0"] + 0.5
-    if y:
-        xmax = max(xmax, fin.x_m[fin.h_vol_m > 0].max() / L0y + 0.3)
-    ax.set_xlim(0, xmax)
-    ax.set_ylabel("h / L0")
-    ax.set_title(f"a = {r['a']:.2g}", fontsize=9)
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
-axs[-1, 0].set_xlabel("x / L0")
-fig.tight_layout()
-fig.savefig(os.path.join(args.fig, "column_mpm_profiles.png"), dpi=130)
+    fig, axs = plt.subplots(1, 2, figsize=(11, 4))
+    for r in runs:
+        tt = r["t"][1:] / r["tstar"]
+        c = axs[0].plot(tt, np.nanmedian(r["inert"][1:], axis=1), label=f"a = {r['a']:.2g} median")[
+            0].get_color()
+        axs[0].plot(tt, np.nanpercentile(r["inert"][1:], 95, axis=1), "--", color=c, label="95 %")
+        axs[1].plot(r["t"] / r["tstar"], r["flight"], color=c, label=f"a = {r['a']:.2g} no contact")
+        axs[1].plot(r["t"] / r["tstar"], r["lowp"], ":", color=c, label=f"p < {P_LOW:g} Pa")
+    axs[0].set_yscale("log")
+    axs[0].axhline(1e-3, color="k", lw=0.8)
+    axs[0].set_ylabel("macro inertial number I (points)")
+    axs[1].set_ylabel("RVEs")
+    for ax in axs:
+        ax.set_xlabel("t / t*")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.fig, "column_mpm_inertial.png"), dpi=130)
+    sys.exit(0)
 
-fig, axs = plt.subplots(1, 2, figsize=(11, 4))
-for r in runs:
-    tt = r["t"][1:] / r["tstar"]
-    c = axs[0].plot(tt, np.nanmedian(r["inert"][1:], axis=1), label=f"a = {r['a']:.2g} median")[
-        0].get_color()
-    axs[0].plot(tt, np.nanpercentile(r["inert"][1:], 95, axis=1), "--", color=c, label="95 %")
-    axs[1].plot(r["t"] / r["tstar"], r["flight"], color=c, label=f"a = {r['a']:.2g} no contact")
-    axs[1].plot(r["t"] / r["tstar"], r["lowp"], ":", color=c, label=f"p < {P_LOW:g} Pa")
-axs[0].set_yscale("log")
-axs[0].axhline(1e-3, color="k", lw=0.8)
-axs[0].set_ylabel("macro inertial number I (points)")
-axs[1].set_ylabel("RVEs")
-for ax in axs:
-    ax.set_xlabel("t / t*")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-fig.tight_layout()
-fig.savefig(os.path.join(args.fig, "column_mpm_inertial.png"), dpi=130)
-sys.exit(0)
+
+
+if __name__ == "__main__":
+    main()
