@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -115,8 +116,92 @@ std::vector<std::uint64_t> offsets_of(const std::vector<std::int64_t>& counts) {
   return offset;
 }
 
+constexpr auto kIntMax = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
+
+/// The RVE indices whose values rank r writes: [n r / size, n (r + 1) / size).
+std::size_t run_begin(std::size_t n, int r, int size) {
+  return n * static_cast<std::size_t>(r) / static_cast<std::size_t>(size);
+}
+
+/// Collective: the values of this rank's RVEs (`local`, ascending indices; `values`, null where
+/// absent) sent to the ranks that write them, so that rank r holds the values of RVE indices
+/// [run_begin(r), run_begin(r + 1)) in index order: one contiguous run of /rve/fields/<name>.
+/// A selection of one block per rank makes the collective write cost the same whatever the
+/// owners; with METIS's interleaved owners, one block per RVE made it grow with the square of
+/// the RVEs per rank (docs/scaling.md, finding 4). Returns false (nothing sent) on one rank
+/// (its blocks are one run already) and where a rank would send or receive more than INT_MAX
+/// values (MPI's int counts): the caller then writes the blocks of its own RVEs.
+template <class T>
+bool gather_runs(MPI_Comm comm, const std::vector<int>& owner,
+                 const std::vector<std::int64_t>& counts, const std::vector<std::uint64_t>& offset,
+                 const std::vector<std::int64_t>& local,
+                 const std::vector<const std::vector<T>*>& values, std::vector<T>& run) {
+  int rank = 0;
+  int size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  if (size == 1) return false;
+  const std::size_t n = counts.size();
+  const auto nr = static_cast<std::size_t>(size);
+  auto count_of = [&](std::size_t k) {
+    return static_cast<std::uint64_t>(std::max<std::int64_t>(0, counts[k]));
+  };
+  // Values to every rank (local indices ascending, so each rank's share is contiguous).
+  std::vector<std::uint64_t> send(nr, 0);
+  std::vector<T> out;
+  int dest = 0;
+  for (std::size_t j = 0; j < local.size(); ++j) {
+    const auto k = static_cast<std::size_t>(local[j]);
+    while (k >= run_begin(n, dest + 1, size)) ++dest;
+    if (values[j] == nullptr) continue;
+    send[static_cast<std::size_t>(dest)] += values[j]->size();
+    out.insert(out.end(), values[j]->begin(), values[j]->end());
+  }
+  // Values from every rank: the RVEs of my run that rank owns.
+  const std::size_t k_lo = run_begin(n, rank, size);
+  const std::size_t k_hi = run_begin(n, rank + 1, size);
+  std::vector<std::uint64_t> recv(nr, 0);
+  for (std::size_t k = k_lo; k < k_hi; ++k) recv[static_cast<std::size_t>(owner[k])] += count_of(k);
+  // Counts and displacements are ints of the element type: exchange only where they fit.
+  std::vector<int> sc(nr), sd(nr), rc(nr), rd(nr);
+  std::uint64_t sp = 0;
+  std::uint64_t rp = 0;
+  for (std::size_t r = 0; r < nr; ++r) {
+    sc[r] = static_cast<int>(std::min<std::uint64_t>(send[r], kIntMax));
+    rc[r] = static_cast<int>(std::min<std::uint64_t>(recv[r], kIntMax));
+    sd[r] = static_cast<int>(std::min<std::uint64_t>(sp, kIntMax));
+    rd[r] = static_cast<int>(std::min<std::uint64_t>(rp, kIntMax));
+    sp += send[r];
+    rp += recv[r];
+  }
+  std::uint64_t too_large = sp > kIntMax || rp > kIntMax ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &too_large, 1, MPI_UINT64_T, MPI_MAX, comm);
+  if (too_large != 0) return false;
+  MPI_Datatype type = MPI_DATATYPE_NULL;
+  MPI_Type_contiguous(static_cast<int>(sizeof(T)), MPI_BYTE, &type);
+  MPI_Type_commit(&type);
+  std::vector<T> in(rp);
+  T sink{};  // a valid address for an empty buffer
+  MPI_Alltoallv(out.empty() ? &sink : out.data(), sc.data(), sd.data(), type,
+                in.empty() ? &sink : in.data(), rc.data(), rd.data(), type, comm);
+  MPI_Type_free(&type);
+  // Each source's values arrive in index order: interleave them by owner.
+  run.resize(rp);
+  std::vector<std::uint64_t> next(rd.begin(), rd.end());
+  for (std::size_t k = k_lo; k < k_hi; ++k) {
+    const std::uint64_t c = count_of(k);
+    if (c == 0) continue;
+    std::uint64_t& from = next[static_cast<std::size_t>(owner[k])];
+    std::copy_n(in.begin() + static_cast<std::ptrdiff_t>(from), c,
+                run.begin() + static_cast<std::ptrdiff_t>(offset[k] - offset[k_lo]));
+    from += c;
+  }
+  return true;
+}
+
 /// Collective: /rve/counts/<name> (values per RVE, -1 where absent) and /rve/fields/<name> (every
-/// RVE's values, in RVE index order), each rank writing the blocks of its RVEs.
+/// RVE's values, in RVE index order), each rank writing one contiguous run (gather_runs), or the
+/// blocks of its own RVEs where the runs are too large to exchange.
 template <class T>
 void write_rve_field(h5::File& file, MPI_Comm comm, const CheckpointData& d,
                      const std::string& name) {
@@ -138,10 +223,18 @@ void write_rve_field(h5::File& file, MPI_Comm comm, const CheckpointData& d,
   file.write_from_root<std::int64_t>("/rve/counts/" + name, counts.size(), counts.data());
   std::vector<Block> blocks;
   std::vector<T> data;
-  for (std::size_t j = 0; j < d.local_indices.size(); ++j) {
-    if (values[j] == nullptr || values[j]->empty()) continue;
-    blocks.push_back({offset[static_cast<std::size_t>(d.local_indices[j])], values[j]->size()});
-    data.insert(data.end(), values[j]->begin(), values[j]->end());
+  if (gather_runs<T>(comm, d.owner, counts, offset, d.local_indices, values, data)) {
+    int rank = 0;
+    int size = 1;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &size);
+    if (!data.empty()) blocks.push_back({offset[run_begin(n, rank, size)], data.size()});
+  } else {
+    for (std::size_t j = 0; j < d.local_indices.size(); ++j) {
+      if (values[j] == nullptr || values[j]->empty()) continue;
+      blocks.push_back({offset[static_cast<std::size_t>(d.local_indices[j])], values[j]->size()});
+      data.insert(data.end(), values[j]->begin(), values[j]->end());
+    }
   }
   file.write_blocks<T>("/rve/fields/" + name, offset[n], blocks, data.data());
 }
