@@ -108,9 +108,12 @@ int command_run(const Options& given, const Comm& comm) {
     }
   }
   const std::filesystem::path out = open_output(o, job, comm);
-  if (comm.rank == 0 && static_cast<std::size_t>(comm.size) > rves) {
+  // The ranks that may own RVEs (farm.rank0_rves = false leaves rank 0 to the MPM).
+  const auto workers =
+      static_cast<std::size_t>(!cfg.farm.rank0_rves && comm.size > 1 ? comm.size - 1 : comm.size);
+  if (comm.rank == 0 && workers > rves) {
     spdlog::warn("{} ranks for {} RVE(s): {} rank(s) will hold no RVE and only wait", comm.size,
-                 rves, static_cast<std::size_t>(comm.size) - rves);
+                 rves, workers - rves);
   }
   spdlog::info(
       "coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,

@@ -234,6 +234,7 @@ farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
   fill_from_job(job, farm::kCheckpointOptions, c.checkpoint);
   fill_from_job(job, farm::kBalanceOptions, c.balance);
   c.farm.wait = farm::wait_mode_from(job.text("farm.wait"));
+  c.farm.rank0_rves = job.flag("farm.rank0_rves");
   c.validate();
   return c;
 }

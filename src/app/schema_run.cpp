@@ -34,6 +34,12 @@ void add_run_sections(Schema& s) {
         "core, sleep where they share cores; the log says which), spin, or sleep.")
       .one_of({"auto", "spin", "sleep"})
       .or_default(std::string("auto"));
+  s.add("farm.rank0_rves", Type::Bool,
+        "Rank 0 steps RVEs besides the MPM (true), or, with more than one rank, runs only the MPM "
+        "and the exchange while ranks 1.. step the RVEs (false: for many ranks, where rank 0's "
+        "MPM is on every step's critical path; give rank 0 the node's threads, docs/farm.md). "
+        "Results are the same bits either way.")
+      .or_default(true);
 }
 
 }  // namespace app

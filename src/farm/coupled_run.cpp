@@ -276,7 +276,8 @@ RunSummary CoupledRun::run() {
   RunSummary sum;
   sum.wait = farm_->wait_mode();
   if (rank_ == 0) {
-    spdlog::info("farm: {} RVEs on {} rank(s), waits {} ({})", ids_.size(), size_,
+    spdlog::info("farm: {} RVEs on {} rank(s){}, waits {} ({})", ids_.size(), size_,
+                 farm_->placement().first_worker() > 0 ? " (rank 0: the MPM only)" : "",
                  to_string(sum.wait),
                  cfg_.farm.wait == WaitMode::automatic
                      ? (sum.wait == WaitMode::spin ? "auto: every thread of the node has a core"

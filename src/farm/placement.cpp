@@ -21,13 +21,25 @@ std::size_t find_index(std::span<const std::int64_t> ids, std::int64_t id) {
 
 }  // namespace
 
-Placement::Placement(std::vector<std::int64_t> ids, int rank, int size)
-    : ids_(std::move(ids)), rank_(rank), nranks_(size) {
+Placement::Placement(std::vector<std::int64_t> ids, int rank, int size, int first_worker)
+    : ids_(std::move(ids)), rank_(rank), nranks_(size), first_worker_(first_worker) {
   MPMXDEM_CHECK(std::is_sorted(ids_.begin(), ids_.end()) &&
                     std::adjacent_find(ids_.begin(), ids_.end()) == ids_.end(),
                 "RVE ids must be ascending and unique");
   MPMXDEM_CHECK(size >= 1 && rank >= 0 && rank < size, "rank out of range");
-  set_owner(partition_blocks(ids_.size(), size));
+  MPMXDEM_CHECK(first_worker >= 0 && first_worker < size, "first worker rank out of range");
+  set_owner(owners_of(partition_blocks(ids_.size(), workers())));
+}
+
+std::vector<int> Placement::parts() const {
+  std::vector<int> part(owner_);
+  for (int& p : part) p -= first_worker_;
+  return part;
+}
+
+std::vector<int> Placement::owners_of(std::vector<int> parts) const {
+  for (int& p : parts) p += first_worker_;
+  return parts;
 }
 
 std::size_t Placement::index_of(std::int64_t id) const { return find_index(ids_, id); }
@@ -43,7 +55,7 @@ void Placement::set_owner(std::vector<int> owner) {
   owner_ = std::move(owner);
   members_.assign(static_cast<std::size_t>(nranks_), {});
   for (std::size_t k = 0; k < owner_.size(); ++k) {
-    MPMXDEM_CHECK(owner_[k] >= 0 && owner_[k] < nranks_, "owner rank out of range");
+    MPMXDEM_CHECK(owner_[k] >= first_worker_ && owner_[k] < nranks_, "owner rank out of range");
     members_[static_cast<std::size_t>(owner_[k])].push_back(k);
   }
 }

@@ -12,13 +12,17 @@
 namespace farm {
 
 /// Ownership of the RVEs over `size` ranks, seen from `rank`. Indices are positions in ids()
-/// (ascending, unique); every list below is in ascending index order.
+/// (ascending, unique); every list below is in ascending index order. Only the worker ranks
+/// [first_worker, size) own RVEs: first_worker = 1 leaves rank 0 to the MPM alone
+/// (`farm.rank0_rves = false`). The partitioners work on parts [0, workers()): parts() and
+/// owners_of() translate.
 class Placement {
  public:
   Placement() = default;
-  /// Starts with contiguous blocks (partition_blocks). Throws common::InternalError unless
-  /// `ids` is ascending and unique. @pre 0 <= rank < size
-  Placement(std::vector<std::int64_t> ids, int rank, int size);
+  /// Starts with contiguous blocks (partition_blocks) over the worker ranks. Throws
+  /// common::InternalError unless `ids` is ascending and unique.
+  /// @pre 0 <= rank < size, 0 <= first_worker < size
+  Placement(std::vector<std::int64_t> ids, int rank, int size, int first_worker = 0);
 
   [[nodiscard]] const std::vector<std::int64_t>& ids() const { return ids_; }
   [[nodiscard]] std::size_t size() const { return ids_.size(); }
@@ -31,11 +35,19 @@ class Placement {
   }
   [[nodiscard]] int rank() const { return rank_; }
   [[nodiscard]] int nranks() const { return nranks_; }
+  /// The lowest rank that owns RVEs (0 or 1).
+  [[nodiscard]] int first_worker() const { return first_worker_; }
+  /// The number of ranks that may own RVEs (the partitioners' parts).
+  [[nodiscard]] int workers() const { return nranks_ - first_worker_; }
+  /// owner() as parts in [0, workers()).
+  [[nodiscard]] std::vector<int> parts() const;
+  /// The owner ranks of parts in [0, workers()).
+  [[nodiscard]] std::vector<int> owners_of(std::vector<int> parts) const;
   /// Index of RVE `id`; throws common::InternalError if there is none.
   [[nodiscard]] std::size_t index_of(std::int64_t id) const;
   /// RVEs whose owner differs between owner() and `new_owner`.
   [[nodiscard]] std::int64_t moves_to(const std::vector<int>& new_owner) const;
-  /// Adopts new owners (one rank per index, each in [0, nranks)).
+  /// Adopts new owners (one rank per index, each in [first_worker, nranks)).
   void set_owner(std::vector<int> owner);
 
  private:
@@ -45,6 +57,7 @@ class Placement {
   std::vector<std::vector<std::size_t>> members_;  ///< by rank
   int rank_ = 0;
   int nranks_ = 1;
+  int first_worker_ = 0;
 };
 
 /// Point slot p of the solver's point list -> RVE index k (ids ascending), built once from the

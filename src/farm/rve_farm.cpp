@@ -51,6 +51,11 @@ FarmOptions resolved(MPI_Comm comm, FarmOptions options) {
   return options;
 }
 
+/// The lowest rank that owns RVEs: 1 when rank 0 is left to the MPM and there is another rank.
+int first_worker(const FarmOptions& options, int size) {
+  return !options.rank0_rves && size > 1 ? 1 : 0;
+}
+
 }  // namespace
 
 RveFarm::RveFarm(Setup /*tag*/, MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
@@ -61,7 +66,7 @@ RveFarm::RveFarm(Setup /*tag*/, MPI_Comm comm, MicroKind kind, std::vector<std::
       kind_(std::move(kind)),
       options_(resolved(comm_, options)),
       grid_(grid),
-      placement_(std::move(ids), rank_, size_),
+      placement_(std::move(ids), rank_, size_, first_worker(options, size_)),
       models_(placement_.size()),
       exchange_(comm_, options_.wait) {}
 
@@ -155,9 +160,11 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
   std::vector<int> part(n, 0);
   if (rank_ == 0) {
     MPMXDEM_CHECK(x.size() == n, "one position per RVE on rank 0");
-    part = partition_metis(cell_graph(grid_, x), measured ? ledger_.total() : est, size_,
+    const int workers = placement_.workers();
+    part = partition_metis(cell_graph(grid_, x), measured ? ledger_.total() : est, workers,
                            options_.metis_seed);
-    keep_owners(placement_.owner(), part, size_);  // move as few RVEs as the partition allows
+    keep_owners(placement_.parts(), part, workers);  // move as few RVEs as the partition allows
+    part = placement_.owners_of(std::move(part));
   }
   if (n > 0) MPI_Bcast(part.data(), to_count(n), MPI_INT, 0, comm_);
   exec_migrate(std::move(part));
@@ -251,7 +258,7 @@ void RveFarm::collect_records(std::span<common::Mat3> stress) {
       ledger_.add_rve(k, rec.cpu_s);
     }
   }
-  ledger_.add_step(busy_max, busy_sum / size_);
+  ledger_.add_step(busy_max, busy_sum / placement_.workers());
   if (!failures.empty()) {
     // Rare: fetch the texts with a command of their own (the step exchange carries none).
     CommandHeader e;
@@ -348,9 +355,10 @@ bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Ve
   MPMXDEM_CHECK(rank_ == 0, "rebalancing is driven by rank 0");
   const Payback pay = ledger_.close_window(step_);
   last_plan_ = RebalancePlan{};
-  if (size_ == 1 || !ledger_.average().settled()) return false;
-  last_plan_ = plan_rebalance(cell_graph(grid_, x), placement_.owner(), ledger_.average().cost(),
-                              size_, threshold, options_.metis_seed, pay);
+  if (placement_.workers() == 1 || !ledger_.average().settled()) return false;
+  last_plan_ = plan_rebalance(cell_graph(grid_, x), placement_.parts(), ledger_.average().cost(),
+                              placement_.workers(), threshold, options_.metis_seed, pay);
+  last_plan_.owner = placement_.owners_of(std::move(last_plan_.owner));  // parts -> ranks
   if (!last_plan_.migrate) return false;
   migrate_to(last_plan_.owner);
   return true;
@@ -359,7 +367,8 @@ bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Ve
 void RveFarm::migrate_to(std::vector<int> owner) {
   MPMXDEM_CHECK(rank_ == 0, "migration is driven by rank 0");
   MPMXDEM_CHECK(owner.size() == placement_.size(), "one owner per RVE");
-  for (int o : owner) MPMXDEM_CHECK(o >= 0 && o < size_, "owner rank out of range");
+  for (int o : owner)
+    MPMXDEM_CHECK(o >= placement_.first_worker() && o < size_, "owner rank out of range");
   if (size_ == 1) return;
   CommandHeader h;
   h.cmd = Command::migrate;

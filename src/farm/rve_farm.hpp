@@ -31,6 +31,9 @@ struct FarmOptions {
   /// left to the inside of each RVE.
   bool omp_over_rves = true;
   int metis_seed = 1;  ///< METIS_OPTION_SEED
+  /// Rank 0 owns RVEs too; false: with more than one rank, rank 0 runs only the MPM and the
+  /// exchange, the RVEs go to ranks 1.. (`farm.rank0_rves`; docs/farm.md, docs/scaling.md).
+  bool rank0_rves = true;
 };
 
 class RveFarm final : public mpm::MaterialModel {
@@ -105,8 +108,10 @@ class RveFarm final : public mpm::MaterialModel {
   /// Rank 0: measured cost of every RVE (sum of the CPU times of its steps, on the thread that
   /// ran each) [s]; zero before steps (a checkpoint's costs after a restart).
   [[nodiscard]] const std::vector<double>& cost() const { return ledger_.total(); }
-  /// Rank 0: imbalance max/mean over ranks of the averaged RVE costs [-] (>= 1).
-  [[nodiscard]] double imbalance() const { return ledger_.imbalance(owner(), size_); }
+  /// Rank 0: imbalance max/mean over the worker ranks of the averaged RVE costs [-] (>= 1).
+  [[nodiscard]] double imbalance() const {
+    return ledger_.imbalance(placement_.parts(), placement_.workers());
+  }
   [[nodiscard]] const FarmTimes& times() const { return ledger_.times(); }
   [[nodiscard]] int rank() const { return rank_; }
   /// The wait mode in use (options' `automatic` resolved at construction).

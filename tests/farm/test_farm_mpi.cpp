@@ -140,6 +140,34 @@ TEST(Farm, ResultsIdenticalOnAnyRankCount) {
   }
 }
 
+// farm.rank0_rves = false: rank 0 runs the MPM only, ranks 1.. own every RVE (at the start, after
+// the rebalances of threshold 1.0 and in the checkpoint), and the results are the same bits as
+// on one rank (where rank 0 owns everything, there being no other).
+TEST(Farm, RankZeroLeftToTheMpmOwnsNoRveAndChangesNoResult) {
+  ASSERT_GE(world_size(), 2) << "run with mpiexec -n 2 or 3";
+  const std::string base = scratch("rank0_free");
+  for (int n = 1; n <= world_size(); ++n) {
+    farm::CoupledConfig cfg =
+        triaxial_job(base + "/n" + std::to_string(n), 12, mixed_elastic_kind());
+    cfg.farm.rank0_rves = false;
+    cfg.checkpoint.at_end = true;
+    run_on(n, cfg);
+  }
+  if (world_rank() == 0) {
+    for (int n = 1; n <= world_size(); ++n) {
+      const std::string dir = base + "/n" + std::to_string(n);
+      if (n > 1) {
+        EXPECT_EQ(compare_results(base + "/n1/results.h5", dir + "/results.h5"), "")
+            << "1 rank vs " << n << " ranks";
+      }
+      const auto owner =
+          farm::testing::read_words(dir + "/checkpoint_0000000012.h5", "/rve/partition");
+      ASSERT_EQ(owner.size(), 8u);
+      for (const std::uint64_t o : owner) EXPECT_EQ(o == 0, n == 1) << n << " ranks, owner " << o;
+    }
+  }
+}
+
 // Verification of the seam: ElasticMicro RVEs through the farm (every rank hosting some) give the
 // points exactly the stresses and motion of the direct solver with mpm::LinearElastic (both use
 // common::HughesWinget; the farm only carries L down and the stress up, row-major, bit for bit).

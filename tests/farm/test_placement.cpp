@@ -32,6 +32,21 @@ TEST(Placement, SetOwnerRebuildsMembersAndCountsMoves) {
   EXPECT_THROW(pl.set_owner({0, 0}), common::InternalError);
 }
 
+TEST(Placement, FirstWorkerOneLeavesRankZeroWithoutRves) {
+  farm::Placement pl({2, 5, 7, 11, 13}, 0, 3, 1);
+  EXPECT_EQ(pl.first_worker(), 1);
+  EXPECT_EQ(pl.workers(), 2);
+  // Blocks over ranks 1 and 2 only; the partitioners see parts 0 and 1.
+  EXPECT_EQ(pl.owner(), (std::vector<int>{1, 1, 1, 2, 2}));
+  EXPECT_TRUE(pl.local().empty());
+  EXPECT_EQ(pl.parts(), (std::vector<int>{0, 0, 0, 1, 1}));
+  EXPECT_EQ(pl.owners_of({1, 0, 1, 0, 0}), (std::vector<int>{2, 1, 2, 1, 1}));
+  pl.set_owner({2, 1, 2, 1, 1});
+  EXPECT_EQ(pl.members(2), (std::vector<std::size_t>{0, 2}));
+  EXPECT_THROW(pl.set_owner({0, 1, 2, 1, 1}), common::InternalError);     // rank 0 owns none
+  EXPECT_THROW(farm::Placement({1, 2}, 0, 1, 1), common::InternalError);  // no worker left
+}
+
 TEST(Placement, RefusesUnsortedOrRepeatedIds) {
   EXPECT_THROW(farm::Placement({3, 1}, 0, 1), common::InternalError);
   EXPECT_THROW(farm::Placement({1, 1}, 0, 1), common::InternalError);

@@ -3,7 +3,8 @@
 #    the same results.h5, bit for bit (METIS with up to 32 parts, rebalancing that moves RVEs);
 #  - a checkpoint written by 32 ranks restarts on 3, and one written by 3 restarts on 32, both equal
 #    to the straight run;
-#  - 8 RVEs on 16 ranks (8 ranks own nothing) equal the 1-rank run.
+#  - 8 RVEs on 16 ranks (8 ranks own nothing) equal the 1-rank run;
+#  - with farm.rank0_rves = false (rank 0 runs the MPM only) on 8 ranks, the 1-rank run again.
 # Rank-count-dependent datasets are left out of the comparison: the measured costs, the partition and
 # wall times. Usage: cmake -DEXE -DMPIEXEC -DH5DIFF -DDIR -P ... (from the source root)
 file(REMOVE_RECURSE "${DIR}")
@@ -47,6 +48,16 @@ foreach(d from32 np3)
   endif()
 endforeach()
 same("${DIR}/np1/results.h5" "${DIR}/np3/results.h5" "3 ranks to step 5, then 32 ranks to 10")
+
+# Rank 0 left to the MPM: the same job with farm.rank0_rves = false on 8 ranks (7 RVE owners).
+file(READ ${job} text)
+file(WRITE "${DIR}/rank0_free.toml" "${text}\n[farm]\nrank0_rves = false\n")
+mpmxdem_run(8 "${DIR}/rank0_free.toml" --out "${DIR}/rank0_free" --max-steps 10)
+same("${DIR}/np1/results.h5" "${DIR}/rank0_free/results.h5" "64 RVEs on ranks 1-7 of 8")
+file(STRINGS "${DIR}/rank0_free/log.txt" line REGEX "rank 0: the MPM only")
+if(NOT line)
+  message(FATAL_ERROR "rank0_free: the log does not say that rank 0 runs the MPM only")
+endif()
 
 # More ranks than RVEs: 8 RVEs on 16 ranks, 8 of which own nothing.
 mpmxdem_run(1 jobs/triaxial_mpmxdem_small.toml --out "${DIR}/small1" --max-steps 6)

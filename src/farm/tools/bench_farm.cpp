@@ -10,7 +10,8 @@
 // (exchange, partition, checkpoint --micro elastic: what grows with the RVE count; docs/scaling.md)
 // Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default:
 // the 1000-sphere reference of jobs/packings),
-// --omp-over-rves 0|1, --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
+// --omp-over-rves 0|1, --rank0-rves 0|1 (0: rank 0 runs the MPM only),
+// --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
 // Figures and commands: docs/farm.md, "Benchmarks".
 #include <mpi.h>
 
@@ -76,6 +77,7 @@ farm::FarmOptions farm_options(const Args& a) {
   farm::FarmOptions o;
   o.wait = farm::wait_mode_from(a.get("wait", "auto"));
   o.omp_over_rves = a.get("omp-over-rves", "1") == "1";
+  o.rank0_rves = a.get("rank0-rves", "1") == "1";
   return o;
 }
 
