@@ -14,6 +14,10 @@ scene's reference quantity against the reference run:
   collapse (jobs/column_collapse_a0.5.toml, to rest): the runout of the connected deposit
            (L_f - L0) / L0 and the final height at the back wall H_f / H0
            (tools/mpm_column_collapse.py), differences relative to the reference run's
+  biaxial  (jobs/biaxial_plane_strain_4x8.toml): the global stress ratio sigma_a / sigma_r
+           (tools/biaxial_analysis.py: int sigma_zz dV over the specimen's height and area, over
+           the 100 kPa confinement) against the log axial strain: max |ratio - ratio_ref| over
+           the reference's peak ratio, before the reference's peak and after it, and the peak
 Prints a markdown table (medians over the repetitions) and writes it, with a CSV and a figure of
 DEM steps against error, to --out.
 
@@ -44,6 +48,9 @@ SCENES = {
     "element": ("jobs/triaxial_mpmxdem_small.toml", [], "element"),
     # The column collapse a = 0.5 to rest (10 t*): the deposit idles for its last ~7 t*.
     "collapse": ("jobs/column_collapse_a0.5.toml", [], "collapse"),
+    # The plane-strain biaxial on 4 x 8 cells to 10.5 %: the rough platens' dead zones and, after
+    # the peak, the blocks outside the band load little.
+    "biaxial": ("jobs/biaxial_plane_strain_4x8.toml", [], "biaxial"),
 }
 
 
@@ -87,6 +94,12 @@ def measures(out, kind):
             "stress": f["points/stress"][:].copy(),
             "q": f["means/q"][:].copy(),
         }
+    if kind == "biaxial":
+        sys.path.insert(0, os.path.join(ROOT, "tools"))
+        import biaxial_analysis  # noqa: E402 (a tool beside this one)
+        r = biaxial_analysis.Run(out)
+        d["eps"], d["ratio"] = r.eps.copy(), r.ratio.copy()
+        r.f.close()
     if kind == "collapse":
         sys.path.insert(0, os.path.join(ROOT, "tools"))
         import mpm_column_collapse  # noqa: E402 (a tool beside this one)
@@ -97,6 +110,13 @@ def measures(out, kind):
 
 
 def errors(kind, m, ref):
+    if kind == "biaxial":
+        # The run's ratio at the reference's strains (the strains of a row differ slightly).
+        ratio = np.interp(ref["eps"], m["eps"], m["ratio"])
+        k = int(np.argmax(ref["ratio"]))
+        e = np.abs(ratio - ref["ratio"]) / ref["ratio"][k]
+        return {"pre-peak": float(e[:k + 1].max()), "post-peak": float(e[k:].max()),
+                "peak": abs(m["ratio"].max() - ref["ratio"][k]) / ref["ratio"][k]}
     if kind == "collapse":
         return {"runout": abs(m["runout"] - ref["runout"]) / abs(ref["runout"]),
                 "height": abs(m["height"] - ref["height"]) / abs(ref["height"])}
@@ -167,6 +187,9 @@ def main():
     for r in rows:
         if "q max" in r:
             err = "q: %.2f %%" % (100 * r["q max"])
+        elif "pre-peak" in r:
+            err = "sigma_a/sigma_r: before the peak %.2f %%, after %.2f %%, peak %.2f %%" % (
+                100 * r["pre-peak"], 100 * r["post-peak"], 100 * r["peak"])
         elif "runout" in r:
             err = "runout %.2f %%, H_f %.2f %%" % (100 * r["runout"], 100 * r["height"])
         else:
@@ -190,6 +213,8 @@ def main():
             if not rs:
                 continue
             series = [("q max", "%s: q(eps)")] if "q max" in rs[0] else [
+                ("pre-peak", "%s: stress ratio before the peak"),
+                ("post-peak", "%s: stress ratio after the peak")] if "pre-peak" in rs[0] else [
                 ("runout", "%s: runout"), ("height", "%s: final height")] if "runout" in rs[0] else [
                 ("stress max", "%s: point stress, max"), ("reaction end", "%s: base reaction")]
             for key, label in series:
