@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "mpm/parallel.hpp"
 
 namespace mpm {
 
@@ -47,8 +48,8 @@ void GridFields::resize(const Grid& grid) {
 }
 
 void GridFields::clear_active() {
-  for (const std::int64_t i : active) {
-    const auto u = static_cast<std::size_t>(i);
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
     mass[u] = 0.0;
     momentum[u].setZero();
     force[u].setZero();
@@ -56,7 +57,7 @@ void GridFields::clear_active() {
     acceleration[u].setZero();
     is_active[u] = 0;
     fixed[u] = 0;
-  }
+  });
   active.clear();
 }
 

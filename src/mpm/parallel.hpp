@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace mpm {
 
@@ -21,6 +22,15 @@ inline void for_each_index(std::int64_t n, Fn&& fn) {
   }
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) fn(i);
+}
+
+/// out[i] = fn(i) for i in [0, n), computed as for_each_index does (out is resized to n). For
+/// reductions that must give the same bits on any number of threads: the terms in parallel,
+/// then the caller combines them in index order (a sum, a maximum, the first flagged index).
+template <class T, class Fn>
+inline void compute_terms(std::int64_t n, std::vector<T>& out, Fn&& fn) {
+  out.resize(static_cast<std::size_t>(n));
+  for_each_index(n, [&](std::int64_t i) { out[static_cast<std::size_t>(i)] = fn(i); });
 }
 
 }  // namespace mpm

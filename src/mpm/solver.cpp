@@ -9,6 +9,7 @@
 
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
+#include "mpm/parallel.hpp"
 #include "mpm/transfers.hpp"
 
 namespace mpm {
@@ -148,8 +149,12 @@ double Solver::stable_dt(double& speed) const {
   for (const MaterialModel* m : materials_) c = std::max(c, m->wave_speed());
   // Mass scaling: the inertia is s times the mass, the wave speed c / sqrt(s).
   if (config_.mass_scaling != 1.0) c /= std::sqrt(config_.mass_scaling);
+  // |v| in parallel, the maximum in slot order (the same result on any number of threads).
+  thread_local std::vector<double> speeds;
+  compute_terms(static_cast<std::int64_t>(points_.size()), speeds,
+                [&](std::int64_t q) { return points_.v[static_cast<std::size_t>(q)].norm(); });
   double vmax = 0.0;
-  for (const common::Vec3& v : points_.v) vmax = std::max(vmax, v.norm());
+  for (const double v : speeds) vmax = std::max(vmax, v);
   speed = c + vmax;
   if (!(speed > 0.0) || !std::isfinite(speed)) {
     throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " + num_str(time_) +
@@ -205,29 +210,33 @@ void Solver::prepare_grid(std::int64_t step, double t) {
 void Solver::scale_inertia(bool with_mass) {
   const double s = config_.mass_scaling;
   if (s == 1.0) return;
-  for (const std::int64_t i : fields_.active) {
-    const auto u = static_cast<std::size_t>(i);
+  const std::vector<std::int64_t>& active = fields_.active;
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
     if (with_mass) fields_.mass[u] *= s;
     fields_.momentum[u] *= s;
-  }
+  });
 }
 
 void Solver::hold_thickness_velocity() {
   const int a = config_.plane_strain_axis;
   if (a < 0) return;
   // The fixed bit also keeps the held component out of the damping (eq. 8).
-  for (const std::int64_t i : fields_.active) {
-    const auto u = static_cast<std::size_t>(i);
+  const std::vector<std::int64_t>& active = fields_.active;
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
     fields_.velocity[u][a] = 0.0;
     fields_.fixed[u] = static_cast<std::uint8_t>(fields_.fixed[u] | (1u << a));
-  }
+  });
 }
 
 void Solver::hold_thickness_acceleration() {
   const int a = config_.plane_strain_axis;
   if (a < 0) return;
-  for (const std::int64_t i : fields_.active)
-    fields_.acceleration[static_cast<std::size_t>(i)][a] = 0.0;
+  const std::vector<std::int64_t>& active = fields_.active;
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    fields_.acceleration[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])][a] = 0.0;
+  });
 }
 
 void Solver::update_stress(double dt) {
@@ -241,10 +250,11 @@ void Solver::update_stress(double dt) {
   if (const int a = config_.plane_strain_axis; a >= 0) {
     // Plane strain: no stretching or shearing through the thickness reaches the material, even
     // when its out-of-plane shear stress makes the in-plane velocities vary through the cell.
-    for (common::Mat3& L : points_.L) {
+    for_each_index(static_cast<std::int64_t>(points_.size()), [&](std::int64_t q) {
+      common::Mat3& L = points_.L[static_cast<std::size_t>(q)];
       L.row(a).setZero();
       L.col(a).setZero();
-    }
+    });
   }
   // Internal work: trapezoidal rule on the stress power (old and new volume and stress).
   const double power_start = stress_power(points_);
@@ -295,31 +305,44 @@ void Solver::update_material_stress(double dt) {
 }
 
 void Solver::check_points(double t_end) const {
-  for (std::size_t p = 0; p < points_.size(); ++p) {
+  // Which points fail, in parallel; the first of them (in slot order) is reported below.
+  const double vr = config_.max_volume_ratio;
+  thread_local std::vector<std::uint8_t> bad;
+  compute_terms(static_cast<std::int64_t>(points_.size()), bad, [&](std::int64_t q) {
+    const auto p = static_cast<std::size_t>(q);
     const double vol = points_.volume[p];
-    if (!(vol > 0.0) || !std::isfinite(vol)) {
-      throw common::NumericalError(
-          "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
-          std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
-          " m: volume = " + num_str(vol) + " m^3 (must be positive and finite)");
-    }
     const double ratio = vol / points_.volume0[p];
-    if (points_.volume0[p] > 0.0 &&
-        (ratio > config_.max_volume_ratio || ratio < 1.0 / config_.max_volume_ratio)) {
-      throw common::NumericalError(
-          "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
-          std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
-          " m: volume / initial volume = " + num_str(ratio) + ", outside [1/" +
-          short_str(config_.max_volume_ratio) + ", " + short_str(config_.max_volume_ratio) +
-          "]: the run has blown up (time step too large, or a material that lost its strength)");
-    }
-    if (!points_.stress[p].allFinite() || !points_.v[p].allFinite()) {
-      throw common::NumericalError(
-          "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
-          std::to_string(points_.id[p]) +
-          ": stress is not finite (trace = " + num_str(points_.stress[p].trace()) +
-          " Pa, |v| = " + num_str(points_.v[p].norm()) + " m/s)");
-    }
+    const bool ok = vol > 0.0 && std::isfinite(vol) &&
+                    !(points_.volume0[p] > 0.0 && (ratio > vr || ratio < 1.0 / vr)) &&
+                    points_.stress[p].allFinite() && points_.v[p].allFinite();
+    return static_cast<std::uint8_t>(ok ? 0 : 1);
+  });
+  const auto first = std::find(bad.begin(), bad.end(), std::uint8_t{1});
+  if (first == bad.end()) return;
+  const auto p = static_cast<std::size_t>(first - bad.begin());
+  const double vol = points_.volume[p];
+  if (!(vol > 0.0) || !std::isfinite(vol)) {
+    throw common::NumericalError(
+        "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
+        std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
+        " m: volume = " + num_str(vol) + " m^3 (must be positive and finite)");
+  }
+  const double ratio = vol / points_.volume0[p];
+  if (points_.volume0[p] > 0.0 &&
+      (ratio > config_.max_volume_ratio || ratio < 1.0 / config_.max_volume_ratio)) {
+    throw common::NumericalError(
+        "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
+        std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
+        " m: volume / initial volume = " + num_str(ratio) + ", outside [1/" +
+        short_str(config_.max_volume_ratio) + ", " + short_str(config_.max_volume_ratio) +
+        "]: the run has blown up (time step too large, or a material that lost its strength)");
+  }
+  if (!points_.stress[p].allFinite() || !points_.v[p].allFinite()) {
+    throw common::NumericalError(
+        "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
+        std::to_string(points_.id[p]) +
+        ": stress is not finite (trace = " + num_str(points_.stress[p].trace()) +
+        " Pa, |v| = " + num_str(points_.v[p].norm()) + " m/s)");
   }
 }
 

@@ -74,7 +74,9 @@ TEST_P(Transfers, P2GConservesMassMomentumAndGravity) {
 
 TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
   // 12 x 10 x 8 cells x 8 points = 7680 points: above kMinParallelPoints, so loops run threaded.
+  // Mass scaling on, and the energy sums (terms in parallel, added in slot order) compared too.
   mpm::Grid g{Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(14, 12, 10)};
+  mpm::Energies energies;
   auto run = [&](int threads) {
     mpm::LinearElastic mat(1e5, 0.3, 1000.0);
     mpm::SolverConfig cfg;
@@ -83,18 +85,25 @@ TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
     cfg.gravity = Vec3(0, 0, -9.81);
     cfg.cfl = 0.4;
     cfg.damping = 0.1;
+    cfg.mass_scaling = 10.0;
     mpm::Solver s(cfg, jittered_block(g, 2, 5), {&mat});
     s.add_constraint({Vec3(-1, -1, -1), Vec3(1, 1, 0.15), {true, true, true}, Vec3::Zero(), {}});
     const int saved = omp_get_max_threads();
     omp_set_num_threads(threads);
     EXPECT_GE(static_cast<std::int64_t>(s.points().size()), mpm::kMinParallelPoints);
     s.run(4);
+    energies = s.energies();
     omp_set_num_threads(saved);
     return s.points();
   };
   const mpm::MaterialPoints a = run(1);
+  const mpm::Energies e1 = energies;
+  EXPECT_GT(e1.kinetic, 0.0);
+  EXPECT_NE(e1.internal_work, 0.0);
   for (int threads : {2, 3}) {
     const mpm::MaterialPoints b = run(threads);
+    EXPECT_EQ(energies.kinetic, e1.kinetic) << threads << " threads";
+    EXPECT_EQ(energies.internal_work, e1.internal_work) << threads << " threads";
     for (std::size_t p = 0; p < a.size(); ++p) {
       ASSERT_EQ(a.x[p], b.x[p]) << threads << " threads, point " << p;
       ASSERT_EQ(a.v[p], b.v[p]);
