@@ -58,6 +58,19 @@ file(STRINGS "${DIR}/rank0_free/log.txt" line REGEX "rank 0: the MPM only")
 if(NOT line)
   message(FATAL_ERROR "rank0_free: the log does not say that rank 0 runs the MPM only")
 endif()
+# Its step-5 checkpoint (rank 0 owned nothing) continues on 3 ranks with the job as it was
+# (farm.* may change at a restart): the step-10 checkpoint equals the 1-rank run's.
+file(COPY "${DIR}/rank0_free/checkpoint_0000000005.h5" DESTINATION "${DIR}/from_rank0_free")
+mpmxdem_run(3 ${job} --out "${DIR}/from_rank0_free"
+            --restart "${DIR}/from_rank0_free/checkpoint_0000000005.h5" --max-steps 10)
+execute_process(COMMAND "${H5DIFF}" --exclude-path /rve/cost --exclude-path /rve/partition
+                        --exclude-attribute /
+                        "${DIR}/np1/checkpoint_0000000010.h5"
+                        "${DIR}/from_rank0_free/checkpoint_0000000010.h5"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "restart of the rank0_free checkpoint differs from the 1-rank run:\n${out}\n${err}")
+endif()
 
 # More ranks than RVEs: 8 RVEs on 16 ranks, 8 of which own nothing.
 mpmxdem_run(1 jobs/triaxial_mpmxdem_small.toml --out "${DIR}/small1" --max-steps 6)
