@@ -1,6 +1,11 @@
 // Contacts SoA helpers: resize and the per-sphere pair lists (fixed order for the force sums).
 #include "dem/contacts.hpp"
 
+#include <limits>
+#include <string>
+
+#include "common/errors.hpp"
+
 namespace dem {
 
 void Contacts::resize(std::size_t n) {
@@ -29,6 +34,10 @@ void Contacts::classify_twist() {
 }
 
 void Contacts::build_sphere_lists(std::size_t n_spheres) {
+  if (size() >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    throw common::InputError("dem: more than 2^31 - 1 Verlet pairs in one cell (" +
+                             std::to_string(size()) + ")");
+  }
   sphere_offset.assign(n_spheres + 1, 0);
   for (std::size_t p = 0; p < size(); ++p) {
     ++sphere_offset[i[p] + 1];
@@ -38,7 +47,7 @@ void Contacts::build_sphere_lists(std::size_t n_spheres) {
   sphere_pairs.assign(sphere_offset[n_spheres], 0);
   std::vector<std::int64_t> fill(sphere_offset.begin(), sphere_offset.end() - 1);
   for (std::size_t p = 0; p < size(); ++p) {
-    const auto ip = static_cast<std::int64_t>(p);
+    const auto ip = static_cast<std::int32_t>(p);
     sphere_pairs[fill[i[p]]++] = ip;
     sphere_pairs[fill[j[p]]++] = -ip - 1;
   }

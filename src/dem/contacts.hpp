@@ -27,7 +27,7 @@ struct Contacts {
   // Per-sphere list of pairs (CSR), in pair order: sphere s touches pairs
   // sphere_pairs[sphere_offset[s] .. sphere_offset[s+1]); a negative entry -p-1 means s == j of p.
   std::vector<std::int64_t> sphere_offset;
-  std::vector<std::int64_t> sphere_pairs;
+  std::vector<std::int32_t> sphere_pairs;  ///< 4 bytes: read twice per pair and step
 
   /// Whether some pair may twist: unknown until looked at (resize makes it unknown), none when
   /// every twisting stiffness and twisting moment is zero (the law then skips its twisting part;
