@@ -101,14 +101,18 @@ node = [{W / 2:g}, 0.0, 0.0]
 x = 0.0
 """),
              ]
-    # The top platen: the grid is fixed and the material's top moves down, so the platen is the
-    # node plane at or above the current top (with the empty row of nodes above it): a staircase of boxes, box k (nodes at z >= H - k h)
-    # from the time the top reaches H - k h. A node held by several keeps its first constraint's
-    # reaction: the platen's reaction is the sum over the boxes named platen_*.
+    # The top platen: the grid is fixed and the material's top moves down, so the platen is a
+    # staircase of boxes, box k (nodes at z >= H - k h) from the time the top has moved down
+    # (k - 1/2) h, i.e. half a cell before it reaches H - k h: the top row of points (a quarter
+    # cell under the top) must never leave the cells whose upper node plane is held. (Box k from
+    # a whole cell, as written before 2026-11-25, left the top row without the platen from 3/4 h
+    # to h: the fine meshes broke up there, docs/biaxial.md.) The material above the newly held
+    # plane (half a cell) then moves with the platen. A node held by several keeps its first
+    # constraint's reaction: the platen's reaction is the sum over the boxes named platen_*.
     k = 0
     while True:
         zk = H - k * h
-        tk = k * h / v
+        tk = max(k - 0.5, 0.0) * h / v
         if tk >= t_end:
             break
         lines.append(f"""[[mpm.velocity]]
