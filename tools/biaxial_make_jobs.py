@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Write jobs/biaxial_plane_strain_<nx>x<nz>.toml: the plane-strain biaxial test of issue 16
-(section 2) on one mesh. The three jobs in jobs/ were written by this script; a user changes
-the mesh, the RVE size or the rate here, or edits a written job.
+(section 2) on one mesh. The jobs in jobs/ (2 x 4 to 8 x 16) were written by this script; a
+user changes the mesh, the RVE size or the rate here, or edits a written job.
 
-    /usr/bin/python3 tools/biaxial_make_jobs.py                  # the three meshes of docs/biaxial.md
-    /usr/bin/python3 tools/biaxial_make_jobs.py --mesh 3 6 --spheres 300 --strain 0.01 --out x.toml
+    /usr/bin/python3 tools/biaxial_make_jobs.py --mesh 8 16 --strain 0.105 --every 40 --out x.toml
+    /usr/bin/python3 tools/biaxial_make_jobs.py --self-test   # the platen keeps its grip (ctest)
 """
 import argparse
 import math
@@ -23,6 +23,61 @@ def platen_keys(platen, side=None):
         return ""
     normal = f'normal = "{side}"\n' if side else ""
     return f'friction = {float(platen):g}\n{normal}contact = "fixed"\n'
+
+
+def platen_boxes(h, v, t_end, lead=0.5):
+    """The top platen's boxes (k, z_k, t_k): the grid is fixed and the material's top moves down
+    at v, so the platen is a staircase of held node planes, box k (nodes at z >= H - k h) from
+    t_k = (k - lead) h / v, i.e. `lead` of a cell before the top reaches H - k h. The top row of
+    points (a quarter cell under the top) must never leave the cells whose upper node plane is
+    held: with lead = 0 (as written before 2026-11-25) it did from 3/4 h to h of travel and the fine
+    meshes broke up there (docs/biaxial.md, "Three meshes to 10 %"). The material above a newly
+    held plane (half a cell) moves with the platen. A node held by several boxes keeps its first
+    constraint's reaction: the platen's reaction is the sum over the boxes named platen_*."""
+    boxes = []
+    k = 0
+    while True:
+        tk = max(k - lead, 0.0) * h / v
+        if tk >= t_end:
+            return boxes
+        boxes.append((k, H - k * h, tk))
+        k += 1
+
+
+def grip_failures(h, v, t_end, boxes, samples=4000):
+    """Times at which the top row of points (affine compression: (H - h/4)(1 - v t / H)) lies in a
+    cell whose upper node plane no box holds yet, or a box engages more than half a cell inside
+    the material. Empty: the platen keeps its grip."""
+    bad = []
+    engaged = {k: tk for k, _, tk in boxes}
+    for i in range(samples + 1):
+        t = t_end * i / samples
+        z_row = (H - h / 4) * (1.0 - v * t / H)
+        k_cell = math.floor((H - z_row) / h + 1e-9)  # upper plane of its cell: H - k_cell h
+        if not (k_cell in engaged and engaged[k_cell] <= t + 1e-12):
+            bad.append(("loose", t))
+    for k, zk, tk in boxes:
+        if (H - v * tk) - zk > 0.5 * h + 1e-9:
+            bad.append(("deep", tk))
+    return bad
+
+
+def self_test():
+    for nx in (2, 3, 4, 6, 8, 16):
+        h = W / nx
+        for strain, rate in ((0.105, 0.03), (0.25, 0.01)):
+            v = rate * H
+            t_end = H * (1.0 - math.exp(-strain)) / v
+            bad = grip_failures(h, v, t_end, platen_boxes(h, v, t_end))
+            assert not bad, f"{nx} x {2 * nx} to {strain}: {bad[:3]}"
+    # The old staircase (lead 0) loses the grip on 8 x 16 at 10.5 % (from 3/4 h of travel): the
+    # check sees it.
+    h, v = W / 8, 0.03 * H
+    t_end = H * (1.0 - math.exp(-0.105)) / v
+    old = grip_failures(h, v, t_end, platen_boxes(h, v, t_end, lead=0.0))
+    assert old and abs(old[0][1] * v - 0.75 * h) < 0.02 * h, old[:2]
+    print("biaxial_make_jobs self-test: the platen keeps its grip on 2 x 4 to 16 x 32 meshes to "
+          f"25 %; the old staircase loses it on 8 x 16 at {100 * old[0][1] * v / H:.2f} % of travel")
 
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
@@ -101,20 +156,7 @@ node = [{W / 2:g}, 0.0, 0.0]
 x = 0.0
 """),
              ]
-    # The top platen: the grid is fixed and the material's top moves down, so the platen is a
-    # staircase of boxes, box k (nodes at z >= H - k h) from the time the top has moved down
-    # (k - 1/2) h, i.e. half a cell before it reaches H - k h: the top row of points (a quarter
-    # cell under the top) must never leave the cells whose upper node plane is held. (Box k from
-    # a whole cell, as written before 2026-11-25, left the top row without the platen from 3/4 h
-    # to h: the fine meshes broke up there, docs/biaxial.md.) The material above the newly held
-    # plane (half a cell) then moves with the platen. A node held by several keeps its first
-    # constraint's reaction: the platen's reaction is the sum over the boxes named platen_*.
-    k = 0
-    while True:
-        zk = H - k * h
-        tk = max(k - 0.5, 0.0) * h / v
-        if tk >= t_end:
-            break
+    for k, zk, tk in platen_boxes(h, v, t_end):
         lines.append(f"""[[mpm.velocity]]
 min = [{x0!r}, 0.0, {zk!r}]
 max = [{x1!r}, {h!r}, {H + 1.5 * h!r}]
@@ -122,7 +164,6 @@ max = [{x1!r}, {h!r}, {H + 1.5 * h!r}]
 from = "{tk!r} s"'''}
 name = "platen_{k}"
 """)
-        k += 1
     lines.append("""[[mpm.traction]]               # confinement on the free sides, on their current area
 face = "x-"
 pressure = "100 kPa"
@@ -152,7 +193,11 @@ def main():
     ap.add_argument("--smoothing", default="cell", help="mpm.strain_smoothing: cell or none")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
+    ap.add_argument("--self-test", action="store_true")
     a = ap.parse_args()
+    if a.self_test:
+        self_test()
+        return
     if a.pad is None:
         a.pad = math.ceil(0.025 / (W / a.mesh[0]) - 1e-9)
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
