@@ -25,6 +25,12 @@ def platen_keys(platen, side=None):
     return f'friction = {float(platen):g}\n{normal}contact = "fixed"\n'
 
 
+def end_time(strain, v):
+    """The time at which the platen, at speed v, reaches log axial strain `strain` [s]:
+    -ln(1 - v t / H) = strain."""
+    return H * (1.0 - math.exp(-strain)) / v
+
+
 def platen_boxes(h, v, t_end, lead=0.5):
     """The top platen's boxes (k, z_k, t_k): the grid is fixed and the material's top moves down
     at v, so the platen is a staircase of held node planes, box k (nodes at z >= H - k h) from
@@ -67,13 +73,13 @@ def self_test():
         h = W / nx
         for strain, rate in ((0.105, 0.03), (0.25, 0.01)):
             v = rate * H
-            t_end = H * (1.0 - math.exp(-strain)) / v
+            t_end = end_time(strain, v)
             bad = grip_failures(h, v, t_end, platen_boxes(h, v, t_end))
             assert not bad, f"{nx} x {2 * nx} to {strain}: {bad[:3]}"
     # The old staircase (lead 0) loses the grip on 8 x 16 at 10.5 % (from 3/4 h of travel): the
     # check sees it.
     h, v = W / 8, 0.03 * H
-    t_end = H * (1.0 - math.exp(-0.105)) / v
+    t_end = end_time(0.105, v)
     old = grip_failures(h, v, t_end, platen_boxes(h, v, t_end, lead=0.0))
     assert old and abs(old[0][1] * v - 0.75 * h) < 0.02 * h, old[:2]
     print("biaxial_make_jobs self-test: the platen keeps its grip on 2 x 4 to 16 x 32 meshes to "
@@ -85,8 +91,7 @@ def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
-    # Log axial strain -ln(1 - v t / H) = strain.
-    t_end = H * (1.0 - math.exp(-strain)) / v
+    t_end = end_time(strain, v)
     x0, x1 = -pad * h, W + pad * h
     lines = [header.rstrip(), f'title = "Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, '
              f'{4 * nx * nz} RVEs of {spheres} spheres"', "",
