@@ -191,10 +191,11 @@ void mpm_rules(const Job& job, Rules& r) {
                          "(mpm.grid.cells = [{}, {}, {}])",
                          "xyz"[a], n[0], n[1], n[2]));
     }
-    if (job.text("mpm.shape_function") != "linear") {
+    if (job.text("mpm.shape_function") == "bspline2") {
       r.fail("mpm.plane_strain",
-             fmt::format("needs mpm.shape_function = \"linear\", not \"{}\" (uGIMP and "
-                         "B-spline stencils span 3 node planes, the one-cell-thick grid has 2)",
+             fmt::format("needs mpm.shape_function = \"linear\" or \"ugimp\", not \"{}\" "
+                         "(the B-spline spans 3 node planes, the one-cell-thick grid has 2; "
+                         "uGIMP runs linear through the thickness)",
                          job.text("mpm.shape_function")));
     }
   }

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -53,12 +54,13 @@ void SolverConfig::validate() const {
                              " (mpm.grid.cells), not " +
                              std::to_string(grid.cells[plane_strain_axis]));
   }
-  if (plane_strain_axis >= 0 && shape != ShapeKind::linear) {
-    // uGIMP and B-spline stencils span 3 node planes: a one-cell-thick grid has 2.
+  if (plane_strain_axis >= 0 && shape == ShapeKind::bspline2) {
+    // uGIMP runs linear through the thickness (its grid basis is the linear hat); the quadratic
+    // B-spline's grid basis spans 3 node planes, and a one-cell-thick grid has 2.
     throw common::InputError(std::string("mpm.plane_strain with mpm.shape_function = \"") +
                              std::string(to_string(shape)) +
-                             "\": plane strain needs the linear shape functions (the other "
-                             "stencils span 3 node planes, the one-cell-thick grid has 2)");
+                             "\": plane strain needs the linear or uGIMP shape functions (the "
+                             "B-spline spans 3 node planes, the one-cell-thick grid has 2)");
   }
   if (formulation == Formulation::total_lagrangian && move_points) {
     // The grid is the reference configuration only where the points stay where they started.
@@ -87,8 +89,11 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
     }
   }
   if (config_.shape == ShapeKind::ugimp) {
+    // Not along the thickness of plane strain, where the shape is linear.
+    common::Vec3 cap = 0.5 * config_.grid.spacing;
+    if (const int a = config_.plane_strain_axis; a >= 0) cap[a] = std::numeric_limits<double>::infinity();
     for (std::size_t p = 0; p < points_.size(); ++p) {
-      if ((points_.half_width0[p].array() > 0.5 * config_.grid.spacing.array()).any()) {
+      if ((points_.half_width0[p].array() > cap.array()).any()) {
         throw common::InputError("mpm solver: point id " + std::to_string(points_.id[p]) +
                                  ": uGIMP needs half-widths <= spacing / 2");
       }
@@ -183,7 +188,8 @@ double Solver::next_dt() const {
 }
 
 void Solver::prepare_grid(std::int64_t step, double t) {
-  const std::int64_t bad = compute_stencils(config_.shape, config_.grid, points_, cache_);
+  const std::int64_t bad =
+      compute_stencils(config_.shape, config_.grid, points_, cache_, config_.plane_strain_axis);
   if (bad >= 0) {
     const auto p = static_cast<std::size_t>(bad);
     throw common::NumericalError(

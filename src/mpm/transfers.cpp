@@ -11,17 +11,17 @@
 namespace mpm {
 namespace {
 
-/// Calls f(node_i, S, grad S) for the width^3 nodes of point p.
+/// Calls f(node_i, S, grad S) for the width[0] x width[1] x width[2] nodes of point p.
 template <class Fn>
 inline void for_each_node(const Grid& grid, const StencilCache& c, std::size_t p, Fn&& f) {
-  const int ns = c.width;
+  const std::array<int, 3> ns = c.width;
   const std::array<int, 3>& b = c.base[p];
   const double* w = &c.w[p * 9];
   const double* dw = &c.dw[p * 9];
-  for (int k = 0; k < ns; ++k) {
-    for (int j = 0; j < ns; ++j) {
+  for (int k = 0; k < ns[2]; ++k) {
+    for (int j = 0; j < ns[1]; ++j) {
       const double wyz = w[3 + j] * w[6 + k];
-      for (int i = 0; i < ns; ++i) {
+      for (int i = 0; i < ns[0]; ++i) {
         const std::int64_t node_i = grid.node_index(b[0] + i, b[1] + j, b[2] + k);
         const double S = w[i] * wyz;
         const common::Vec3 grad(dw[i] * wyz, w[i] * dw[3 + j] * w[6 + k],
@@ -65,10 +65,11 @@ inline void for_points_coloured(const PointBins& bins, Fn&& kernel) {
 }  // namespace
 
 std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
-                              StencilCache& cache) {
+                              StencilCache& cache, int linear_axis) {
   const std::size_t n = points.size();
-  const int ns = stencil_width(kind);
-  cache.width = ns;
+  std::array<ShapeKind, 3> kinds{kind, kind, kind};
+  if (linear_axis >= 0 && linear_axis < 3) kinds[static_cast<std::size_t>(linear_axis)] = ShapeKind::linear;
+  for (std::size_t d = 0; d < 3; ++d) cache.width[d] = stencil_width(kinds[d]);
   cache.base.resize(n);
   cache.w.resize(n * 9);
   cache.dw.resize(n * 9);
@@ -88,13 +89,14 @@ std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPo
         cache.base[p][d] = 0;
         continue;
       }
-      const Weights1D w1 = weights_1d(kind, s, lp, h);
+      const auto du = static_cast<std::size_t>(d);
+      const Weights1D w1 = weights_1d(kinds[du], s, lp, h);
       cache.base[p][d] = w1.base;
       for (int a = 0; a < 3; ++a) {
         cache.w[p * 9 + static_cast<std::size_t>(d * 3 + a)] = w1.w[static_cast<std::size_t>(a)];
         cache.dw[p * 9 + static_cast<std::size_t>(d * 3 + a)] = w1.dw[static_cast<std::size_t>(a)];
       }
-      if (w1.base < 0 || w1.base + ns - 1 > cells[d]) inside = false;
+      if (w1.base < 0 || w1.base + cache.width[du] - 1 > cells[d]) inside = false;
     }
     return inside;
   };
@@ -160,12 +162,14 @@ void bin_points(const Grid& grid, const StencilCache& cache, PointBins& bins) {
     std::int64_t& pos = bins.scratch[static_cast<std::size_t>(keys[p])];
     bins.order[static_cast<std::size_t>(pos++)] = static_cast<std::int64_t>(p);
   }
-  const int ns = cache.width;
-  bins.by_colour.assign(static_cast<std::size_t>(ns * ns * ns), {});
+  // Two bins of one colour have bases that differ, on some axis, by a multiple of that axis's
+  // width: their stencils are disjoint there.
+  const std::array<int, 3> ns = cache.width;
+  bins.by_colour.assign(static_cast<std::size_t>(ns[0] * ns[1] * ns[2]), {});
   for (std::size_t b = 0; b < nb; ++b) {
     bins.scratch[static_cast<std::size_t>(bins.key[b])] = -1;
     const common::Vec3i ijk = grid.node_ijk(bins.key[b]);
-    const int colour = ijk[0] % ns + ns * (ijk[1] % ns + ns * (ijk[2] % ns));
+    const int colour = ijk[0] % ns[0] + ns[0] * (ijk[1] % ns[1] + ns[1] * (ijk[2] % ns[2]));
     bins.by_colour[static_cast<std::size_t>(colour)].push_back(static_cast<std::int64_t>(b));
   }
 }
@@ -173,13 +177,13 @@ void bin_points(const Grid& grid, const StencilCache& cache, PointBins& bins) {
 void activate_nodes(const Grid& grid, const StencilCache& cache, const PointBins& bins,
                     GridFields& fields) {
   fields.clear_active();
-  const int ns = cache.width;
+  const std::array<int, 3> ns = cache.width;
   for (std::size_t b = 0; b + 1 < bins.offset.size(); ++b) {
     const auto p = static_cast<std::size_t>(bins.order[static_cast<std::size_t>(bins.offset[b])]);
     const std::array<int, 3>& base = cache.base[p];
-    for (int k = 0; k < ns; ++k) {
-      for (int j = 0; j < ns; ++j) {
-        for (int i = 0; i < ns; ++i) {
+    for (int k = 0; k < ns[2]; ++k) {
+      for (int j = 0; j < ns[1]; ++j) {
+        for (int i = 0; i < ns[0]; ++i) {
           const std::int64_t node_i = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
           char& flag = fields.is_active[static_cast<std::size_t>(node_i)];
           if (!flag) {

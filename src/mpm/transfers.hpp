@@ -29,14 +29,14 @@ enum class Transfer {
 
 /// Per-step cache of each point's 1D weights (positions do not change between P2G and G2P).
 struct StencilCache {
-  int width = 2;                         ///< nodes per axis
+  std::array<int, 3> width{2, 2, 2};     ///< nodes per axis (the thickness of plane strain: 2)
   std::vector<std::array<int, 3>> base;  ///< stencil base node (i, j, k) per point
   std::vector<double> w;                 ///< S, [(p * 3 + axis) * 3 + a] [-]
   std::vector<double> dw;                ///< dS/dx, same layout [1/m]
 };
 
 /// Points sorted by stencil base node (stable: ties keep slot order), grouped into bins, bins
-/// grouped into width^3 colours. Two bins of one colour touch disjoint nodes.
+/// grouped into width[0] width[1] width[2] colours. Two bins of one colour touch disjoint nodes.
 struct PointBins {
   std::vector<std::int64_t> order;                   ///< point slots, sorted by bin
   std::vector<std::int64_t> offset;                  ///< bin b: order[offset[b] .. offset[b+1])
@@ -47,8 +47,10 @@ struct PointBins {
 
 /// Fills `cache` for every point. Returns the smallest slot whose stencil leaves the grid or
 /// whose position is not finite, or -1 when all are inside. uGIMP uses half_width0 / h.
+/// `linear_axis` (0-2, or -1 for none) uses the linear shape along that axis whatever `kind`:
+/// the thickness of plane strain, whose one-cell grid has 2 node planes.
 std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
-                              StencilCache& cache);
+                              StencilCache& cache, int linear_axis = -1);
 
 /// Sorts points into bins and colours (counting sort; cost O(points + bins)).
 void bin_points(const Grid& grid, const StencilCache& cache, PointBins& bins);

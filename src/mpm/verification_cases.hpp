@@ -35,7 +35,17 @@ struct ColumnResult {
   double kinetic_ratio = 0.0;  ///< final kinetic energy / potential energy scale (rest check)
   std::int64_t steps = 0;
 };
-ColumnResult run_self_weight_column(ShapeKind shape, int cells, double transits = 60.0);
+/// Variants of the column: a soft one (young_modulus = rho g H / 0.2 compresses its base by a
+/// log strain of 0.2, so the points cross cell faces: the "compacting column" of Steffen, Kirby
+/// and Berzins 2008; the exact point stress stays -rho g (H - Z), the weight above the point),
+/// and plane strain (a one-cell-thick grid along y, SolverConfig::plane_strain_axis = 1, 2 x 1 x 2
+/// points per cell). Both keep the defaults of the column above when not set.
+struct ColumnOptions {
+  double young_modulus = 1e7;  ///< [Pa]
+  bool plane_strain = false;
+};
+ColumnResult run_self_weight_column(ShapeKind shape, int cells, double transits = 60.0,
+                                    const ColumnOptions& options = {});
 
 /// The paper's single-cell triaxial test (section 3): one 1 m cell, 8 points at (1/4, 3/4),
 /// confining pressure on the x and y faces as TractionLoads, bottom nodes fixed in z, top nodes

@@ -166,7 +166,9 @@ TEST(PlaneStrain, GridMustBeOneCellThick) {
   cfg.grid.cells = common::Vec3i(2, 1, 2);
   cfg.plane_strain_axis = 1;
   EXPECT_NO_THROW(cfg.validate());
-  cfg.shape = mpm::ShapeKind::ugimp;  // its stencil spans 3 node planes
+  cfg.shape = mpm::ShapeKind::ugimp;  // linear through the thickness
+  EXPECT_NO_THROW(cfg.validate());
+  cfg.shape = mpm::ShapeKind::bspline2;  // its grid basis spans 3 node planes
   EXPECT_THROW(cfg.validate(), common::InputError);
 }
 

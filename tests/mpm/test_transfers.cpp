@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <array>
 #include <cmath>
 #include <set>
 
@@ -26,6 +27,22 @@ mpm::MaterialPoints jittered_block(const mpm::Grid& g, int ppc, unsigned seed) {
     pts.v[p] = Vec3::Random();
   }
   return pts;
+}
+
+// Every point in exactly one bin; bins of a colour touch disjoint nodes.
+void expect_colours_disjoint(const mpm::Grid& g, const mpm::StencilCache& cache,
+                             const mpm::PointBins& bins) {
+  const std::array<int, 3> ns = cache.width;
+  for (const auto& colour : bins.by_colour) {
+    std::set<std::int64_t> nodes;
+    for (auto b : colour) {
+      const common::Vec3i base = g.node_ijk(bins.key[b]);
+      for (int k = 0; k < ns[2]; ++k)
+        for (int j = 0; j < ns[1]; ++j)
+          for (int i = 0; i < ns[0]; ++i)
+            EXPECT_TRUE(nodes.insert(g.node_index(base[0] + i, base[1] + j, base[2] + k)).second);
+    }
+  }
 }
 
 class Transfers : public ::testing::TestWithParam<mpm::ShapeKind> {};
@@ -57,19 +74,60 @@ TEST_P(Transfers, P2GConservesMassMomentumAndGravity) {
   EXPECT_NEAR(m_i, m_p, 1e-13 * m_p);
   EXPECT_LT((mv_i - mv_p).norm(), 1e-13 * m_p);
   EXPECT_LT((fg_i - m_p * grav).norm(), 1e-13 * m_p * 9.81);
-  // Every point in exactly one bin; bins of a colour touch disjoint nodes.
   EXPECT_EQ(bins.order.size(), pts.size());
-  const int ns = cache.width;
-  for (const auto& colour : bins.by_colour) {
-    std::set<std::int64_t> nodes;
-    for (auto b : colour) {
-      const common::Vec3i base = g.node_ijk(bins.key[b]);
-      for (int k = 0; k < ns; ++k)
-        for (int j = 0; j < ns; ++j)
-          for (int i = 0; i < ns; ++i)
-            EXPECT_TRUE(nodes.insert(g.node_index(base[0] + i, base[1] + j, base[2] + k)).second);
-    }
+  expect_colours_disjoint(g, cache, bins);
+}
+
+// A one-cell-thick grid (plane strain, thickness y): uGIMP in x and z, linear through y (its
+// 3-node stencil would need 3 node planes, the grid has 2): the stencils stay inside the grid,
+// P2G conserves mass and momentum, and bins of a colour touch disjoint nodes (2 colours in y).
+TEST(Transfers, PlaneStrainUgimpIsLinearThroughTheThickness) {
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(7, 1, 6)};
+  mpm::MaterialPoints pts;
+  mpm::fill_box(pts, g, Vec3(0.1, 0.0, 0.1), Vec3(0.6, 0.1, 0.5), common::Vec3i(2, 1, 2), 1000.0,
+                0);
+  std::srand(5);
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    const Vec3 r = Vec3::Random();
+    pts.x[p] += 0.04 * Vec3(r[0], 0.5 * r[1], r[2]);  // y stays inside the one cell
+    pts.v[p] = Vec3::Random();
   }
+  mpm::StencilCache cache;
+  mpm::PointBins bins;
+  mpm::GridFields f;
+  f.resize(g);
+  // Without the linear thickness the uGIMP stencil leaves the one-cell grid.
+  EXPECT_GE(mpm::compute_stencils(mpm::ShapeKind::ugimp, g, pts, cache), 0);
+  ASSERT_EQ(mpm::compute_stencils(mpm::ShapeKind::ugimp, g, pts, cache, 1), -1);
+  EXPECT_EQ(cache.width, (std::array<int, 3>{3, 2, 3}));
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    // Linear in y: nodes 0 and 1, weights 1 - y/h and y/h; the third entry unused (zero).
+    const double y = pts.x[p][1] / g.spacing[1];
+    EXPECT_EQ(cache.base[p][1], 0);
+    EXPECT_NEAR(cache.w[p * 9 + 3], 1.0 - y, 1e-15);
+    EXPECT_NEAR(cache.w[p * 9 + 4], y, 1e-15);
+    EXPECT_EQ(cache.w[p * 9 + 5], 0.0);
+    // uGIMP in x: a 3-node stencil whose weights sum to one.
+    EXPECT_NEAR(cache.w[p * 9 + 0] + cache.w[p * 9 + 1] + cache.w[p * 9 + 2], 1.0, 1e-14);
+  }
+  mpm::bin_points(g, cache, bins);
+  EXPECT_EQ(bins.by_colour.size(), 18u);
+  mpm::activate_nodes(g, cache, bins, f);
+  mpm::p2g_mass_momentum(g, cache, bins, pts, Vec3::Zero(), f);
+  double m_p = 0, m_i = 0;
+  Vec3 mv_p = Vec3::Zero(), mv_i = Vec3::Zero();
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    m_p += pts.mass[p];
+    mv_p += pts.mass[p] * pts.v[p];
+  }
+  for (auto i : f.active) {
+    EXPECT_LE(g.node_ijk(i)[1], 1);
+    m_i += f.mass[i];
+    mv_i += f.momentum[i];
+  }
+  EXPECT_NEAR(m_i, m_p, 1e-13 * m_p);
+  EXPECT_LT((mv_i - mv_p).norm(), 1e-13 * m_p);
+  expect_colours_disjoint(g, cache, bins);
 }
 
 TEST_P(Transfers, StepIsBitForBitIndependentOfThreadCount) {
