@@ -144,6 +144,21 @@ void mpm_rules(const Job& job, Rules& r) {
                                          origin[a], top, "xyz"[a]));
         break;
       }
+      // uGIMP (in the plane of plane strain): the points' domains fill the box, and a domain on
+      // the grid's boundary has a stencil node beyond it as soon as its point moves outward.
+      const bool thickness =
+          job.has("mpm.plane_strain") && job.text("mpm.plane_strain")[0] - 'x' == a;
+      const double tol = 1e-9 * h[a];
+      if (job.text("mpm.shape_function") == "ugimp" && !thickness &&
+          (lo[a] <= origin[a] + tol || hi[a] >= top - tol)) {
+        r.fail(lo[a] <= origin[a] + tol ? base + "min" : base + "max",
+               fmt::format("with mpm.shape_function = \"ugimp\" the box must not reach the "
+                           "boundary of the grid [{}, {}] on axis {} (uGIMP's 3-node stencil reaches "
+                           "past the points' own cells: pad mpm.grid by a cell and hold that node "
+                           "plane with the wall)",
+                           origin[a], top, "xyz"[a]));
+        break;
+      }
     }
     const std::string& m = job.text(base + "material");  // dem + initial_stress: insitu rules
     any_dem = any_dem || m == "dem";

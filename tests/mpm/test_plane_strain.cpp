@@ -172,6 +172,32 @@ TEST(PlaneStrain, GridMustBeOneCellThick) {
   EXPECT_THROW(cfg.validate(), common::InputError);
 }
 
+// uGIMP: a point whose domain reaches the grid's boundary (in the plane) is refused when the
+// solver is built, naming the point and the remedy, not at step 1 as "left the grid"; through the
+// thickness its domain fills the one cell, which is allowed (the shape is linear there).
+TEST(PlaneStrain, UgimpRefusesADomainOnTheGridBoundary) {
+  mpm::SolverConfig cfg;
+  cfg.grid = {Vec3(0.0, 0.0, -1.0), Vec3::Ones(), common::Vec3i(3, 1, 3)};
+  cfg.plane_strain_axis = 1;
+  cfg.shape = mpm::ShapeKind::ugimp;
+  mpm::LinearElastic material(1e6, 0.3, 1000.0);
+  mpm::MaterialPoints touching;
+  mpm::fill_box(touching, cfg.grid, Vec3(0.0, 0.0, 0.0), Vec3(1.0, 1.0, 1.0),
+                common::Vec3i(2, 1, 2), 1000.0, 0);
+  try {
+    mpm::Solver solver(cfg, touching, {&material});
+    FAIL() << "a uGIMP domain on the grid's boundary x = 0 was accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reaches the grid's boundary at x = 0"),
+              std::string::npos)
+        << e.what();
+  }
+  mpm::MaterialPoints inside;
+  mpm::fill_box(inside, cfg.grid, Vec3(1.0, 0.0, 0.0), Vec3(2.0, 1.0, 1.0),
+                common::Vec3i(2, 1, 2), 1000.0, 0);
+  EXPECT_NO_THROW(mpm::Solver(cfg, inside, {&material}));
+}
+
 }  // namespace
 
 // Plane strain with rough (frictional) platens: the thickness component is held before the walls
