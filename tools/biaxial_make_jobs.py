@@ -87,12 +87,21 @@ def self_test():
 
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
-        smoothing="cell"):
+        smoothing="cell", shape="linear"):
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
     t_end = end_time(strain, v)
     x0, x1 = -pad * h, W + pad * h
+    # uGIMP: one cell under the base too (a domain on the grid's boundary is refused), held with it.
+    below = 1 if shape == "ugimp" else 0
+    shape_note = "" if shape == "linear" else "  # in the plane; linear through the thickness"
+    grid_note = ", one under the base (uGIMP)" if below else ""
+    if below:
+        base_where = (f"min = [{x0!r}, 0.0, {-h!r}]       # the node planes z = 0 and the one under it\n"
+                      f"max = [{x1!r}, {h!r}, 0.0]\n")
+    else:
+        base_where = 'face = "z-"\n'
     lines = [header.rstrip(), f'title = "Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, '
              f'{4 * nx * nz} RVEs of {spheres} spheres"', "",
              """[dem.material]                 # the reference material (docs/validation.md)
@@ -124,7 +133,7 @@ pressure_floor = "10 kPa"      # T_p of an RVE that loses its contacts (the corn
                                # the run (up to 5700 DEM steps per MPM step, docs/biaxial.md)
 
 [mpm]
-shape_function = "linear"
+shape_function = "{shape}"{shape_note}
 update = "usf"
 plane_strain = "y"             # one cell through y, [2, 1, 2] points per cell
 flip = 1.0
@@ -138,9 +147,9 @@ cfl = 0.5
 end_time = "{t_end!r} s"        # log axial strain {strain:g} at the platen speed below
 
 [mpm.grid]                     # {pad} empty cell(s) each side in x for the lateral expansion, one above
-origin = [{x0!r}, 0.0, 0.0]  # the top (a point next to the platen may drift above it)
+origin = [{x0!r}, 0.0, {-below * h!r}]  # the top (a point next to the platen may drift above it){grid_note}
 spacing = [{h!r}, {h!r}, {h!r}]
-cells = [{nx + 2 * pad}, 1, {nz + 1}]
+cells = [{nx + 2 * pad}, 1, {nz + 1 + below}]
 
 [[mpm.body]]
 min = [0.0, 0.0, 0.0]
@@ -152,8 +161,7 @@ material = "dem"
 # Rough rigid platens: no slip (x = 0) and the normal velocity imposed on the whole node plane
 # (plain constraints, bonded: the specimen is pushed against them throughout). The base first.
 [[mpm.velocity]]
-face = "z-"
-{platen_keys(platen)}z = 0.0
+{base_where}{platen_keys(platen, "z-" if below else None)}z = 0.0
 name = "base"
 """ + ("" if platen != "smooth" else f"""
 [[mpm.velocity]]               # smooth platens: one node pinned in x against the rigid motion
@@ -196,6 +204,8 @@ def main():
     ap.add_argument("--every", type=int, default=50)
     ap.add_argument("--platen", default="rough", help="rough (no slip), smooth, or a friction coefficient")
     ap.add_argument("--smoothing", default="cell", help="mpm.strain_smoothing: cell or none")
+    ap.add_argument("--shape", default="linear", choices=["linear", "ugimp"],
+                    help="mpm.shape_function (ugimp: the grid gets a cell under the base)")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     ap.add_argument("--self-test", action="store_true")
@@ -207,7 +217,7 @@ def main():
         a.pad = math.ceil(0.025 / (W / a.mesh[0]) - 1e-9)
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
                a.mass_scaling, a.every, a.header, a.platen,
-               a.smoothing)
+               a.smoothing, a.shape)
     open(a.out, "w").write(text)
 
 
