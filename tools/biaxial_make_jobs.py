@@ -87,7 +87,7 @@ def self_test():
 
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
-        smoothing="cell", shape="linear"):
+        smoothing="cell", shape="ugimp"):
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
@@ -204,8 +204,9 @@ def main():
     ap.add_argument("--every", type=int, default=50)
     ap.add_argument("--platen", default="rough", help="rough (no slip), smooth, or a friction coefficient")
     ap.add_argument("--smoothing", default="cell", help="mpm.strain_smoothing: cell or none")
-    ap.add_argument("--shape", default="linear", choices=["linear", "ugimp"],
-                    help="mpm.shape_function (ugimp: the grid gets a cell under the base)")
+    ap.add_argument("--shape", default="ugimp", choices=["linear", "ugimp"],
+                    help="mpm.shape_function (ugimp, the default since 2026-11-25: the grid gets a "
+                         "cell under the base; linear: the jobs of before, docs/biaxial.md)")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     ap.add_argument("--self-test", action="store_true")
