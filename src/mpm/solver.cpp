@@ -4,7 +4,6 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <string>
 
@@ -88,40 +87,7 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
                                " material model(s) were given");
     }
   }
-  if (config_.shape == ShapeKind::ugimp) {
-    // Not along the thickness of plane strain, where the shape is linear.
-    common::Vec3 cap = 0.5 * config_.grid.spacing;
-    if (const int a = config_.plane_strain_axis; a >= 0) cap[a] = std::numeric_limits<double>::infinity();
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      if ((points_.half_width0[p].array() > cap.array()).any()) {
-        throw common::InputError("mpm solver: point id " + std::to_string(points_.id[p]) +
-                                 ": uGIMP needs half-widths <= spacing / 2");
-      }
-    }
-    // A domain that reaches the grid's boundary has a stencil node beyond it as soon as the
-    // point moves outward by any amount: refuse it now, with the remedy, rather than at step 1.
-    const Grid& g = config_.grid;
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      for (int d = 0; d < 3; ++d) {
-        if (d == config_.plane_strain_axis) continue;
-        const double lo = points_.x[p][d] - points_.half_width0[p][d];
-        const double hi = points_.x[p][d] + points_.half_width0[p][d];
-        const double g_lo = g.origin[d];
-        const double g_hi = g.origin[d] + g.cells[d] * g.spacing[d];
-        const double tol = 1e-9 * g.spacing[d];
-        if (lo <= g_lo + tol || hi >= g_hi - tol) {
-          const char axis = static_cast<char>('x' + d);
-          throw common::InputError(
-              "mpm solver: point id " + std::to_string(points_.id[p]) + ": its uGIMP domain [" +
-              num_str(lo) + ", " + num_str(hi) + "] m along " + axis +
-              " reaches the grid's boundary at " + axis + " = " +
-              num_str(lo <= g_lo + tol ? g_lo : g_hi) +
-              " m: uGIMP needs one empty cell beyond the material (mpm.grid), its 3-node "
-              "stencil reaches past the point's own cell; hold that node plane with the wall");
-        }
-      }
-    }
-  }
+  check_shape_domains(config_.shape, config_.grid, points_, config_.plane_strain_axis);
   fields_.resize(config_.grid);
 }
 

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "common/errors.hpp"
@@ -111,6 +113,38 @@ std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPo
     }
   }
   return bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;
+}
+
+void check_shape_domains(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
+                         int linear_axis) {
+  if (kind != ShapeKind::ugimp) return;
+  const auto num = [](double v) {
+    std::ostringstream o;
+    o << std::setprecision(17) << v;
+    return o.str();
+  };
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const std::string who = "mpm solver: point id " + std::to_string(points.id[p]);
+    for (int d = 0; d < 3; ++d) {
+      if (d == linear_axis) continue;
+      if (points.half_width0[p][d] > 0.5 * grid.spacing[d]) {
+        throw common::InputError(who + ": uGIMP needs half-widths <= spacing / 2");
+      }
+      const double lo = points.x[p][d] - points.half_width0[p][d];
+      const double hi = points.x[p][d] + points.half_width0[p][d];
+      const double g_lo = grid.origin[d];
+      const double g_hi = grid.origin[d] + grid.cells[d] * grid.spacing[d];
+      const double tol = 1e-9 * grid.spacing[d];
+      if (lo <= g_lo + tol || hi >= g_hi - tol) {
+        const char axis = static_cast<char>('x' + d);
+        throw common::InputError(
+            who + ": its uGIMP domain [" + num(lo) + ", " + num(hi) + "] m along " + axis +
+            " reaches the grid's boundary at " + axis + " = " + num(lo <= g_lo + tol ? g_lo : g_hi) +
+            " m: uGIMP needs one empty cell beyond the material (mpm.grid), its 3-node stencil "
+            "reaches past the point's own cell; hold that node plane with the wall");
+      }
+    }
+  }
 }
 
 namespace {

@@ -52,6 +52,13 @@ struct PointBins {
 std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
                               StencilCache& cache, int linear_axis = -1);
 
+/// Throws common::InputError naming the point when `kind` cannot serve it: uGIMP needs
+/// half-widths <= spacing / 2, and a domain clear of the grid's boundary (one that reaches it has
+/// a stencil node beyond it as soon as its point moves outward: refused when the solver is built,
+/// with the remedy, not at step 1). Not along `linear_axis`, where the shape is linear.
+void check_shape_domains(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
+                         int linear_axis = -1);
+
 /// Sorts points into bins and colours (counting sort; cost O(points + bins)).
 void bin_points(const Grid& grid, const StencilCache& cache, PointBins& bins);
 
