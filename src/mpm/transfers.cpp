@@ -70,7 +70,9 @@ std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPo
                               StencilCache& cache, int linear_axis) {
   const std::size_t n = points.size();
   std::array<ShapeKind, 3> kinds{kind, kind, kind};
-  if (linear_axis >= 0 && linear_axis < 3) kinds[static_cast<std::size_t>(linear_axis)] = ShapeKind::linear;
+  if (linear_axis >= 0 && linear_axis < 3) {
+    kinds[static_cast<std::size_t>(linear_axis)] = ShapeKind::linear;
+  }
   for (std::size_t d = 0; d < 3; ++d) cache.width[d] = stencil_width(kinds[d]);
   cache.base.resize(n);
   cache.w.resize(n * 9);
