@@ -19,6 +19,7 @@ int g_rank = 0;
 constexpr const char* kFilePattern = "[%Y-%m-%d %H:%M:%S] %l: %v";
 // Rank 0's lines before the log file exists (set-up, preparation): copied into it when it opens.
 std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> g_early;
+std::shared_ptr<spdlog::sinks::basic_file_sink_mt> g_file;  // the run's log.txt (rank 0)
 }  // namespace
 
 void setup_logging(int rank, int verbosity) {
@@ -64,6 +65,18 @@ void add_log_file(const std::string& path) {
   auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, false);
   file->set_pattern(kFilePattern);
   sinks.push_back(file);
+  g_file = file;
+}
+
+void remove_log_file() noexcept {
+  try {
+    if (!g_file) return;
+    g_file->flush();
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), g_file), sinks.end());
+    g_file.reset();  // closes the file
+  } catch (...) {
+  }
 }
 
 }  // namespace app

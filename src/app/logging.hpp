@@ -9,5 +9,7 @@ namespace app {
 void setup_logging(int rank, int verbosity);
 /// Also log to a file (rank 0 only; other ranks ignore the call).
 void add_log_file(const std::string& path);
+/// Flushes and closes the log file added by add_log_file (rank 0; a no-op otherwise).
+void remove_log_file() noexcept;
 
 }  // namespace app

@@ -6,10 +6,12 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/logging.hpp"
+#include "app/output_dir.hpp"
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {
@@ -44,6 +46,12 @@ int main(int argc, char** argv) {
     // Input errors are collective: every rank read the same input and threw the same error.
     if (comm.rank == 0) std::fprintf(stderr, "error: %s\n", e.what());
     code = 2;
+    // A run refused after its output directory was opened leaves nothing behind.
+    if (comm.rank == 0) {
+      app::remove_log_file();
+      const std::string undone = app::discard_refused_output();
+      if (!undone.empty()) std::fprintf(stderr, "nothing written: %s\n", undone.c_str());
+    }
   } catch (const common::NumericalError& e) {
     // Numerical failures reach every rank through the farm's error agreement: rank 0 reports.
     if (comm.rank == 0) spdlog::error("numerical failure: {}", e.what());

@@ -12,6 +12,9 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
+#include <algorithm>
 
 #include "common/errors.hpp"
 
@@ -50,6 +53,26 @@ std::string lock_holder(const fs::path& dir) {
 }
 
 int g_lock_fd = -1;  // held until the process ends
+
+// What the output directory held before this process wrote into it (note_output_before).
+struct Before {
+  bool noted = false;
+  fs::path dir;
+  fs::path created_root;  // the topmost directory this run creates; empty when dir existed
+  std::vector<std::string> entries;  // names in dir, sorted
+  std::uintmax_t log_size = 0;       // of log.txt; 0 when absent
+  bool had_log = false;
+  std::string lock_bytes;  // of the lock file
+  bool had_lock = false;
+};
+Before g_before;
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 }  // namespace
 
@@ -91,7 +114,69 @@ void check_output_dir(const fs::path& dir, bool force, bool restart) {
       dir.string()));
 }
 
+void note_output_before(const fs::path& dir) {
+  Before b;
+  b.noted = true;
+  b.dir = dir;
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) {
+    b.created_root = dir;
+    while (b.created_root.has_parent_path() && b.created_root.parent_path() != b.created_root &&
+           !fs::exists(b.created_root.parent_path(), ec)) {
+      b.created_root = b.created_root.parent_path();
+    }
+  } else {
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      b.entries.push_back(e.path().filename().string());
+    }
+    std::sort(b.entries.begin(), b.entries.end());
+    b.had_log = fs::is_regular_file(dir / "log.txt", ec);
+    if (b.had_log) b.log_size = fs::file_size(dir / "log.txt", ec);
+    b.had_lock = fs::is_regular_file(dir / kLockFile, ec);
+    if (b.had_lock) b.lock_bytes = read_all(dir / kLockFile);
+  }
+  g_before = std::move(b);
+}
+
+std::string discard_refused_output() noexcept {
+  try {
+    if (!g_before.noted) return "";
+    const Before& b = g_before;
+    std::error_code ec;
+    if (!b.created_root.empty()) {
+      fs::remove_all(b.created_root, ec);
+      if (ec) {
+        return fmt::format("could not remove the output directory '{}' this run created: {}",
+                           b.created_root.string(), ec.message());
+      }
+      return fmt::format("the output directory '{}' this run created was removed",
+                         b.created_root.string());
+    }
+    std::vector<std::string> removed;
+    for (const auto& e : fs::directory_iterator(b.dir, ec)) {
+      const std::string name = e.path().filename().string();
+      if (std::binary_search(b.entries.begin(), b.entries.end(), name)) continue;
+      std::error_code rm;
+      fs::remove_all(e.path(), rm);
+      if (!rm) removed.push_back(name);
+    }
+    if (b.had_log) fs::resize_file(b.dir / "log.txt", b.log_size, ec);
+    if (b.had_lock) {
+      std::ofstream lock(b.dir / kLockFile, std::ios::binary | std::ios::trunc);
+      lock << b.lock_bytes;
+    }
+    std::sort(removed.begin(), removed.end());
+    std::string list;
+    for (const std::string& r : removed) list += (list.empty() ? "" : ", ") + r;
+    return fmt::format("'{}' is as it was before this run{}", b.dir.string(),
+                       removed.empty() ? std::string() : " (removed what it added: " + list + ")");
+  } catch (...) {
+    return "";
+  }
+}
+
 void create_output_dir(const fs::path& dir) {
+  note_output_before(dir);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) {
