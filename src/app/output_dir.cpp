@@ -62,9 +62,10 @@ struct Before {
   std::vector<std::string> entries;  // names in dir, sorted
   std::uintmax_t log_size = 0;       // of log.txt; 0 when absent
   bool had_log = false;
-  std::string lock_bytes;  // of the lock file
-  bool had_lock = false;
+  // The small files every run rewrites (the lock, job.toml, job.resolved.toml): name and bytes.
+  std::vector<std::pair<std::string, std::string>> small;
 };
+constexpr const char* kRewritten[] = {kLockFile, "job.toml", "job.resolved.toml"};
 Before g_before;
 
 std::string read_all(const fs::path& path) {
@@ -132,8 +133,9 @@ void note_output_before(const fs::path& dir) {
     std::sort(b.entries.begin(), b.entries.end());
     b.had_log = fs::is_regular_file(dir / "log.txt", ec);
     if (b.had_log) b.log_size = fs::file_size(dir / "log.txt", ec);
-    b.had_lock = fs::is_regular_file(dir / kLockFile, ec);
-    if (b.had_lock) b.lock_bytes = read_all(dir / kLockFile);
+    for (const char* name : kRewritten) {
+      if (fs::is_regular_file(dir / name, ec)) b.small.emplace_back(name, read_all(dir / name));
+    }
   }
   g_before = std::move(b);
 }
@@ -161,9 +163,10 @@ std::string discard_refused_output() noexcept {
       if (!rm) removed.push_back(name);
     }
     if (b.had_log) fs::resize_file(b.dir / "log.txt", b.log_size, ec);
-    if (b.had_lock) {
-      std::ofstream lock(b.dir / kLockFile, std::ios::binary | std::ios::trunc);
-      lock << b.lock_bytes;
+    for (const auto& [name, bytes] : b.small) {
+      if (read_all(b.dir / name) == bytes) continue;
+      std::ofstream out(b.dir / name, std::ios::binary | std::ios::trunc);
+      out << bytes;
     }
     std::sort(removed.begin(), removed.end());
     std::string list;

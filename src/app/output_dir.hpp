@@ -18,14 +18,15 @@ void check_output_dir(const std::filesystem::path& dir, bool force, bool restart
 /// that a run refused later can take back what it wrote.
 void create_output_dir(const std::filesystem::path& dir);
 /// Remembers the state of `dir` before a run writes into it: whether it exists (else the topmost
-/// directory the run will create), its entries, the size of log.txt and the bytes of the lock.
+/// directory the run will create), its entries, the size of log.txt, and the bytes of the lock
+/// file, job.toml and job.resolved.toml.
 void note_output_before(const std::filesystem::path& dir);
 /// Takes back what this process wrote into its output directory, for a run refused after the
 /// directory was opened (an input error found late, exit 2): the directory goes when the run
 /// created it (with the parents it created); otherwise the entries the run added go, log.txt is
-/// cut back to its size before and the lock file gets its old bytes back. Files the run replaced
-/// in place are not restored (only --force replaces earlier results; a restart rewrites job.toml
-/// with the text it had). Call after the log file is closed (remove_log_file). Returns what was
+/// cut back to its size before, and the lock file, job.toml and job.resolved.toml get their old
+/// bytes back. Other files replaced in place are not restored (only --force lets a run replace
+/// earlier results). Call after the log file is closed (remove_log_file). Returns what was
 /// done, for the user ("" when no output directory was opened). Never throws.
 std::string discard_refused_output() noexcept;
 /// Takes the exclusive lock of an output directory for the rest of this process's life: the file

@@ -1,7 +1,7 @@
 # A run refused after its output directory was opened (an input error found late: exit 2) leaves
 # nothing behind: a directory it created is removed, an existing one is left as it was (entries
-# it added removed, log.txt cut back, the lock file's bytes restored), on a fresh run and on a
-# restart. The late error is provoked with MPMXDEM_FARM_FAULT (read when the farm starts).
+# it added removed, log.txt cut back, the bytes of the lock file and job files restored), on a
+# fresh run and on a restart. The late error is provoked with MPMXDEM_FARM_FAULT (read when the farm starts).
 include("${CMAKE_CURRENT_LIST_DIR}/hostile_util.cmake")
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
@@ -36,8 +36,12 @@ endif()
 file(GLOB ckpt "${DIR}/done/checkpoint_*.h5")
 list(GET ckpt 0 ckpt)
 snapshot("${DIR}/done" before)
+# The restart's job differs in a comment only (the same physics): its job.toml would replace
+# the earlier one, and must not.
+file(READ "${JOB}" text)
+file(WRITE "${DIR}/job_commented.toml" "# the same job, another comment\n${text}")
 execute_process(COMMAND ${CMAKE_COMMAND} -E env MPMXDEM_FARM_FAULT=bogus
-                        "${EXE}" run "${JOB}" --out "${DIR}/done" --restart "${ckpt}"
+                        "${EXE}" run "${DIR}/job_commented.toml" --out "${DIR}/done" --restart "${ckpt}"
                 RESULT_VARIABLE rc ERROR_VARIABLE err)
 expect_failure("${rc}" "${err}" 2 "nothing written: '${DIR}/done' is as it was before this run")
 expect_unchanged("${DIR}/done" "${before}" "a refused restart")
