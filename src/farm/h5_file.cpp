@@ -194,10 +194,22 @@ bool File::exists(const std::string& name) const {
 
 namespace {
 
+// An attribute holding one value (a scalar or a one-element array): H5Aread writes every element,
+// so an array attribute read into one value would overrun it.
+void check_single(const File& f, hid_t attribute, const char* name) {
+  Handle space(attribute >= 0 ? H5Aget_space(attribute) : -1, H5Sclose);
+  const hssize_t n = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  if (n != 1) {
+    f.fail("attribute /" + std::string(name) + " holds " + std::to_string(n) +
+           " values, not one");
+  }
+}
+
 template <class T>
 T read_attribute(const File& f, hid_t file, const char* name, hid_t type) {
   if (H5Aexists(file, name) <= 0) f.fail("attribute /" + std::string(name) + " is missing");
   Handle a(H5Aopen(file, name, H5P_DEFAULT), H5Aclose);
+  check_single(f, a.get(), name);
   T v{};
   if (!a.valid() || H5Aread(a.get(), type, &v) < 0)
     f.fail("attribute /" + std::string(name) + " cannot be read as the expected type");
@@ -220,6 +232,18 @@ std::string File::attribute_string(const char* name) const {
   Handle t(a.valid() ? H5Aget_type(a.get()) : -1, H5Tclose);
   if (!t.valid() || H5Tget_class(t.get()) != H5T_STRING)
     fail("attribute /" + std::string(name) + " is not a string");
+  check_single(*this, a.get(), name);
+  if (H5Tis_variable_str(t.get()) > 0) {
+    // A variable-length string (h5py's default, and /format of results.h5): read as a C string.
+    Handle m(H5Tcopy(H5T_C_S1), H5Tclose);
+    char* c = nullptr;
+    if (!m.valid() || H5Tset_size(m.get(), H5T_VARIABLE) < 0 ||
+        H5Tset_cset(m.get(), H5Tget_cset(t.get())) < 0 || H5Aread(a.get(), m.get(), &c) < 0)
+      fail("attribute /" + std::string(name) + " unreadable");
+    std::string s = c != nullptr ? std::string(c) : std::string();
+    H5free_memory(c);
+    return s;
+  }
   std::string s(H5Tget_size(t.get()), '\0');
   if (H5Aread(a.get(), t.get(), s.data()) < 0)
     fail("attribute /" + std::string(name) + " unreadable");

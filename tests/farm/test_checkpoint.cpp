@@ -1,7 +1,8 @@
 // Tests of farm/checkpoint.hpp and the typed HDF5 layer under it (farm/h5_file.hpp), on 2 ranks:
 // a checkpoint written by all ranks reads back exactly (any field type, absent and empty fields,
 // any distribution of the RVEs over the readers), its checksums catch a flipped value, a field
-// of the wrong element type is refused, and nothing is left staged.
+// of the wrong element type is refused, nothing is left staged, and attributes as other writers
+// store them (variable-length strings, arrays) are read or refused by name.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
@@ -220,4 +221,55 @@ TEST(H5File, InterleavedBlocksAndTypeChecks) {
     EXPECT_THROW((void)r.attribute_f64("label"), common::InputError);
     EXPECT_THROW((void)farm::h5::File::open(path + ".none", "test file"), common::InputError);
   }
+}
+
+// Attributes as other writers store them (h5py, our results.h5): a variable-length string reads
+// as its text (a results file given as a checkpoint is named as such), and an attribute holding
+// several values is refused by name instead of being read past one value.
+TEST(H5File, ForeignAttributes) {
+  const std::string path = scratch("foreign") + "/foreign.h5";
+  if (world_rank() != 0) return;
+  {
+    const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t scalar = H5Screate(H5S_SCALAR);
+    const hid_t vstr = H5Tcopy(H5T_C_S1);
+    H5Tset_size(vstr, H5T_VARIABLE);
+    H5Tset_cset(vstr, H5T_CSET_UTF8);
+    const char* text = "mpmxdem results";
+    hid_t a = H5Acreate2(f, "format", vstr, scalar, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, vstr, &text);
+    H5Aclose(a);
+    const hsize_t four[1] = {4};
+    const hid_t arr = H5Screate_simple(1, four, nullptr);
+    const std::int64_t versions[4] = {1, 2, 3, 4};
+    a = H5Acreate2(f, "format_version", H5T_NATIVE_INT64, arr, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, H5T_NATIVE_INT64, versions);
+    H5Aclose(a);
+    const hid_t fstr = H5Tcopy(H5T_C_S1);
+    H5Tset_size(fstr, 8);
+    const char names[4][8] = {"aaaaaaa", "bbbbbbb", "ccccccc", "ddddddd"};
+    a = H5Acreate2(f, "names", fstr, arr, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, fstr, names);
+    H5Aclose(a);
+    H5Tclose(fstr);
+    H5Sclose(arr);
+    H5Tclose(vstr);
+    H5Sclose(scalar);
+    H5Fclose(f);
+  }
+  const farm::h5::File r = farm::h5::File::open(path, "test file");
+  EXPECT_EQ(r.attribute_string("format"), "mpmxdem results");
+  const auto refused = [&](auto read, const std::string& what) {
+    try {
+      read();
+      ADD_FAILURE() << "read: " << what;
+    } catch (const common::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused([&] { (void)r.attribute_i64("format_version"); },
+          "attribute /format_version holds 4 values, not one");
+  refused([&] { (void)r.attribute_string("names"); }, "attribute /names holds 4 values, not one");
+  refused([&] { (void)farm::read_checkpoint_info(path); },
+          "attribute /format = 'mpmxdem results': not a farm checkpoint");
 }
