@@ -269,6 +269,19 @@ Handle File::open_dataset(const std::string& name, std::uint64_t& n) const {
   hsize_t dims[1] = {0};
   H5Sget_simple_extent_dims(s.get(), dims, nullptr);
   n = dims[0];
+  // What the file stores of a dataset bounds what it can hold: our datasets are deflated, and
+  // zlib inflates at most 1032-fold. A dataset claiming more (an unwritten extent of 1e11 values,
+  // say) is damaged or foreign, and reading it would first allocate its claimed size
+  // (std::bad_alloc, a crash instead of an error).
+  constexpr std::uint64_t kMaxInflation = 1032;
+  constexpr std::uint64_t kSlack = 65536;
+  const auto stored = static_cast<std::uint64_t>(H5Dget_storage_size(d.get()));
+  const std::uint64_t limit = kMaxInflation * stored + kSlack;
+  if (n > limit / sizeof(T)) {
+    fail("dataset " + name + " claims " + std::to_string(n) + " values, more than the " +
+         std::to_string(stored) + " bytes the file stores of it can hold: damaged, or not "
+         "written by mpmxdem");
+  }
   return d;
 }
 

@@ -273,3 +273,33 @@ TEST(H5File, ForeignAttributes) {
   refused([&] { (void)farm::read_checkpoint_info(path); },
           "attribute /format = 'mpmxdem results': not a farm checkpoint");
 }
+
+// A dataset whose extent claims more values than the file stores of it (an unwritten chunked
+// extent of 1e11 values) is refused by name before anything is allocated for it.
+TEST(H5File, ExtentBeyondTheStoredBytesIsRefused) {
+  const std::string path = scratch("extent") + "/extent.h5";
+  if (world_rank() != 0) return;
+  {
+    const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t n[1] = {100000000000ULL};
+    const hsize_t chunk[1] = {1024};
+    const hid_t space = H5Screate_simple(1, n, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 1, chunk);
+    const hid_t d = H5Dcreate2(f, "/x", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    H5Dclose(d);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  const farm::h5::File r = farm::h5::File::open(path, "test file");
+  try {
+    (void)r.read<double>("/x");
+    ADD_FAILURE() << "an extent of 1e11 unstored values was read";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("dataset /x claims 100000000000 values, more than the 0 "
+                                         "bytes the file stores of it can hold"),
+              std::string::npos)
+        << e.what();
+  }
+}
