@@ -217,17 +217,33 @@ void check_packing(const Packing& pk, const std::string& source, const std::vect
     throw common::InputError(source + ": " + std::to_string(n) +
                              " sphere(s): a packing needs at least 2 spheres");
   }
-  if (!pk.cell.h.allFinite() || !(pk.cell.h.determinant() > 0.0)) {
-    throw common::InputError(source + ": the cell matrix must be finite with det > 0");
+  const double det = pk.cell.h.determinant();
+  if (!pk.cell.h.allFinite() || !(det > 0.0) || !std::isfinite(det)) {
+    throw common::InputError(source + ": the cell matrix must be finite with a finite det > 0 (det " +
+                             num(det) + ")");
   }
   double w_min = pk.cell.width(0);
   for (int a = 1; a < 3; ++a) w_min = std::min(w_min, pk.cell.width(a));
+  if (!(w_min > 0.0) || !std::isfinite(w_min)) {
+    throw common::InputError(source + ": the cell's smallest width is " + num(w_min) +
+                             " m: the cell matrix is too large or too small for double precision");
+  }
+  // A sphere far smaller than the largest is below the round-off of the contact geometry (the
+  // overlap is a difference of lengths of the largest spheres' size) and would set the time step.
+  constexpr double kMinRadiusRatio = 1e-6;
+  double r_max = 0.0;
+  for (const double r : pk.r) r_max = std::max(r_max, std::isfinite(r) ? r : 0.0);
   const common::Mat3 hinv = pk.cell.h.inverse();
   double solid = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!pk.x[i].allFinite()) bad(i, "the centre must be finite");
     if (!(std::isfinite(pk.r[i]) && pk.r[i] > 0.0))
       bad(i, "radius " + num(pk.r[i]) + " must be > 0 and finite");
+    if (!(pk.r[i] >= kMinRadiusRatio * r_max)) {
+      bad(i, "radius " + num(pk.r[i]) + " m is below 1e-6 times the largest radius (" +
+                 num(r_max) + " m): a size ratio above 1e6 is below the round-off of the "
+                 "contact geometry (radii in one unit?)");
+    }
     if (!(2.0 * pk.r[i] < w_min)) {
       bad(i, "radius " + num(pk.r[i]) +
                  " m: the diameter must be below the cell's smallest width " + num(w_min) +

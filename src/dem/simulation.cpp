@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <string>
@@ -31,8 +32,20 @@ Simulation::Simulation(Spheres spheres, const PeriodicCell& cell, const Material
   if (cell_.volume() <= 0.0) throw common::InputError("dem: cell matrix H has det(H) <= 0");
   spheres_.set_density(mat.density);
   double rmax = 0.0;
-  for (double r : spheres_.r) {
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    const double r = spheres_.r[i];
     if (!(r > 0.0)) throw common::InputError("dem: sphere radius must be > 0");
+    // Mass and moment of inertia divide the forces: they must be ordinary positive numbers, not
+    // 0 or subnormal (r^3 rho or r^5 rho underflowing) nor infinite.
+    if (!std::isnormal(spheres_.m[i]) || !std::isnormal(spheres_.inertia[i])) {
+      char msg[400];
+      std::snprintf(msg, sizeof msg,
+                    "dem: sphere %zu (radius %.6g m, density %.6g kg/m^3) has mass %.6g kg and "
+                    "moment of inertia %.6g kg m^2: not ordinary positive numbers in double "
+                    "precision (radii and density in SI units, m and kg/m^3?)",
+                    i, r, mat.density, spheres_.m[i], spheres_.inertia[i]);
+      throw common::InputError(msg);
+    }
     rmax = std::max(rmax, r);
   }
   verlet_.skin = num.skin_factor * rmax;

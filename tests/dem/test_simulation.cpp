@@ -7,7 +7,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
+#include "common/errors.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
 #include "dem/simulation.hpp"
@@ -93,6 +95,27 @@ TEST(Simulation, ContactFreeGasHasZeroStressUnderAffineDeformation) {
 
 // Large simple shear of a gas: the cell is re-mapped to a less skewed equivalent cell (same
 // lattice) on neighbour rebuilds; positions stay affine modulo the lattice, stress stays zero.
+// Masses and moments of inertia divide the forces: spheres whose r^5 rho underflows (radii of
+// 1e-70 m, in a cell the packing checks accept) or whose r^3 rho overflows are refused, naming the
+// sphere, instead of giving 0/0 accelerations.
+TEST(Simulation, MassOrInertiaOutsideDoublePrecisionIsRefused) {
+  for (const double scale : {1e-70, 1e+70}) {
+    dem::Spheres s;
+    for (int a = 0; a < 2; ++a) s.add(Vec3(a + 0.5, 0.5, 0.5) * scale, 0.25 * scale, 2650.0);
+    dem::PeriodicCell cell;
+    cell.h = Mat3::Identity() * 2.0 * scale;
+    try {
+      dem::Simulation sim(s, cell, dem_test::reference_material(), dem::Numerics{});
+      ADD_FAILURE() << "radius " << 0.25 * scale << " m accepted";
+    } catch (const common::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("sphere 0 (radius"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("not ordinary positive numbers in double precision"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(Simulation, LargeShearRemapsCell) {
   dem::Spheres s;
   for (int a = 0; a < 3; ++a) {
