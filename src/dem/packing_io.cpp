@@ -93,6 +93,24 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
                "] m): give the cell in one place only");
     }
   };
+  // The cell's side lengths (CELL, or the column norms of HSIZE) of the first cell line: every
+  // later cell line must give the same cell (YADE dumps carry both CELL and HSIZE).
+  long first_cell_line = 0;
+  common::Vec3 first_sizes = common::Vec3::Zero();
+  auto check_same_cell = [&](long at, const common::Vec3& sizes) {
+    if (first_cell_line == 0) {
+      first_cell_line = at;
+      first_sizes = sizes;
+      return;
+    }
+    if ((sizes - first_sizes).cwiseAbs().maxCoeff() > 1e-9 * first_sizes.cwiseAbs().maxCoeff()) {
+      fail(path, at,
+           "this cell line (side lengths " + g(sizes[0]) + ", " + g(sizes[1]) + ", " +
+               g(sizes[2]) + " m) disagrees with the cell of line " +
+               std::to_string(first_cell_line) + " (" + g(first_sizes[0]) + ", " +
+               g(first_sizes[1]) + ", " + g(first_sizes[2]) + " m): one cell per packing file");
+    }
+  };
   long yade_format = 0;  // line of YADE's "#format x_y_z_r" (yade.export.text), 0: none
   std::string line;
   long ln = 0;
@@ -111,6 +129,7 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
         if (!(d > 0.0)) fail(path, ln, "CELL sizes must be > 0");
       }
       check_given(ln, common::Vec3(v[0], v[1], v[2]).asDiagonal());
+      check_same_cell(ln, common::Vec3(v[0], v[1], v[2]));
       if (!have_h) pk.cell.h = common::Vec3(v[0], v[1], v[2]).asDiagonal();
       have_cell = true;
     } else if (line.compare(first, 5, "HSIZE") == 0) {
@@ -120,6 +139,8 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
       }
       if (!(pk.cell.h.determinant() > 0.0)) fail(path, ln, "HSIZE must have det > 0");
       check_given(ln, pk.cell.h);
+      check_same_cell(ln, common::Vec3(pk.cell.h.col(0).norm(), pk.cell.h.col(1).norm(),
+                                       pk.cell.h.col(2).norm()));
       have_h = true;
     } else {
       if (!have_h && !have_cell && !cell) {

@@ -43,11 +43,11 @@ TEST(PackingIo, CellLinesWrittenAsCommentsAreRead) {
   const std::string path = testing::TempDir() + "/dem_commented_cell.txt";
   {
     std::ofstream f(path);
-    f << "# CELL sizes in m\n#  CELL 2 3 4\n# HSIZE 2 0 0 0 3 0 0 0 4.5\n# x y z r\n"
+    f << "# CELL sizes in m\n#  CELL 2 3 4.5\n# HSIZE 2 0 0 0 3 0 0 0 4.5\n# x y z r\n"
          "0.5 0.5 0.5 0.5\n1.5 1.5 2.5 0.5\n";
   }
   const dem::Packing pk = dem::read_packing(path);
-  EXPECT_EQ(pk.cell.h(2, 2), 4.5);  // HSIZE wins over CELL
+  EXPECT_EQ(pk.cell.h(2, 2), 4.5);
   EXPECT_EQ(pk.cell.h(1, 1), 3.0);
   EXPECT_EQ(pk.r.size(), 2u);
   std::ifstream written;
@@ -64,6 +64,31 @@ TEST(PackingIo, CellLinesWrittenAsCommentsAreRead) {
       EXPECT_TRUE(is >> v[0] >> v[1] >> v[2] >> v[3]) << line;
     }
   }
+}
+
+// CELL (the side lengths, YADE's O.cell.size) and HSIZE (the matrix, whose column norms are those
+// lengths) must describe one cell: a file whose lines disagree is refused naming both lines,
+// not read with one of them silently preferred.
+TEST(PackingIo, DisagreeingCellLinesAreRefused) {
+  const std::string path = testing::TempDir() + "/dem_two_cells.txt";
+  {
+    std::ofstream f(path);
+    f << "# CELL 2 3 4\n# HSIZE 2 0 0 0 3 0 0 0 4.5\n0.5 0.5 0.5 0.5\n1.5 1.5 2.5 0.5\n";
+  }
+  try {
+    (void)dem::read_packing(path);
+    ADD_FAILURE() << "two cells read";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ":2: this cell line (side lengths 2, 3, 4.5 m) "
+                                                 "disagrees with the cell of line 1 (2, 3, 4 m)"),
+              std::string::npos)
+        << e.what();
+  }
+  {
+    std::ofstream f(path);  // a sheared cell: CELL gives the column norms of HSIZE
+    f << "CELL 2 3.1622776601683795 4\nHSIZE 2 1 0 0 3 0 0 0 4\n0.5 0.5 0.5 0.5\n1.5 1.5 2.5 0.5\n";
+  }
+  EXPECT_EQ(dem::read_packing(path).cell.h(0, 1), 1.0);
 }
 
 TEST(PackingIo, BadLineNamesFileAndLine) {
