@@ -84,18 +84,21 @@ StepReport Rve::step(const Mat3& l, double dt) {
   const double rho = params_.material.density;
   double t_p = std::max(emax / params_.inertial_number * inertial_time(d50_, rho, p), dt_dem);
   if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
-  auto n = static_cast<std::int64_t>(std::ceil(t_p / dt_dem));
-  const auto n_split = static_cast<std::int64_t>(std::ceil(gmax / params_.max_strain_per_step));
-  if (n_split > n) {
-    n = n_split;
+  // Step counts in double precision until they are capped: a tiny inertial number or a huge
+  // increment gives counts beyond int64 (or an infinite t_p), whose conversion is undefined.
+  double n_wanted = std::ceil(t_p / dt_dem);
+  const double n_split = std::ceil(gmax / params_.max_strain_per_step);
+  if (n_split > n_wanted) {
+    n_wanted = n_split;
     rep.guards |= kGuardStrainSplit;
   }
-  if (n > params_.max_steps_per_call) {
-    n = params_.max_steps_per_call;
-    t_p = std::min(t_p, static_cast<double>(n) * dt_dem);
+  std::int64_t n = params_.max_steps_per_call;
+  if (!(n_wanted <= static_cast<double>(params_.max_steps_per_call))) {
+    t_p = std::min(static_cast<double>(n) * dt_dem, t_p);  // t_p may be infinite
     rep.guards |= kGuardStepCap;
+  } else {
+    n = std::max<std::int64_t>(static_cast<std::int64_t>(n_wanted), 1);
   }
-  n = std::max<std::int64_t>(n, 1);
   sim_.set_dt(t_p / static_cast<double>(n));
   sim_.cell().l = g / t_p;
   for (std::int64_t s = 0; s < n; ++s) sim_.step();

@@ -88,6 +88,26 @@ TEST(Rve, ZeroIncrementAndHugeIncrementAreGuarded) {
   EXPECT_TRUE(rve.stress().allFinite());
 }
 
+// A step count beyond int64 (a tiny inertial number: T_p of eq. 11 overflows to inf) is capped,
+// not converted: the conversion was undefined and gave one DEM step of infinite length, then
+// "active contact lost" as a numerical failure.
+TEST(Rve, StepCountBeyondInt64IsCapped) {
+  for (const double inertial : {1e-30, 1e-320}) {
+    dem::RveParams p = params();
+    p.inertial_number = inertial;
+    p.max_steps_per_call = 200;
+    dem::Rve rve(dem_test::reference_packing(), p);
+    Mat3 l = Mat3::Zero();
+    l(2, 2) = -1.0;
+    const dem::StepReport r = rve.step(l, 1e-4);
+    EXPECT_TRUE(r.guards & dem::kGuardStepCap) << inertial;
+    EXPECT_EQ(r.dem_steps, 200) << inertial;
+    EXPECT_TRUE(std::isfinite(r.t_p)) << inertial;
+    EXPECT_TRUE(rve.stress().allFinite()) << inertial;
+    EXPECT_LT(rve.stress().trace(), 0.0) << inertial;  // still a compressed packing
+  }
+}
+
 TEST(Rve, LosingAllContactsGivesZeroStressNoNan) {
   dem::RveParams p = params();
   p.max_steps_per_call = 2000;  // keep the test cheap: the step cap is hit too
