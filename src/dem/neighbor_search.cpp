@@ -54,7 +54,15 @@ bool remap_and_wrap(Spheres& s, PeriodicCell& cell, Contacts& c, double max_skew
     const Eigen::Matrix3i uinv = uinv_d.array().round().cast<int>().matrix();
     for (std::size_t p = 0; p < c.size(); ++p) c.k[p] = uinv * c.k[p];
   }
-  // Wrap positions into [0,1)^3 in fractional coordinates, shifting pair images accordingly.
+  // Wrap positions into [0,1)^3 in fractional coordinates, shifting pair images accordingly. A
+  // position that is not finite (a blow-up) would make the image shift an undefined conversion.
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!s.x[i].allFinite()) {
+      throw common::NumericalError("dem: sphere " + std::to_string(i) + " (radius " +
+                                   std::to_string(s.r[i]) +
+                                   " m) has a position that is not finite: the DEM blew up");
+    }
+  }
   const Mat3 hinv = cell.h.inverse();
   std::vector<Vec3i> shift(s.size(), Vec3i::Zero());
   for (std::size_t i = 0; i < s.size(); ++i) {

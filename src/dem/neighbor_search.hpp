@@ -3,6 +3,7 @@
 // deformation since the last build exceed what the skin allows.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "common/types.hpp"
@@ -46,7 +47,10 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
 }
 [[nodiscard]] inline double rebuild_drift2(const Spheres& s, const common::Mat3& f,
                                            const VerletState& vs, std::size_t i) {
-  return (s.x[i] - f * vs.x_ref[i]).squaredNorm();
+  const double d2 = (s.x[i] - f * vs.x_ref[i]).squaredNorm();
+  // A position that is not finite forces a rebuild, which names it (a NaN would drop out of the
+  // maximum unnoticed).
+  return d2 == d2 ? d2 : std::numeric_limits<double>::infinity();
 }
 [[nodiscard]] bool rebuild_due(double amax2, const common::Mat3& f, double r_max, double skin);
 

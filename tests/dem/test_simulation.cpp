@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "common/errors.hpp"
@@ -114,6 +115,30 @@ TEST(Simulation, MassOrInertiaOutsideDoublePrecisionIsRefused) {
           << e.what();
     }
   }
+}
+
+// A sphere whose position is no longer finite (a blow-up) stops the simulation with a numerical
+// error naming it, at the next step's neighbour check, on one thread and on two; a NaN used to
+// drop out of the drift maximum, and an infinite one to reach an undefined conversion.
+TEST(Simulation, NonFinitePositionIsANumericalError_threads_1_2) {
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    for (const int threads : {1, 2}) {
+      omp_set_num_threads(threads);
+      dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
+                                                 dem_test::reference_material(), dem::Numerics{});
+      sim.step();
+      sim.spheres().x[17][1] = bad;
+      try {
+        for (int k = 0; k < 3; ++k) sim.step();
+        ADD_FAILURE() << "a position of " << bad << " went on (" << threads << " threads)";
+      } catch (const common::NumericalError& e) {
+        EXPECT_NE(std::string(e.what()).find("has a position that is not finite"),
+                  std::string::npos)
+            << e.what();
+      }
+    }
+  }
+  omp_set_num_threads(1);
 }
 
 TEST(Simulation, LargeShearRemapsCell) {
