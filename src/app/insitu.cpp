@@ -149,6 +149,16 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
                         id, pts.x[i][0], pts.x[i][1], pts.x[i][2], -depth)));
       }
       t = geostatic_stress(job.number(base + "density"), g, job.number(base + "k0"), depth);
+      if (!t.allFinite()) {
+        const bool vertical = std::isfinite(job.number(base + "density") * g.norm() * depth);
+        throw common::InputError(job.message(
+            base + (vertical ? "k0" : "density"),
+            fmt::format("the geostatic stress of material point id {} (depth {} m, density {} "
+                        "kg/m^3, |g| {} m/s^2, k0 {}) is not a finite number: the product "
+                        "overflows double precision",
+                        id, depth, job.number(base + "density"), g.norm(),
+                        job.number(base + "k0"))));
+      }
     }
     if (state != "prepared") {
       if (apply_pressure_floor(t, o.pressure_floor)) ++plan.floored;
