@@ -121,13 +121,20 @@ std::vector<std::string> check_insitu_rules(const Job& job) {
             job.missing_message(base + "k0", "required when initial_state = \"geostatic\""));
       }
       bool gravity = job.has("mpm.gravity");
+      double g2 = 0.0;  // |g|^2 as the set-up computes it: 0 or inf when it under- or overflows
       if (gravity) {
         const auto& g = job.numbers("mpm.gravity");
         gravity = std::any_of(g.begin(), g.end(), [](double x) { return x != 0.0; });
+        for (const double x : g) g2 += x * x;
       }
       if (!gravity) {
         err.push_back(job.message(base + "initial_state",
                                   "initial_state = \"geostatic\" needs a non-zero mpm.gravity"));
+      } else if (!std::isnormal(g2) || !std::isnormal(std::sqrt(g2))) {
+        err.push_back(job.message(
+            "mpm.gravity", "its magnitude squared (" + fmt::format("{}", g2) +
+                               " m^2/s^4) under- or overflows double precision: initial_state = "
+                               "\"geostatic\" divides by it (gravity in m/s^2?)"));
       }
     }
   }
