@@ -297,11 +297,42 @@ void mpm_rules(const Job& job, Rules& r) {
 
 }  // namespace
 
+// Stresses the grains are asked to carry, against their Young modulus E: a linear contact overlaps
+// by about 4 p / E of the radii, so a mean stress above E / 10 means overlaps of tens of % of the
+// radii, where a DEM of rigid-ish grains means nothing (and the preparation fails with "contact
+// lost" instead of an input error). Typical geomechanics: p / E of 1e-4 to 1e-2.
+void stress_level_rules(const Job& job, Rules& r) {
+  if (!job.has("dem.material.young_modulus")) return;
+  const double e = job.number("dem.material.young_modulus");
+  const double limit = 0.1 * e;
+  const auto check = [&](const std::string& key, double stress, const std::string& what) {
+    if (std::abs(stress) > limit) {
+      r.fail(key, fmt::format("{} {:.4g} Pa is above a tenth of the grains' Young modulus "
+                              "(dem.material.young_modulus = {:.4g} Pa): contacts would overlap "
+                              "by about 4 p / E = {:.2g} of the radii (stress and modulus in "
+                              "the same unit?)",
+                              what, std::abs(stress), e, 4.0 * std::abs(stress) / e));
+    }
+  };
+  for (const char* k : {"dem.preparation.pressure", "dem.loading.confining_pressure",
+                        "dem.coupling.pressure_floor", "dem.initial_state.pressure_floor"}) {
+    if (job.has(k)) check(k, job.number(k), "a stress of");
+  }
+  for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+    const std::string key = fmt::format("mpm.body[{}].initial_stress", b);
+    if (!job.has(key)) continue;
+    const auto& v = job.numbers(key);
+    if (v.size() < 3) continue;  // the schema reports the length
+    check(key, (v[0] + v[1] + v[2]) / 3.0, "a mean stress of");
+  }
+}
+
 void check_job_rules(const Job& job) {
   Rules r(job);
   sample_rules(job, r);
   loading_rules(job, r);
   mpm_rules(job, r);
+  stress_level_rules(job, r);
   for (const std::string& e : check_insitu_rules(job)) r.add(e);
   if (!r.errors().empty()) throw common::InputError(fmt::format("{}", fmt::join(r.errors(), "\n")));
 }
