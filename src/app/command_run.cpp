@@ -93,6 +93,22 @@ int command_run(const Options& given, const Comm& comm) {
     // Mass scaling s: the inertia is s m, the wave speed c / sqrt(s) (mpm::Solver::stable_dt).
     const double s = cfg.solver.mass_scaling;
     const double c = s != 1.0 ? wave_speed / std::sqrt(s) : wave_speed;
+    // A boundary driven faster than the material's wave speed is a shock the explicit step cannot
+    // follow (its first step moves the boundary nodes by more than a cell): refused by key.
+    for (std::size_t k = 0; k < job.count("mpm.velocity"); ++k) {
+      for (const char* axis : {"x", "y", "z"}) {
+        const std::string key = fmt::format("mpm.velocity[{}].{}", k, axis);
+        if (!job.has(key) || !(std::abs(job.number(key)) >= c)) continue;
+        throw common::InputError(job.message(
+            key, fmt::format("|v| = {:.4g} m/s is not below the largest wave speed of the "
+                             "materials, c = {:.4g} m/s{}: the boundary would outrun the waves "
+                             "it sends into the material (a shock the explicit step cannot "
+                             "follow); velocity in m/s?",
+                             std::abs(job.number(key)), c,
+                             s != 1.0 ? fmt::format(" (with mpm.mass_scaling = {:.6g})", s)
+                                      : std::string())));
+      }
+    }
     if (job.has("mpm.dt") && c > 0.0 && job.number("mpm.dt") > h / c) {
       throw common::InputError(job.message(
           "mpm.dt",

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -302,11 +303,11 @@ void mpm_rules(const Job& job, Rules& r) {
 // radii, where a DEM of rigid-ish grains means nothing (and the preparation fails with "contact
 // lost" instead of an input error). Typical geomechanics: p / E of 1e-4 to 1e-2.
 void stress_level_rules(const Job& job, Rules& r) {
-  if (!job.has("dem.material.young_modulus")) return;
-  const double e = job.number("dem.material.young_modulus");
+  const double e =
+      job.has("dem.material.young_modulus") ? job.number("dem.material.young_modulus") : 0.0;
   const double limit = 0.1 * e;
   const auto check = [&](const std::string& key, double stress, const std::string& what) {
-    if (std::abs(stress) > limit) {
+    if (e > 0.0 && std::abs(stress) > limit) {
       r.fail(key, fmt::format("{} {:.4g} Pa is above a tenth of the grains' Young modulus "
                               "(dem.material.young_modulus = {:.4g} Pa): contacts would overlap "
                               "by about 4 p / E = {:.2g} of the radii (stress and modulus in "
@@ -317,6 +318,26 @@ void stress_level_rules(const Job& job, Rules& r) {
   for (const char* k : {"dem.preparation.pressure", "dem.loading.confining_pressure",
                         "dem.coupling.pressure_floor", "dem.initial_state.pressure_floor"}) {
     if (job.has(k)) check(k, job.number(k), "a stress of");
+  }
+  // A traction above the stiffness of every material of the job: elastic bodies against their
+  // Young modulus (a strain above 100 %), DEM bodies against a tenth of the grains' as above.
+  double stiffest = 0.0;
+  for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+    const std::string m = job.text(fmt::format("mpm.body[{}].material", b));
+    if (m == "elastic" && job.has("mpm.elastic.young_modulus")) {
+      stiffest = std::max(stiffest, job.number("mpm.elastic.young_modulus"));
+    } else if (m == "dem") {
+      stiffest = std::max(stiffest, limit);
+    }
+  }
+  for (std::size_t k = 0; k < job.count("mpm.traction"); ++k) {
+    const std::string key = fmt::format("mpm.traction[{}].pressure", k);
+    if (stiffest > 0.0 && job.has(key) && job.number(key) > stiffest) {
+      r.fail(key, fmt::format("{:.4g} Pa is above the stiffness of every material of the job "
+                              "({:.4g} Pa: the elastic Young modulus, or a tenth of the grains'): "
+                              "it would crush them (pressure in Pa?)",
+                              job.number(key), stiffest));
+    }
   }
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
     const std::string key = fmt::format("mpm.body[{}].initial_stress", b);
