@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "app/cli.hpp"
@@ -61,6 +62,15 @@ int main(int argc, char** argv) {
     // above (farm::ErrorKind::io), so every rank exits cleanly.
     if (comm.rank == 0) std::fprintf(stderr, "error: I/O failure: %s\n", e.what());
     code = 4;
+  } catch (const std::bad_alloc&) {
+    // Out of memory on this rank (other ranks may be waiting in a collective): say so plainly and
+    // take the whole job down.
+    std::fprintf(stderr,
+                 "rank %d: fatal: out of memory (std::bad_alloc): this rank could not allocate "
+                 "what the job needs; use more nodes or fewer ranks per node, or a smaller job\n",
+                 comm.rank);
+    std::fflush(stderr);
+    MPI_Abort(comm.comm, 1);
   } catch (const std::exception& e) {
     // A failure that only this rank may have seen: report it and take the whole job down.
     std::fprintf(stderr, "rank %d: fatal: %s\n", comm.rank, e.what());
