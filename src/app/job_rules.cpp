@@ -62,9 +62,14 @@ void sample_rules(const Job& job, Rules& r) {
     std::filesystem::path p(job.text("dem.sample.packing"));
     if (p.is_relative()) p = std::filesystem::path(job.directory()) / p;
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec)) {
+    if (!std::filesystem::exists(p, ec)) {
       r.fail("dem.sample.packing",
              fmt::format("no such file '{}' (paths are relative to the job file)",
+                         short_path(p.string())));
+    } else if (!std::filesystem::is_regular_file(p, ec)) {
+      r.fail("dem.sample.packing",
+             fmt::format("'{}' is not a regular file (a directory, a device or a pipe): a "
+                         "packing is a text file",
                          short_path(p.string())));
     }
     return;
