@@ -1,0 +1,35 @@
+# `mpmxdem dem` with a loading that implies more DEM steps than any machine runs (a strain path of
+# 1e308 s, a triaxial at an inertial number of 1e-30) is refused naming the key, exit 2, nothing
+# written; with --max-steps it runs, writing a row every output.every steps (the step count of
+# the strain path was an undefined float-to-int conversion that made every step a row).
+# Usage: cmake -DEXE -DJOB=jobs/triaxial_dem_small.toml -DDIR -P ... (from the source root)
+include("${CMAKE_CURRENT_LIST_DIR}/hostile_util.cmake")
+file(REMOVE_RECURSE "${DIR}")
+file(MAKE_DIRECTORY "${DIR}")
+file(READ "${JOB}" text)
+string(REGEX REPLACE "type = \"triaxial\"\ninertial_number = [^\n]*\naxial_strain = [^\n]*\nconfining_pressure = [^\n]*"
+       "type = \"strain_path\"\nvelocity_gradient = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.01]\nduration = 1e308"
+       path_text "${text}")
+string(FIND "${path_text}" "duration = 1e308" pos)
+if(pos EQUAL -1)
+  message(FATAL_ERROR "the [dem.loading] of ${JOB} is not the one this test rewrites")
+endif()
+file(WRITE "${DIR}/path.toml" "${path_text}")
+execute_process(COMMAND "${EXE}" dem "${DIR}/path.toml" --out "${DIR}/path" RESULT_VARIABLE rc ERROR_VARIABLE err)
+expect_failure("${rc}" "${err}" 2 "dem.loading.duration = 1e+308: implies about inf DEM steps, more than 1e+12")
+if(EXISTS "${DIR}/path")
+  message(FATAL_ERROR "the refused run left ${DIR}/path")
+endif()
+execute_process(COMMAND "${EXE}" dem "${DIR}/path.toml" --out "${DIR}/bounded" --max-steps 400
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+expect_failure("${rc}" "${err}" 0)
+file(STRINGS "${DIR}/bounded/dem_series.csv" rows)
+list(LENGTH rows n)
+if(n GREATER 10)
+  message(FATAL_ERROR "400 steps at output.every = 200 wrote ${n} lines")
+endif()
+string(REGEX REPLACE "(\\[dem.loading\\]\ntype = \"triaxial\"\n)inertial_number = [^\n]*" "\\1inertial_number = 1e-30"
+       slow_text "${text}")
+file(WRITE "${DIR}/slow.toml" "${slow_text}")
+execute_process(COMMAND "${EXE}" dem "${DIR}/slow.toml" --out "${DIR}/slow" RESULT_VARIABLE rc ERROR_VARIABLE err)
+expect_failure("${rc}" "${err}" 2 "dem.loading.inertial_number = 1e-30: implies about")
