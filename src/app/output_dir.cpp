@@ -7,6 +7,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -14,7 +15,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <algorithm>
 
 #include "common/errors.hpp"
 
@@ -115,7 +115,9 @@ void check_output_dir(const fs::path& dir, bool force, bool restart) {
       dir.string()));
 }
 
-void note_output_before(const fs::path& dir) {
+void note_output_before(const fs::path& given) {
+  fs::path dir = given.lexically_normal();  // "a/../b" is "b"
+  if (dir.has_parent_path() && !dir.has_filename()) dir = dir.parent_path();  // "out/" is "out"
   Before b;
   b.noted = true;
   b.dir = dir;
@@ -146,21 +148,36 @@ std::string discard_refused_output() noexcept {
     const Before& b = g_before;
     std::error_code ec;
     if (!b.created_root.empty()) {
-      fs::remove_all(b.created_root, ec);
+      // The output directory is this run's (created and locked by it); the parents it created
+      // go only if empty: another job may have started writing beside it meanwhile.
+      fs::remove_all(b.dir, ec);
       if (ec) {
         return fmt::format("could not remove the output directory '{}' this run created: {}",
-                           b.created_root.string(), ec.message());
+                           b.dir.string(), ec.message());
+      }
+      fs::path removed_top = b.dir;
+      for (fs::path up = b.dir.parent_path(); !up.empty() && b.dir != b.created_root;
+           up = up.parent_path()) {
+        std::error_code rm;
+        if (!fs::remove(up, rm)) break;  // not empty (or gone): it stays
+        removed_top = up;
+        if (up == b.created_root) break;
       }
       return fmt::format("the output directory '{}' this run created was removed",
-                         b.created_root.string());
+                         removed_top.string());
+    }
+    std::vector<fs::path> added;  // collected first: no removal while iterating
+    for (const auto& e : fs::directory_iterator(b.dir, ec)) {
+      if (!std::binary_search(b.entries.begin(), b.entries.end(),
+                              e.path().filename().string())) {
+        added.push_back(e.path());
+      }
     }
     std::vector<std::string> removed;
-    for (const auto& e : fs::directory_iterator(b.dir, ec)) {
-      const std::string name = e.path().filename().string();
-      if (std::binary_search(b.entries.begin(), b.entries.end(), name)) continue;
+    for (const fs::path& a : added) {
       std::error_code rm;
-      fs::remove_all(e.path(), rm);
-      if (!rm) removed.push_back(name);
+      fs::remove_all(a, rm);
+      if (!rm) removed.push_back(a.filename().string());
     }
     if (b.had_log) fs::resize_file(b.dir / "log.txt", b.log_size, ec);
     for (const auto& [name, bytes] : b.small) {
