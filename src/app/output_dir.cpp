@@ -68,13 +68,6 @@ struct Before {
 constexpr const char* kRewritten[] = {kLockFile, "job.toml", "job.resolved.toml"};
 Before g_before;
 
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 void check_output_dir(const fs::path& dir, bool force, bool restart) {
@@ -136,7 +129,7 @@ void note_output_before(const fs::path& given) {
     b.had_log = fs::is_regular_file(dir / "log.txt", ec);
     if (b.had_log) b.log_size = fs::file_size(dir / "log.txt", ec);
     for (const char* name : kRewritten) {
-      if (fs::is_regular_file(dir / name, ec)) b.small.emplace_back(name, read_all(dir / name));
+      if (fs::is_regular_file(dir / name, ec)) b.small.emplace_back(name, common::read_file_bytes(dir / name));
     }
   }
   g_before = std::move(b);
@@ -181,7 +174,7 @@ std::string discard_refused_output() noexcept {
     }
     if (b.had_log) fs::resize_file(b.dir / "log.txt", b.log_size, ec);
     for (const auto& [name, bytes] : b.small) {
-      if (read_all(b.dir / name) == bytes) continue;
+      if (common::read_file_bytes(b.dir / name) == bytes) continue;
       std::ofstream out(b.dir / name, std::ios::binary | std::ios::trunc);
       out << bytes;
     }

@@ -3,10 +3,9 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 
 namespace app {
@@ -72,10 +71,7 @@ void check_restart(const Job& job, const std::string& checkpoint_path,
   std::error_code ec;
   const fs::path job_toml = out / "job.toml";
   if (fs::exists(job_toml, ec)) {
-    std::ifstream in(job_toml, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    const Job there = stored_job(ss.str(), job_toml.string());
+    const Job there = stored_job(common::read_file_bytes(job_toml), job_toml.string());
     if (const auto changed = changed_physics(before, there); !changed.empty()) {
       throw common::InputError(fmt::format(
           "output directory '{}' holds the results of another run: its job.toml differs from the "

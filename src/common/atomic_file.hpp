@@ -1,10 +1,11 @@
 // Atomic replacement of a file: the content goes to <path>.tmp, is fsync-ed, renamed over <path>
 // and the directory is fsync-ed. Readers (and a restart after a crash or a power cut) see the old
 // file or the new one, never a partial one. The one home of this protocol (checkpoints, results
-// indexes, job copies, time series).
+// indexes, job copies, time series), and the whole-file read that goes with it.
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 namespace common {
@@ -20,5 +21,9 @@ void publish_file(const std::filesystem::path& tmp, const std::filesystem::path&
 /// Writes `content` to staging_path(path) and publishes it (publish_file).
 /// Throws common::IoError naming the file, the failed operation and the system's reason.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
+
+/// The whole content of a file, bytes as they are ("" when it cannot be opened: callers that must
+/// tell the difference check first).
+[[nodiscard]] std::string read_file_bytes(const std::filesystem::path& path);
 
 }  // namespace common

@@ -76,3 +76,13 @@ TEST(AtomicFile, FailuresAreIoErrorsNamingTheFile) {
   }
   EXPECT_FALSE(fs::exists(f));
 }
+
+TEST(AtomicFile, ReadFileBytesReturnsTheBytesAsTheyAre) {
+  const fs::path dir = scratch("read");
+  std::string bytes = "line\r\n";
+  bytes += '\0';
+  bytes += "\xff tail";
+  common::write_file_atomic(dir / "f.bin", bytes);
+  EXPECT_EQ(common::read_file_bytes(dir / "f.bin"), bytes);
+  EXPECT_EQ(common::read_file_bytes(dir / "none.bin"), "");
+}
