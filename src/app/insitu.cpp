@@ -164,11 +164,12 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
           p > 0.1 * job.number("dem.material.young_modulus")) {
         throw common::InputError(job.message(
             base + "density",
-            fmt::format("the geostatic mean stress of material point id {} (depth {} m) is {:.4g} "
-                        "Pa, above a tenth of the grains' Young modulus (dem.material.young_modulus "
-                        "= {:.4g} Pa): contacts would overlap by about 4 p / E = {:.2g} of the radii",
-                        id, depth, p, job.number("dem.material.young_modulus"),
-                        4.0 * p / job.number("dem.material.young_modulus"))));
+            fmt::format(
+                "the geostatic mean stress of material point id {} (depth {} m) is {:.4g} "
+                "Pa, above a tenth of the grains' Young modulus (dem.material.young_modulus "
+                "= {:.4g} Pa): contacts would overlap by about 4 p / E = {:.2g} of the radii",
+                id, depth, p, job.number("dem.material.young_modulus"),
+                4.0 * p / job.number("dem.material.young_modulus"))));
       }
     }
     if (state != "prepared") {

@@ -109,8 +109,9 @@ void check_output_dir(const fs::path& dir, bool force, bool restart) {
 }
 
 void note_output_before(const fs::path& given) {
-  fs::path dir = given.lexically_normal();  // "a/../b" is "b"
-  if (dir.has_parent_path() && !dir.has_filename()) dir = dir.parent_path();  // "out/" is "out"
+  // "a/../b" is "b", "out/" is "out".
+  fs::path dir = given.lexically_normal();
+  if (dir.has_parent_path() && !dir.has_filename()) dir = dir.parent_path();
   Before b;
   b.noted = true;
   b.dir = dir;
@@ -129,7 +130,8 @@ void note_output_before(const fs::path& given) {
     b.had_log = fs::is_regular_file(dir / "log.txt", ec);
     if (b.had_log) b.log_size = fs::file_size(dir / "log.txt", ec);
     for (const char* name : kRewritten) {
-      if (fs::is_regular_file(dir / name, ec)) b.small.emplace_back(name, common::read_file_bytes(dir / name));
+      if (fs::is_regular_file(dir / name, ec))
+        b.small.emplace_back(name, common::read_file_bytes(dir / name));
     }
   }
   g_before = std::move(b);
@@ -161,8 +163,7 @@ std::string discard_refused_output() noexcept {
     }
     std::vector<fs::path> added;  // collected first: no removal while iterating
     for (const auto& e : fs::directory_iterator(b.dir, ec)) {
-      if (!std::binary_search(b.entries.begin(), b.entries.end(),
-                              e.path().filename().string())) {
+      if (!std::binary_search(b.entries.begin(), b.entries.end(), e.path().filename().string())) {
         added.push_back(e.path());
       }
     }

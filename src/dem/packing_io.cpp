@@ -105,10 +105,10 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
     }
     if ((sizes - first_sizes).cwiseAbs().maxCoeff() > 1e-9 * first_sizes.cwiseAbs().maxCoeff()) {
       fail(path, at,
-           "this cell line (side lengths " + g(sizes[0]) + ", " + g(sizes[1]) + ", " +
-               g(sizes[2]) + " m) disagrees with the cell of line " +
-               std::to_string(first_cell_line) + " (" + g(first_sizes[0]) + ", " +
-               g(first_sizes[1]) + ", " + g(first_sizes[2]) + " m): one cell per packing file");
+           "this cell line (side lengths " + g(sizes[0]) + ", " + g(sizes[1]) + ", " + g(sizes[2]) +
+               " m) disagrees with the cell of line " + std::to_string(first_cell_line) + " (" +
+               g(first_sizes[0]) + ", " + g(first_sizes[1]) + ", " + g(first_sizes[2]) +
+               " m): one cell per packing file");
     }
   };
   long yade_format = 0;  // line of YADE's "#format x_y_z_r" (yade.export.text), 0: none
@@ -240,8 +240,8 @@ void check_packing(const Packing& pk, const std::string& source, const std::vect
   }
   const double det = pk.cell.h.determinant();
   if (!pk.cell.h.allFinite() || !(det > 0.0) || !std::isfinite(det)) {
-    throw common::InputError(source + ": the cell matrix must be finite with a finite det > 0 (det " +
-                             num(det) + ")");
+    throw common::InputError(
+        source + ": the cell matrix must be finite with a finite det > 0 (det " + num(det) + ")");
   }
   double w_min = pk.cell.width(0);
   for (int a = 1; a < 3; ++a) w_min = std::min(w_min, pk.cell.width(a));
@@ -261,8 +261,8 @@ void check_packing(const Packing& pk, const std::string& source, const std::vect
     if (!(std::isfinite(pk.r[i]) && pk.r[i] > 0.0))
       bad(i, "radius " + num(pk.r[i]) + " must be > 0 and finite");
     if (!(pk.r[i] >= kMinRadiusRatio * r_max)) {
-      bad(i, "radius " + num(pk.r[i]) + " m is below 1e-6 times the largest radius (" +
-                 num(r_max) + " m): a size ratio above 1e6 is below the round-off of the "
+      bad(i, "radius " + num(pk.r[i]) + " m is below 1e-6 times the largest radius (" + num(r_max) +
+                 " m): a size ratio above 1e6 is below the round-off of the "
                  "contact geometry (radii in one unit?)");
     }
     if (!(2.0 * pk.r[i] < w_min)) {

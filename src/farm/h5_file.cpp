@@ -200,8 +200,7 @@ void check_single(const File& f, hid_t attribute, const char* name) {
   Handle space(attribute >= 0 ? H5Aget_space(attribute) : -1, H5Sclose);
   const hssize_t n = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
   if (n != 1) {
-    f.fail("attribute /" + std::string(name) + " holds " + std::to_string(n) +
-           " values, not one");
+    f.fail("attribute /" + std::string(name) + " holds " + std::to_string(n) + " values, not one");
   }
 }
 
@@ -279,7 +278,8 @@ Handle File::open_dataset(const std::string& name, std::uint64_t& n) const {
   const std::uint64_t limit = kMaxInflation * stored + kSlack;
   if (n > limit / sizeof(T)) {
     fail("dataset " + name + " claims " + std::to_string(n) + " values, more than the " +
-         std::to_string(stored) + " bytes the file stores of it can hold: damaged, or not "
+         std::to_string(stored) +
+         " bytes the file stores of it can hold: damaged, or not "
          "written by mpmxdem");
   }
   return d;

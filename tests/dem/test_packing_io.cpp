@@ -80,7 +80,7 @@ TEST(PackingIo, DisagreeingCellLinesAreRefused) {
     ADD_FAILURE() << "two cells read";
   } catch (const common::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(path + ":2: this cell line (side lengths 2, 3, 4.5 m) "
-                                                 "disagrees with the cell of line 1 (2, 3, 4 m)"),
+                                                "disagrees with the cell of line 1 (2, 3, 4 m)"),
               std::string::npos)
         << e.what();
   }
