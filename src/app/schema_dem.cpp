@@ -58,8 +58,9 @@ void add_dem_sections(Schema& s) {
   add_params(s, dem::kPreparationTarget);  // pressure, stress_tolerance, unbalanced_force
   add_params(s, dem::kPreparation);        // friction_angle
   s.add("dem.preparation.inertial_number", Type::Float,
-        "Inertial number of the compaction strain rate.")
-      .in(0, 1, true, true)
+        "Inertial number of the compaction strain rate (at least 1e-6: the DEM steps grow as "
+        "1 / I).")
+      .in(1e-6, 1, false, true)
       .or_default(1e-3);
 
   s.add("dem.numerics", Type::Table, "Numerical knobs of the DEM.");
@@ -79,8 +80,10 @@ void add_dem_sections(Schema& s) {
         "on y), isotropic, strain_path.")
       .one_of({"triaxial", "biaxial", "isotropic", "strain_path"})
       .need();
-  s.add("dem.loading.inertial_number", Type::Float, "Inertial number of the imposed strain rate.")
-      .in(0, 1, true, true);
+  s.add("dem.loading.inertial_number", Type::Float,
+        "Inertial number of the imposed strain rate (at least 1e-6: the DEM steps grow as 1 / I, "
+        "and below I ~ 1e-3 the response is already quasi-static).")
+      .in(1e-6, 1, false, true);
   s.add("dem.loading.axial_strain", Type::Float,
         "Final axial strain (compression positive) of a triaxial or biaxial test.")
       .in(0, 1, true, true);

@@ -35,8 +35,11 @@ struct RveParams {
 /// kNumerics).
 inline constexpr auto kRveParams = common::make_table<RveParams>(
     "dem::RveParams", "dem.coupling",
-    {{"inertial_number", &RveParams::inertial_number, Unit::Dimensionless, common::in_oo(0, 1),
-      Source::job_required, "Inertial number I_n of the quasi-static time T_p (eq. 11)."},
+    {{"inertial_number", &RveParams::inertial_number, Unit::Dimensionless, common::in_co(1e-6, 1),
+      Source::job_required,
+      "Inertial number I_n of the quasi-static time T_p (eq. 11). At least 1e-6: the DEM steps "
+      "per increment grow as 1 / I_n, and below I ~ 1e-3 the response is already "
+      "quasi-static."},
      {"max_strain_per_step", &RveParams::max_strain_per_step, Unit::Dimensionless,
       common::in_oo(0, 1), Source::job_default,
       "Guard: largest strain increment of one DEM step (more DEM steps than T_p / dt_DEM when "

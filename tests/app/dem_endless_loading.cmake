@@ -1,6 +1,6 @@
 # `mpmxdem dem` with a loading that implies more DEM steps than any machine runs (a strain path of
-# 1e308 s, a triaxial at an inertial number of 1e-30) is refused naming the key, exit 2, nothing
-# written; with --max-steps it runs, writing a row every output.every steps (the step count of
+# 1e308 s) is refused naming the key, exit 2, nothing written (a triaxial at an inertial number of
+# 1e-30 is refused by the key's range); with --max-steps it runs, writing a row every output.every steps (the step count of
 # the strain path was an undefined float-to-int conversion that made every step a row).
 # Usage: cmake -DEXE -DJOB=jobs/triaxial_dem_small.toml -DDIR -P ... (from the source root)
 include("${CMAKE_CURRENT_LIST_DIR}/hostile_util.cmake")
@@ -32,4 +32,8 @@ string(REGEX REPLACE "(\\[dem.loading\\]\ntype = \"triaxial\"\n)inertial_number 
        slow_text "${text}")
 file(WRITE "${DIR}/slow.toml" "${slow_text}")
 execute_process(COMMAND "${EXE}" dem "${DIR}/slow.toml" --out "${DIR}/slow" RESULT_VARIABLE rc ERROR_VARIABLE err)
-expect_failure("${rc}" "${err}" 2 "dem.loading.inertial_number = 1e-30: implies about")
+# (an inertial number below 1e-6 is refused by its range before anything is prepared)
+expect_failure("${rc}" "${err}" 2 "dem.loading.inertial_number = 1e-30: must be in [1e-06, 1)")
+if(EXISTS "${DIR}/slow")
+  message(FATAL_ERROR "the refused run left ${DIR}/slow")
+endif()

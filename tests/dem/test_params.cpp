@@ -58,7 +58,7 @@ TEST(Params, RveParamsErrorsNameTheCouplingKeys) {
   EXPECT_EQ(error_of(p), "dem.coupling.pressure_floor = 0: must be > 0 Pa");
   p.p_floor = 1e3;
   p.inertial_number = 0.0;
-  EXPECT_EQ(error_of(p), "dem.coupling.inertial_number = 0: must be in (0, 1)");
+  EXPECT_EQ(error_of(p), "dem.coupling.inertial_number = 0: must be in [1e-06, 1)");
   p.inertial_number = 1e-3;
   p.max_strain_per_step = 0.0;
   EXPECT_EQ(error_of(p), "dem.coupling.max_strain_per_step = 0: must be in (0, 1)");
