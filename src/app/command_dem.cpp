@@ -201,8 +201,8 @@ int command_dem(const Options& o, const Comm& comm) {
       // The steps left, compared in double precision before the conversion.
       const double left = std::max(1.0, std::floor((t_end - sim.time()) / sim.dt()));
       const std::int64_t n =
-          std::min({every, max_steps - done,
-                    left < static_cast<double>(every) ? static_cast<std::int64_t>(left) : every});
+          std::min(max_steps - done,
+                   left < static_cast<double>(every) ? static_cast<std::int64_t>(left) : every);
       dem::advance(sim, nullptr, n);
       done += n;
       const dem::Measures m = dem::measure(sim);

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -59,9 +60,8 @@ struct Before {
   bool noted = false;
   fs::path dir;
   fs::path created_root;  // the topmost directory this run creates; empty when dir existed
-  std::vector<std::string> entries;  // names in dir, sorted
-  std::uintmax_t log_size = 0;       // of log.txt; 0 when absent
-  bool had_log = false;
+  std::vector<std::string> entries;        // names in dir, sorted
+  std::optional<std::uintmax_t> log_size;  // of log.txt, when there is one
   // The small files every run rewrites (the lock, job.toml, job.resolved.toml): name and bytes.
   std::vector<std::pair<std::string, std::string>> small;
 };
@@ -127,8 +127,7 @@ void note_output_before(const fs::path& given) {
       b.entries.push_back(e.path().filename().string());
     }
     std::sort(b.entries.begin(), b.entries.end());
-    b.had_log = fs::is_regular_file(dir / "log.txt", ec);
-    if (b.had_log) b.log_size = fs::file_size(dir / "log.txt", ec);
+    if (fs::is_regular_file(dir / "log.txt", ec)) b.log_size = fs::file_size(dir / "log.txt", ec);
     for (const char* name : kRewritten) {
       if (fs::is_regular_file(dir / name, ec))
         b.small.emplace_back(name, common::read_file_bytes(dir / name));
@@ -173,7 +172,7 @@ std::string discard_refused_output() noexcept {
       fs::remove_all(a, rm);
       if (!rm) removed.push_back(a.filename().string());
     }
-    if (b.had_log) fs::resize_file(b.dir / "log.txt", b.log_size, ec);
+    if (b.log_size) fs::resize_file(b.dir / "log.txt", *b.log_size, ec);
     for (const auto& [name, bytes] : b.small) {
       if (common::read_file_bytes(b.dir / name) == bytes) continue;
       std::ofstream out(b.dir / name, std::ios::binary | std::ios::trunc);
