@@ -120,7 +120,7 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   const Spheres& s = sim.spheres();
   double b = bytes(s.x) + bytes(s.u) + bytes(s.w) + bytes(s.force) + bytes(s.torque) + bytes(s.r) +
              bytes(s.m) + bytes(s.inertia) + bytes(s.fixed);
-  b += bytes(c.i) + bytes(c.j) + bytes(c.k) + bytes(c.active) + bytes(c.props.kn) * 7 +
+  b += bytes(c.i) + bytes(c.j) + bytes(c.k) + bytes(c.active) + bytes(c.tan_phi) +
        bytes(c.hist.normal[0]) * 12 + bytes(c.force) + bytes(c.torque_i) + bytes(c.torque_j) +
        bytes(c.branch) + bytes(c.fn) + bytes(c.sphere_offset) + bytes(c.sphere_pairs) +
        bytes(sim.verlet().x_ref);

@@ -1,6 +1,8 @@
-// The properties and the history of every Verlet pair, one array per scalar field (structure of
-// arrays): the batched contact law (CohFrictLaw::apply_batch) loads and stores lane q of a batch
-// at pair first + q directly, without copying each contact in and out of the batch.
+// The properties of one contact and the history of every Verlet pair, one array per scalar field
+// (structure of arrays): the batched contact law (CohFrictLaw::apply_batch) loads and stores lane
+// q of a batch at pair first + q directly, without copying each contact in and out of the batch.
+// Of the properties only the friction coefficient is stored per pair (Contacts::tan_phi); the
+// stiffnesses and caps follow from the two radii and the material (CohFrictLaw::props).
 #pragma once
 
 #include <array>
@@ -11,7 +13,8 @@
 
 namespace dem {
 
-/// Constant properties of one contact, fixed when it is created.
+/// Properties of one contact: tan_phi is fixed when it is created (the friction angle may change
+/// between creations); the others are functions of the radii and the material (cohfrict_stiffness).
 struct CohFrictProps {
   double kn = 0.0;          ///< normal stiffness [N/m]
   double ks = 0.0;          ///< shear stiffness [N/m]
@@ -30,18 +33,6 @@ struct CohFrictHistory {
   common::Vec3 twist;   ///< twisting moment on sphere 2 [N m]
 };
 
-/// CohFrictProps of every pair, field by field. New entries are CohFrictProps{}.
-struct CohFrictPropsArrays {
-  std::vector<double> kn, ks, kr, kt, tan_phi, roll_cap, twist_cap;
-
-  [[nodiscard]] std::size_t size() const { return kn.size(); }
-  void resize(std::size_t n);
-  [[nodiscard]] CohFrictProps get(std::size_t p) const {
-    return {kn[p], ks[p], kr[p], kt[p], tan_phi[p], roll_cap[p], twist_cap[p]};
-  }
-  void set(std::size_t p, const CohFrictProps& v);
-};
-
 /// CohFrictHistory of every pair, component by component (normal[a][p] is component a of the
 /// normal of pair p). New entries are zero.
 struct CohFrictHistoryArrays {
@@ -56,16 +47,6 @@ struct CohFrictHistoryArrays {
 /// Entry p of a vector field stored component by component.
 inline common::Vec3 at(const std::array<std::vector<double>, 3>& a, std::size_t p) {
   return {a[0][p], a[1][p], a[2][p]};
-}
-
-inline void CohFrictPropsArrays::set(std::size_t p, const CohFrictProps& v) {
-  kn[p] = v.kn;
-  ks[p] = v.ks;
-  kr[p] = v.kr;
-  kt[p] = v.kt;
-  tan_phi[p] = v.tan_phi;
-  roll_cap[p] = v.roll_cap;
-  twist_cap[p] = v.twist_cap;
 }
 
 inline CohFrictHistory CohFrictHistoryArrays::get(std::size_t p) const {

@@ -14,24 +14,6 @@ void CohFrictLaw::set_friction_deg(double phi_deg) {
   tan_phi_ = std::tan(phi_deg * std::numbers::pi / 180.0);
 }
 
-CohFrictProps CohFrictLaw::create(double r1, double r2) const {
-  CohFrictProps p;
-  // Harmonic forms of YADE's Ip2_CohFrictMat_CohFrictMat_CohFrictPhys, identical materials.
-  const double ea = mat_.young * r1;
-  const double eb = mat_.young * r2;
-  p.kn = 2.0 * ea * eb / (ea + eb);
-  const double sa = ea * mat_.ks_over_kn;
-  const double sb = eb * mat_.ks_over_kn;
-  p.ks = (sa + sb) > 0.0 ? 2.0 * sa * sb / (sa + sb) : 0.0;
-  p.kr = mat_.alpha_r * p.ks * r1 * r2;
-  p.kt = mat_.alpha_t * p.ks * r1 * r2;
-  p.tan_phi = tan_phi_;
-  const double rmin = std::min(r1, r2);
-  p.roll_cap = mat_.eta_r >= 0.0 ? mat_.eta_r * rmin : -1.0;
-  p.twist_cap = mat_.eta_t >= 0.0 ? mat_.eta_t * rmin : -1.0;
-  return p;
-}
-
 // ---- Batched form. Every expression below is the one apply() evaluates through Eigen, operation
 // for operation (no reassociation, no fused multiply-add), so that each lane is bit-identical to
 // apply(): Eigen's dot products and squared norms of 3-vectors sum (x0 y0 + x1 y1) + x2 y2, its
@@ -72,17 +54,6 @@ inline V3 select(bool c, const V3& a, double b) { return {c ? a.x : b, c ? a.y :
 
 // Lane q of a batch is pair first + q of the contacts' arrays: pointers shifted to the batch's
 // first pair.
-struct PropsAt {
-  const double *kn, *ks, *kr, *kt, *tan_phi, *roll_cap, *twist_cap;
-  PropsAt(const CohFrictPropsArrays& a, std::size_t f)
-      : kn(a.kn.data() + f),
-        ks(a.ks.data() + f),
-        kr(a.kr.data() + f),
-        kt(a.kt.data() + f),
-        tan_phi(a.tan_phi.data() + f),
-        roll_cap(a.roll_cap.data() + f),
-        twist_cap(a.twist_cap.data() + f) {}
-};
 struct Vec3At {
   double *x, *y, *z;
   Vec3At(std::array<std::vector<double>, 3>& a, std::size_t f)
@@ -106,13 +77,15 @@ inline void store(double (&a)[3][CohFrictBatch::kLanes], int q, const V3& v) {
 }
 
 template <bool kTwist>
-[[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const CohFrictPropsArrays& pa,
-                                               CohFrictHistoryArrays& ha, const common::Mat3& lm,
-                                               double dt) {
+[[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const Material& material,
+                                               const double* tan_phi_all, CohFrictHistoryArrays& ha,
+                                               const common::Mat3& lm, double dt) {
   const double l00 = lm(0, 0), l01 = lm(0, 1), l02 = lm(0, 2);
   const double l10 = lm(1, 0), l11 = lm(1, 1), l12 = lm(1, 2);
   const double l20 = lm(2, 0), l21 = lm(2, 1), l22 = lm(2, 2);
-  const PropsAt pr(pa, b.first);
+  // A local copy: the stores to the history arrays cannot alias it (its fields stay in registers).
+  const Material mat = material;
+  const double* const tan_phi = tan_phi_all + b.first;
   const Vec3At hn(ha.normal, b.first);
   const Vec3At hs(ha.shear, b.first);
   const Vec3At hr(ha.roll, b.first);
@@ -131,6 +104,7 @@ template <bool kTwist>
     const double r1 = b.r1[q];
     const double r2 = b.r2[q];
     const double delta = (r1 + r2) - len;
+    const CohFrictStiffness k = cohfrict_stiffness(mat, r1, r2);
     const V3 w1 = load(b.w1, q);
     const V3 w2 = load(b.w2, q);
 
@@ -155,9 +129,9 @@ template <bool kTwist>
     const double nv = dot(n, vrel);
     const V3 dus{dt * (vrel.x - nv * n.x), dt * (vrel.y - nv * n.y), dt * (vrel.z - nv * n.z)};
 
-    const double fn = pr.kn[q] * delta;
-    shear = sub(shear, scale(pr.ks[q], dus));
-    shear = radial_return(shear, fn * pr.tan_phi[q]);
+    const double fn = k.kn * delta;
+    shear = sub(shear, scale(k.ks, dus));
+    shear = radial_return(shear, fn * tan_phi[q]);
     hs.store_if(touch, q, shear);
     store(b.force, q,
           select(touch, V3{fn * n.x + shear.x, fn * n.y + shear.y, fn * n.z + shear.z}, 0.0));
@@ -167,21 +141,21 @@ template <bool kTwist>
     V3 t2 = scale(-(r2 - 0.5 * delta), nxf);
 
     // Rolling and twisting moments.
-    const double kr = pr.kr[q];
-    const double kt = pr.kt[q];
+    const double kr = k.kr;
+    const double kt = k.kt;
     const V3 wrel = sub(w2, w1);
     const double wn = dot(n, wrel);
     const V3 roll_el =
         sub(roll, scale(kr * dt, {wrel.x - wn * n.x, wrel.y - wn * n.y, wrel.z - wn * n.z}));
-    const V3 roll_pl = radial_return(roll_el, pr.roll_cap[q] * fn);
-    roll = select(kr != 0.0, select(pr.roll_cap[q] >= 0.0, roll_pl, roll_el), roll);
+    const V3 roll_pl = radial_return(roll_el, k.roll_cap * fn);
+    roll = select(kr != 0.0, select(k.roll_cap >= 0.0, roll_pl, roll_el), roll);
     hr.store_if(touch, q, roll);
     V3 m;
     if constexpr (kTwist) {
       V3 twist = carry(select(fresh, zero, ht.load(q)), orth, twist_axis);
       const V3 twist_el = sub(twist, scale(kt * dt * wn, n));
-      const V3 twist_pl = radial_return(twist_el, pr.twist_cap[q] * fn);
-      twist = select(kt != 0.0, select(pr.twist_cap[q] >= 0.0, twist_pl, twist_el), twist);
+      const V3 twist_pl = radial_return(twist_el, k.twist_cap * fn);
+      twist = select(kt != 0.0, select(k.twist_cap >= 0.0, twist_pl, twist_el), twist);
       ht.store_if(touch, q, twist);
       m = {roll.x + twist.x, roll.y + twist.y, roll.z + twist.z};
     } else {
@@ -196,12 +170,11 @@ template <bool kTwist>
   }
 }
 
-// Whether some lane has twisting stiffness or a twisting moment: else the twisting part is
-// skipped (the twist of every lane is +0 and stays so, as apply() keeps it). Lanes not touching
-// may turn it on: the twisting part then leaves a zero twist +0, the same bits.
-bool twist_on(const CohFrictBatch& b, const CohFrictPropsArrays& pa,
-              const CohFrictHistoryArrays& ha) {
-  const PropsAt pr(pa, b.first);
+// Whether some lane has a twisting moment: else (and when the material has no twisting
+// stiffness) the twisting part is skipped (the twist of every lane is +0 and stays so, as apply()
+// keeps it). Lanes not touching may turn it on: the twisting part then leaves a zero twist +0,
+// the same bits.
+bool twist_on(const CohFrictBatch& b, const CohFrictHistoryArrays& ha) {
   const double* tx = ha.twist[0].data() + b.first;
   const double* ty = ha.twist[1].data() + b.first;
   const double* tz = ha.twist[2].data() + b.first;
@@ -209,8 +182,8 @@ bool twist_on(const CohFrictBatch& b, const CohFrictPropsArrays& pa,
   const int nl = b.n;
 #pragma omp simd reduction(| : on)
   for (int q = 0; q < nl; ++q) {
-    on |= static_cast<int>(pr.kt[q] != 0.0) | static_cast<int>(tx[q] != 0.0) |
-          static_cast<int>(ty[q] != 0.0) | static_cast<int>(tz[q] != 0.0);
+    on |= static_cast<int>(tx[q] != 0.0) | static_cast<int>(ty[q] != 0.0) |
+          static_cast<int>(tz[q] != 0.0);
   }
   return on != 0;
 }
@@ -225,23 +198,24 @@ bool twist_on(const CohFrictBatch& b, const CohFrictPropsArrays& pa,
 #else
 #define MPMXDEM_LANE_CLONES
 #endif
-MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const CohFrictPropsArrays& pa,
+MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const Material& mat, const double* tan_phi,
                                    CohFrictHistoryArrays& ha, const common::Mat3& l, double dt,
                                    bool twist_possible) {
-  if (twist_possible && twist_on(b, pa, ha)) {
-    apply_lanes<true>(b, pa, ha, l, dt);
+  // kt = alpha_t ks R1 R2 is +0 for every lane when alpha_t = 0.
+  if (twist_possible && (mat.alpha_t != 0.0 || twist_on(b, ha))) {
+    apply_lanes<true>(b, mat, tan_phi, ha, l, dt);
   } else {
-    apply_lanes<false>(b, pa, ha, l, dt);
+    apply_lanes<false>(b, mat, tan_phi, ha, l, dt);
   }
 }
 #undef MPMXDEM_LANE_CLONES
 
 }  // namespace
 
-void CohFrictLaw::apply_batch(CohFrictBatch& b, const CohFrictPropsArrays& props,
+void CohFrictLaw::apply_batch(CohFrictBatch& b, const std::vector<double>& tan_phi,
                               CohFrictHistoryArrays& hist, const common::Mat3& l, double dt,
-                              bool twist_possible) {
-  run_lanes(b, props, hist, l, dt, twist_possible);
+                              bool twist_possible) const {
+  run_lanes(b, mat_, tan_phi.data(), hist, l, dt, twist_possible);
 }
 
 }  // namespace dem

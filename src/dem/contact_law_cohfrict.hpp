@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "common/types.hpp"
 #include "dem/cohfrict_arrays.hpp"
@@ -58,13 +59,46 @@ struct CohFrictBatch {
   alignas(64) double fn[kLanes];          ///< normal force magnitude [N]
 };
 
+/// The stiffnesses and moment caps of a contact between radii r1 and r2 [m] of material m:
+/// every property but the friction coefficient. Harmonic forms of YADE's
+/// Ip2_CohFrictMat_CohFrictMat_CohFrictPhys for identical materials. They are computed where they
+/// are needed (the batched law computes them lane by lane) instead of stored per pair: a step then
+/// reads 48 bytes less per pair (docs/dem.md "Speed"). One definition, so that every use has the
+/// same bits.
+struct CohFrictStiffness {
+  double kn, ks, kr, kt, roll_cap, twist_cap;
+};
+[[gnu::always_inline]] inline CohFrictStiffness cohfrict_stiffness(const Material& m, double r1,
+                                                                   double r2) {
+  const double ea = m.young * r1;
+  const double eb = m.young * r2;
+  const double kn = 2.0 * ea * eb / (ea + eb);
+  const double sa = ea * m.ks_over_kn;
+  const double sb = eb * m.ks_over_kn;
+  const double ks = (sa + sb) > 0.0 ? 2.0 * sa * sb / (sa + sb) : 0.0;
+  const double rmin = r2 < r1 ? r2 : r1;  // std::min(r1, r2)
+  return {kn,
+          ks,
+          m.alpha_r * ks * r1 * r2,
+          m.alpha_t * ks * r1 * r2,
+          m.eta_r >= 0.0 ? m.eta_r * rmin : -1.0,
+          m.eta_t >= 0.0 ? m.eta_t * rmin : -1.0};
+}
+
 /// The contact law functor. Stateless apart from the material; all history lives in the contact.
 class CohFrictLaw {
  public:
   explicit CohFrictLaw(const Material& mat);
 
-  /// Properties of a new contact between radii r1, r2 [m].
-  [[nodiscard]] CohFrictProps create(double r1, double r2) const;
+  /// Properties of a new contact between radii r1, r2 [m] (the current friction angle).
+  [[nodiscard]] CohFrictProps create(double r1, double r2) const { return props(r1, r2, tan_phi_); }
+  /// Properties of a contact between radii r1, r2 [m] created with friction coefficient tan_phi.
+  [[nodiscard]] CohFrictProps props(double r1, double r2, double tan_phi) const {
+    const CohFrictStiffness k = cohfrict_stiffness(mat_, r1, r2);
+    return {k.kn, k.ks, k.kr, k.kt, tan_phi, k.roll_cap, k.twist_cap};
+  }
+  /// Whether contacts may have twisting stiffness (kt = alpha_t ks R1 R2 is zero when not).
+  [[nodiscard]] bool twists() const { return mat_.alpha_t != 0.0; }
 
   /// One step of the law for a contact in overlap (delta = r1 + r2 - |d| > 0).
   /// @param is_new  true on the step the contact is created (history is reset, no rotation)
@@ -75,12 +109,13 @@ class CohFrictLaw {
   /// The same law for the b.n lanes of a batch, lane by lane the same floating-point operations
   /// in the same order as apply() (bit-identical results, tested), in vectorisable loops; the
   /// relative velocity is u2 - u1 + L d with the cell's velocity gradient l [1/s]. Lane q reads
-  /// props and reads and writes hist at pair b.first + q; a lane not touching leaves its history
-  /// as it was and gives zero force and torques. twist_possible = false: no pair has twisting
-  /// stiffness or a twisting moment (the twisting part is skipped without looking).
-  static void apply_batch(CohFrictBatch& b, const CohFrictPropsArrays& props,
-                          CohFrictHistoryArrays& hist, const common::Mat3& l, double dt,
-                          bool twist_possible = true);
+  /// tan_phi and reads and writes hist at pair b.first + q, and computes the other properties
+  /// from its radii (props(r1, r2, tan_phi)); a lane not touching leaves its history as it was and
+  /// gives zero force and torques. twist_possible = false: no pair has a twisting moment and
+  /// twists() is false (the twisting part is skipped without looking).
+  void apply_batch(CohFrictBatch& b, const std::vector<double>& tan_phi,
+                   CohFrictHistoryArrays& hist, const common::Mat3& l, double dt,
+                   bool twist_possible = true) const;
 
   [[nodiscard]] const Material& material() const { return mat_; }
   /// Change the friction angle used for new contacts [deg].

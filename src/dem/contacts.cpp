@@ -13,7 +13,7 @@ void Contacts::resize(std::size_t n) {
   j.resize(n);
   k.resize(n, common::Vec3i::Zero());
   active.resize(n, 0);
-  props.resize(n);
+  tan_phi.resize(n, 0.0);
   hist.resize(n);
   force.resize(n, common::Vec3::Zero());
   torque_i.resize(n, common::Vec3::Zero());
@@ -27,8 +27,7 @@ void Contacts::classify_twist() {
   if (twist != Twist::unknown) return;
   bool some = false;
   for (std::size_t p = 0; p < size() && !some; ++p) {
-    some = props.kt[p] != 0.0 || hist.twist[0][p] != 0.0 || hist.twist[1][p] != 0.0 ||
-           hist.twist[2][p] != 0.0;
+    some = hist.twist[0][p] != 0.0 || hist.twist[1][p] != 0.0 || hist.twist[2][p] != 0.0;
   }
   twist = some ? Twist::some : Twist::none;
 }

@@ -16,7 +16,10 @@ struct Contacts {
   std::vector<common::Vec3i> k;    ///< image: branch = x_j + H k - x_i
   // Contact state.
   std::vector<std::uint8_t> active;  ///< 1 while in overlap
-  CohFrictPropsArrays props;         ///< fixed at creation (props.get(p), props.set(p, v))
+  /// Coulomb coefficient tan(phi) of the contact, fixed when it is created (the friction angle
+  /// may change between creations); 0 for a pair never in contact. The other properties follow
+  /// from the radii (Simulation::contact_props).
+  std::vector<double> tan_phi;
   CohFrictHistoryArrays hist;  ///< normal, shear force, rolling and twisting moments (hist.get(p))
   // Output of the last force computation (zero for inactive pairs).
   std::vector<common::Vec3> force;               ///< force on j [N]
@@ -30,9 +33,9 @@ struct Contacts {
   std::vector<std::int32_t> sphere_pairs;  ///< 4 bytes: read twice per pair and step
 
   /// Whether some pair may twist: unknown until looked at (resize makes it unknown), none when
-  /// every twisting stiffness and twisting moment is zero (the law then skips its twisting part;
-  /// it stays so while new contacts get kt = 0), some otherwise. Whoever writes a non-zero kt or
-  /// twist into the arrays other than through resize must set it to some (or unknown).
+  /// every twisting moment is zero (the law then skips its twisting part while the material has
+  /// no twisting stiffness: Simulation sets some when it has), some otherwise. Whoever writes a
+  /// non-zero twist into the arrays other than through resize must set it to some (or unknown).
   enum class Twist : std::uint8_t { unknown, none, some };
   Twist twist = Twist::unknown;
 

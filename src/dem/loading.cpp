@@ -27,7 +27,8 @@ void MixedController::update(Simulation& sim) {
       if (!c.active[p]) continue;
       const Vec3& d = c.branch[p];
       const Vec3 n = at(c.hist.normal, p);
-      for (int a = 0; a < 3; ++a) m[a] += c.props.kn[p] * (n[a] * d[a]) * (n[a] * d[a]);
+      const double kn = sim.contact_props(p).kn;
+      for (int a = 0; a < 3; ++a) m[a] += kn * (n[a] * d[a]) * (n[a] * d[a]);
     }
     modulus_ = m / sim.cell().volume();
     last_modulus_step_ = sim.steps();

@@ -189,7 +189,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
       if (q < old_active.size() && key_of(c, old_active[q]) == kp) {
         const std::size_t o = old_active[q++];
         fresh.active[p] = 1;
-        fresh.props.set(p, c.props.get(o));
+        fresh.tan_phi[p] = c.tan_phi[o];
         fresh.hist.set(p, c.hist.get(o));
         fresh.force[p] = c.force[o];
         fresh.torque_i[p] = c.torque_i[o];

@@ -56,7 +56,7 @@ void Simulation::set_friction_deg(double phi_deg, bool existing) {
   law_.set_friction_deg(phi_deg);
   if (existing) {
     const double t = law_.create(1.0, 1.0).tan_phi;
-    for (double& p : contacts_.props.tan_phi) p = t;
+    for (double& p : contacts_.tan_phi) p = t;
   }
 }
 
@@ -137,10 +137,10 @@ void Simulation::pair_forces_shared() {
         batch.fresh[q] = touching && !was ? 1 : 0;
         if (touching != was) {
           c.active[p] = touching ? 1 : 0;
-          if (touching) c.props.set(static_cast<std::size_t>(p), law_.create(ri, rj));
+          if (touching) c.tan_phi[p] = law_.create(ri, rj).tan_phi;
         }
       }
-      CohFrictLaw::apply_batch(batch, c.props, c.hist, l, dt, c.twist != Contacts::Twist::none);
+      law_.apply_batch(batch, c.tan_phi, c.hist, l, dt, c.twist != Contacts::Twist::none);
       for (int q = 0; q < n; ++q) {
         const auto p = static_cast<std::size_t>(p0 + q);
         const bool touching = batch.touching[q] != 0;
@@ -177,10 +177,10 @@ void Simulation::size_stress_blocks() {
   // Every block's entry is written by the pair loop: only the size matters.
   const auto np = static_cast<std::int64_t>(contacts_.size());
   block_stress_.resize(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock));
-  // Whether the law may skip its twisting part: no pair twists, and new contacts will not
-  // (the material gives them no twisting stiffness).
+  // Whether the law may skip its twisting part: no pair twists, and no contact can (the material
+  // gives them no twisting stiffness).
   contacts_.classify_twist();
-  if (law_.create(1.0, 1.0).kt != 0.0) contacts_.twist = Contacts::Twist::some;
+  if (law_.twists()) contacts_.twist = Contacts::Twist::some;
 }
 
 void Simulation::finish_stress() {
@@ -375,7 +375,7 @@ double Simulation::critical_dt() const {
         if (!c.active[p]) continue;
         any = true;
         const auto pu = static_cast<std::size_t>(p);
-        const CohFrictProps pr = c.props.get(pu);
+        const CohFrictProps pr = contact_props(pu);
         const Vec3 n2 =
             Vec3(c.hist.normal[0][pu], c.hist.normal[1][pu], c.hist.normal[2][pu]).cwiseAbs2();
         const double r = s.r[q];

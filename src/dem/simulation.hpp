@@ -60,6 +60,11 @@ class Simulation {
   VerletState& verlet() { return verlet_; }
   [[nodiscard]] const VerletState& verlet() const { return verlet_; }
   [[nodiscard]] const CohFrictLaw& law() const { return law_; }
+  /// Properties of pair p (its stiffnesses from the radii, its stored friction coefficient).
+  [[nodiscard]] CohFrictProps contact_props(std::size_t p) const {
+    return law_.props(spheres_.r[static_cast<std::size_t>(contacts_.i[p])],
+                      spheres_.r[static_cast<std::size_t>(contacts_.j[p])], contacts_.tan_phi[p]);
+  }
   [[nodiscard]] const Numerics& numerics() const { return num_; }
 
   [[nodiscard]] double time() const { return time_; }          ///< [s]

@@ -31,16 +31,6 @@ constexpr Member<Numerics> kNumericsFields[] = {
     {"skin_factor", &Numerics::skin_factor},
     {"max_skew", &Numerics::max_skew},
 };
-constexpr Member<CohFrictProps> kContactPropsFields[] = {
-    {"kn", &CohFrictProps::kn},
-    {"ks", &CohFrictProps::ks},
-    {"kr", &CohFrictProps::kr},
-    {"kt", &CohFrictProps::kt},
-    {"tan_phi", &CohFrictProps::tan_phi},
-    {"roll_cap", &CohFrictProps::roll_cap},
-    {"twist_cap", &CohFrictProps::twist_cap},
-};
-
 std::vector<double> flat(const std::vector<Vec3>& v) {
   std::vector<double> out(3 * v.size());
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -87,11 +77,11 @@ struct Reader {
 
 }  // namespace
 
-void check_state_version(const common::StateReader& r, const std::string& pre) {
+std::int64_t check_state_version(const common::StateReader& r, const std::string& pre) {
   const std::string name = pre + "dem/version";
   const std::int64_t version = common::read_scalar_i64(r, name);
-  if (version == kStateVersion) return;
-  std::string why = "this build reads version " + std::to_string(kStateVersion) + " only";
+  if (version == kStateVersion || version == 2) return version;
+  std::string why = "this build reads versions 2 and " + std::to_string(kStateVersion) + " only";
   if (version == 1) {
     why += " (version 1 stored the parameters as positional arrays such as 'params/material'; " +
            std::to_string(kStateVersion) + " stores named fields such as 'params/material/young')";
@@ -126,7 +116,6 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   std::vector<std::int64_t> pair(2 * np);
   std::vector<std::int64_t> image(3 * np);
   std::vector<std::int64_t> active(np);
-  std::vector<std::vector<double>> props(std::size(kContactPropsFields), std::vector<double>(np));
   std::vector<Vec3> normal(np);
   std::vector<Vec3> shear(np);
   std::vector<Vec3> roll(np);
@@ -136,8 +125,6 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
     pair[2 * p + 1] = c.j[p];
     for (int a = 0; a < 3; ++a) image[3 * p + a] = c.k[p][a];
     active[p] = c.active[p];
-    const CohFrictProps pr = c.props.get(p);
-    for (std::size_t a = 0; a < props.size(); ++a) props[a][p] = pr.*kContactPropsFields[a].member;
     const CohFrictHistory h = c.hist.get(p);
     normal[p] = h.normal;
     shear[p] = h.shear;
@@ -147,8 +134,8 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   w.write(pre + "contacts/pair", pair);
   w.write(pre + "contacts/image", image);
   w.write(pre + "contacts/active", active);
-  for (std::size_t a = 0; a < props.size(); ++a)
-    w.write(pre + "contacts/" + kContactPropsFields[a].name, props[a]);
+  // The other properties follow from the radii and the material (version 2 stored them too).
+  w.write(pre + "contacts/tan_phi", c.tan_phi);
   w.write(pre + "contacts/normal", flat(normal));
   w.write(pre + "contacts/shear_force", flat(shear));
   w.write(pre + "contacts/rolling_moment", flat(roll));
@@ -203,9 +190,9 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   const std::size_t np = active.size();
   const auto pair = rd.i64("contacts/pair", 2 * np);
   const auto image = rd.i64("contacts/image", 3 * np);
-  std::vector<std::vector<double>> props;
-  for (const auto& f : kContactPropsFields)
-    props.push_back(rd.f64(std::string("contacts/") + f.name, np));
+  // Version 2 also stored kn, ks, kr, kt, roll_cap and twist_cap per pair: functions of the radii
+  // and the material, computed again (the same bits), not read.
+  const auto tan_phi = rd.f64("contacts/tan_phi", np);
   const auto normal = rd.vec3("contacts/normal", np);
   const auto shear = rd.vec3("contacts/shear_force", np);
   const auto roll = rd.vec3("contacts/rolling_moment", np);
@@ -223,9 +210,7 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
     c.k[p] = common::Vec3i(static_cast<int>(image[3 * p]), static_cast<int>(image[3 * p + 1]),
                            static_cast<int>(image[3 * p + 2]));
     c.active[p] = static_cast<std::uint8_t>(active[p]);
-    CohFrictProps pr;
-    for (std::size_t a = 0; a < props.size(); ++a) pr.*kContactPropsFields[a].member = props[a][p];
-    c.props.set(p, pr);
+    c.tan_phi[p] = tan_phi[p];
     c.hist.set(p, CohFrictHistory{normal[p], shear[p], roll[p], twist[p]});
   }
   c.force = rd.vec3("contacts/force", np);

@@ -11,12 +11,14 @@
 namespace dem {
 
 /// Version of the named-field state of a Simulation and of an Rve (field dem/version; history in
-/// docs/checkpoint.md). 1: positional parameter arrays; 2: one named field per parameter.
-inline constexpr std::int64_t kStateVersion = 2;
+/// docs/checkpoint.md). 1: positional parameter arrays; 2: one named field per parameter; 3: of
+/// the contact properties only tan_phi (the others follow from the radii). Written: 3; read: 2, 3.
+inline constexpr std::int64_t kStateVersion = 3;
 
-/// Throws common::InputError naming the field `prefix`dem/version, the version found and the one
-/// this build reads when they differ (or when the field is missing).
-void check_state_version(const common::StateReader& r, const std::string& prefix = "");
+/// The version of the state under `prefix`. Throws common::InputError naming the field
+/// `prefix`dem/version, the version found and the ones this build reads when it reads not that
+/// one (or when the field is missing).
+std::int64_t check_state_version(const common::StateReader& r, const std::string& prefix = "");
 
 /// Write every field under `prefix` (e.g. "" or "rve/"). Field names: see docs/dem.md.
 void save_simulation(const Simulation& sim, common::StateWriter& w, const std::string& prefix = "");

@@ -20,8 +20,9 @@ Mat3 affine_modulus(const Simulation& sim) {
     if (!c.active[p]) continue;
     const double d2 = c.branch[p].squaredNorm();
     const Vec3 n = at(c.hist.normal, p);
-    const double kn = c.props.kn[p];
-    const double ks = c.props.ks[p];
+    const CohFrictProps pr = sim.contact_props(p);
+    const double kn = pr.kn;
+    const double ks = pr.ks;
     for (int a = 0; a < 3; ++a) {
       for (int b = a; b < 3; ++b) {
         const double w = a == b ? 1.0 : 2.0;  // eps_ab and eps_ba both act on sigma_ab

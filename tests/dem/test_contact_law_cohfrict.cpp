@@ -149,10 +149,11 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
       got[8] = c.hist.roll[2][p];
       got[9] = dem::at(c.hist.roll, p).norm();
       got[10] = dem::at(c.hist.twist, p).norm();
-      got[11] = c.props.kn[p];
-      got[12] = c.props.ks[p];
-      got[13] = c.props.kr[p];
-      got[14] = c.props.roll_cap[p];
+      const dem::CohFrictProps pr = sim.contact_props(p);
+      got[11] = pr.kn;
+      got[12] = pr.ks;
+      got[13] = pr.kr;
+      got[14] = pr.roll_cap;
     }
     const auto& mx = phase_max[r.phase];
     for (std::size_t k = 0; k < cols.size(); ++k) {
@@ -170,12 +171,13 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
   }
 }
 
-// apply_batch (the force loop's vectorised form) against apply(), bit for bit: random contacts of
-// four materials (reference: rolling capped, no twist; twisting on with caps; rolling uncapped;
-// no moments), new and old, sliding and sticking, carried over 40 steps of random motion, with
-// lanes out of overlap among them (their history untouched, their outputs +0), read from and
-// written to the pair arrays at an offset. No tolerance: every output and history double must
-// have the same bits (signed zeros included).
+// apply_batch (the force loop's vectorised form, which computes each lane's stiffnesses from its
+// radii) against apply() with the properties of create(), bit for bit: random contacts of four
+// materials in turn (reference: rolling capped, no twist; twisting on with caps; rolling
+// uncapped; no moments), new and old, sliding and sticking, carried over 40 steps of random
+// motion, with lanes out of overlap among them (their history untouched, their outputs +0), read
+// from and written to the pair arrays at an offset. No tolerance: every output and history double
+// must have the same bits (signed zeros included).
 TEST(ContactLaw, BatchIsBitIdenticalToApply) {
   std::mt19937_64 gen(12345);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -197,25 +199,27 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
   const auto same3 = [&](const Vec3& a, const double(&b)[3][dem::CohFrictBatch::kLanes], int q) {
     return same(a[0], b[0][q]) && same(a[1], b[1][q]) && same(a[2], b[2][q]);
   };
-  for (int with_twist = 0; with_twist < 2; ++with_twist) {
-    SCOPED_TRACE(with_twist ? "twisting on" : "twisting off");
+  for (std::size_t m = 0; m < laws.size(); ++m) {
+    SCOPED_TRACE("material " + std::to_string(m));
+    const dem::CohFrictLaw& law = laws[m];
     const int n = dem::CohFrictBatch::kLanes - 3;  // a partial batch: remainder lanes too
     const std::size_t first = 5;                   // lane q is pair first + q of the arrays
     const auto pair = [&](int q) { return first + static_cast<std::size_t>(q); };
-    dem::CohFrictPropsArrays props;
+    std::vector<double> tan_phi(first + static_cast<std::size_t>(n), 0.0);
     dem::CohFrictHistoryArrays hist;
-    props.resize(first + static_cast<std::size_t>(n));
     hist.resize(first + static_cast<std::size_t>(n));
     std::vector<double> r1(n), r2(n);
+    std::vector<dem::CohFrictProps> props(n);
     for (int q = 0; q < n; ++q) {
       r1[q] = 1e-4 * (0.5 + u01(gen));
       r2[q] = 1e-4 * (0.5 + u01(gen));
-      const int m = with_twist ? q % 4 : std::array<int, 3>{0, 2, 3}[q % 3];
-      props.set(pair(q), laws[static_cast<std::size_t>(m)].create(r1[q], r2[q]));
+      props[q] = law.create(r1[q], r2[q]);
+      tan_phi[pair(q)] = props[q].tan_phi;
     }
     const double dt = 8.5e-8;
     int slides = 0;
     int rolls_capped = 0;
+    int twisted = 0;
     int apart = 0;
     common::Mat3 l;
     for (int e = 0; e < 9; ++e) l(e) = sym(50.0);
@@ -238,7 +242,7 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
         const bool is_new = step == 0 || (q + step) % 17 == 0;
         if (touching) {
           const dem::ContactKinematics kin{d, du + l * d, w1, w2, r1[q], r2[q]};
-          laws[0].apply(props.get(pair(q)), want_hist[q], kin, is_new, dt, want[q]);
+          law.apply(props[q], want_hist[q], kin, is_new, dt, want[q]);
         } else {
           want[q] = dem::ContactResult{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), 0.0};
           ++apart;
@@ -255,7 +259,7 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
         b.touching[q] = touching ? 1 : 0;
         b.fresh[q] = touching && is_new ? 1 : 0;
       }
-      dem::CohFrictLaw::apply_batch(b, props, hist, l, dt);
+      law.apply_batch(b, tan_phi, hist, l, dt);
       for (int q = 0; q < n; ++q) {
         const dem::CohFrictHistory got = hist.get(pair(q));
         EXPECT_TRUE(same3(want[q].force, b.force, q)) << "step " << step << " lane " << q;
@@ -269,14 +273,18 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
           EXPECT_TRUE(same(want_hist[q].twist[a], got.twist[a]));
         }
         const double fn = want[q].fn;
-        const double roll_cap = props.roll_cap[pair(q)];
-        slides += fn > 0.0 && got.shear.norm() >= 0.999999 * fn * props.tan_phi[pair(q)] ? 1 : 0;
+        const double roll_cap = props[q].roll_cap;
+        slides += fn > 0.0 && got.shear.norm() >= 0.999999 * fn * props[q].tan_phi ? 1 : 0;
         rolls_capped += fn > 0.0 && roll_cap > 0 && got.roll.norm() >= 0.999999 * roll_cap * fn;
+        twisted += got.twist.norm() > 0.0 ? 1 : 0;
       }
     }
-    // Both sides of the selects were exercised: Coulomb sliding, the rolling cap, lanes apart.
+    // Both sides of the selects were exercised: Coulomb sliding, the rolling cap (materials 0
+    // and 1), twisting (material 1 only), lanes apart.
     EXPECT_GT(slides, 0);
-    EXPECT_GT(rolls_capped, 0);
+    if (m <= 1) EXPECT_GT(rolls_capped, 0);
+    if (m == 1) EXPECT_GT(twisted, 0);
+    if (m != 1) EXPECT_EQ(twisted, 0);
     EXPECT_GT(apart, 0);
   }
 }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -100,12 +102,13 @@ TEST(State, ContactPropertiesAreNamedPerContactFields) {
   rve.save(s);
   const dem::Contacts& c = rve.simulation().contacts();
   ASSERT_GT(c.size(), 0u);
-  const auto kn = s.read_f64("contacts/kn");
-  const auto roll = s.read_f64("contacts/roll_cap");
-  ASSERT_EQ(kn.size(), c.size());
-  for (std::size_t p = 0; p < c.size(); ++p) {
-    EXPECT_EQ(kn[p], c.props.kn[p]);
-    EXPECT_EQ(roll[p], c.props.roll_cap[p]);
+  const auto tan_phi = s.read_f64("contacts/tan_phi");
+  ASSERT_EQ(tan_phi.size(), c.size());
+  for (std::size_t p = 0; p < c.size(); ++p) EXPECT_EQ(tan_phi[p], c.tan_phi[p]);
+  // The other properties follow from the radii: not stored since version 3.
+  for (const char* derived : {"contacts/kn", "contacts/ks", "contacts/kr", "contacts/kt",
+                              "contacts/roll_cap", "contacts/twist_cap"}) {
+    EXPECT_FALSE(s.has(derived)) << derived;
   }
 }
 
@@ -120,10 +123,41 @@ TEST(State, OtherVersionIsRefusedNamingFieldAndVersions) {
       ADD_FAILURE() << "a version-1 state was loaded";
     } catch (const common::InputError& e) {
       const std::string m = e.what();
-      for (const char* needle : {"'dem/version' = 1", "reads version 2 only", "params/material"}) {
+      for (const char* needle :
+           {"'dem/version' = 1", "reads versions 2 and 3 only", "params/material"}) {
         EXPECT_NE(m.find(needle), std::string::npos) << m;
       }
     }
   }
-  EXPECT_THROW((void)dem::Rve::load(with_field(s, "dem/version", {3})), common::InputError);
+  EXPECT_THROW((void)dem::Rve::load(with_field(s, "dem/version", {4})), common::InputError);
+}
+
+// Version 2 stored every contact property per pair; version 3 only tan_phi (the others follow
+// from the radii). A version-2 state (here: a version-3 one given the six fields, their values
+// scrambled: they are not read) loads and continues with the same bits as the version-3 one.
+TEST(State, Version2IsReadAndContinuesAsVersion3) {
+  const dem::Rve rve = distinct_rve();
+  common::StateStore v3;
+  rve.save(v3);
+  const std::size_t np = rve.simulation().contacts().size();
+  ASSERT_GT(np, 0u);
+  common::StateStore v2 = with_field(v3, "dem/version", {2});
+  for (const char* f : {"kn", "ks", "kr", "kt", "roll_cap", "twist_cap"}) {
+    v2.write(std::string("contacts/") + f, std::span<const double>(std::vector<double>(np, 7.0)));
+  }
+  dem::Simulation a = dem::load_simulation(v3);
+  dem::Simulation b = dem::load_simulation(v2);
+  std::int64_t touching = 0;
+  for (std::size_t p = 0; p < np; ++p) touching += a.contacts().active[p];
+  ASSERT_GT(touching, 0);
+  for (int k = 0; k < 300; ++k) {
+    a.step();
+    b.step();
+  }
+  common::StateStore sa;
+  common::StateStore sb;
+  dem::save_simulation(a, sa);
+  dem::save_simulation(b, sb);
+  EXPECT_TRUE(sa.fields() == sb.fields());
+  EXPECT_EQ(sb.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
 }

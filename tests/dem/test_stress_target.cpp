@@ -117,8 +117,8 @@ TEST(StressTarget, AffineModulusOfOneContact) {
   const dem::Simulation sim =
       dem::make_simulation(pk, dem_test::reference_material(), dem::Numerics{});
   ASSERT_EQ(sim.contacts().size(), 1u);
-  const double kn = sim.contacts().props.kn[0];
-  const double ks = sim.contacts().props.ks[0];
+  const double kn = sim.contact_props(0).kn;
+  const double ks = sim.contact_props(0).ks;
   const double d2 = 1.9e-3 * 1.9e-3;
   const double v = 1e-6;
   const Mat3 m = dem::affine_modulus(sim);

@@ -129,7 +129,7 @@ TEST(Verification, CompactionReachesTargetPressure) {
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(-m.stress(a, a), 1e5, 1e3);
   EXPECT_NEAR(m.p, 1e5, 1e3);
   EXPECT_LT(m.unbalanced, 0.01);
-  EXPECT_NEAR(std::tan(30.0 * M_PI / 180.0), sim.contacts().props.tan_phi[0], 1e-12);
+  EXPECT_NEAR(std::tan(30.0 * M_PI / 180.0), sim.contacts().tan_phi[0], 1e-12);
   EXPECT_GE(m.void_ratio, 0.55);
   EXPECT_LE(m.void_ratio, 0.62);
   EXPECT_GE(m.z_mech, 5.7);

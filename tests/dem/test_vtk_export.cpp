@@ -201,7 +201,7 @@ TEST(VtkExport, PeriodicContactIsDrawnAcrossTheBoundaryWithItsTrueLength) {
   const auto overlap = array(t, "overlap");
   ASSERT_EQ(overlap.size(), 1U);
   EXPECT_NEAR(overlap[0], 0.02e-3, 1e-15);
-  EXPECT_NEAR(fn[0], c.props.kn[p_act] * overlap[0], 1e-12 * fn[0]);
+  EXPECT_NEAR(fn[0], sim.contact_props(p_act).kn * overlap[0], 1e-12 * fn[0]);
   const auto fnv = array(t, "normal_force_vector");
   ASSERT_EQ(fnv.size(), 3U);
   // The normal points from sphere 0 to its neighbour's image: -x.
