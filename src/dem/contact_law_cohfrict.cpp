@@ -135,7 +135,6 @@ template <bool kTwist>
     hs.store_if(touch, q, shear);
     store(b.force, q,
           select(touch, V3{fn * n.x + shear.x, fn * n.y + shear.y, fn * n.z + shear.z}, 0.0));
-    b.fn[q] = touch ? fn : 0.0;
     const V3 nxf = cross(n, shear);
     V3 t1 = scale(-(r1 - 0.5 * delta), nxf);
     V3 t2 = scale(-(r2 - 0.5 * delta), nxf);

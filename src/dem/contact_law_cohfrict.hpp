@@ -56,7 +56,7 @@ struct CohFrictBatch {
   alignas(64) double force[3][kLanes];    ///< force on sphere 2 [N]
   alignas(64) double torque1[3][kLanes];  ///< [N m]
   alignas(64) double torque2[3][kLanes];  ///< [N m]
-  alignas(64) double fn[kLanes];          ///< normal force magnitude [N]
+  // The normal force magnitude is kn ((r1 + r2) - sqrt(l2)) (Simulation::normal_force).
 };
 
 /// The stiffnesses and moment caps of a contact between radii r1 and r2 [m] of material m:

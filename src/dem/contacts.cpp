@@ -19,7 +19,6 @@ void Contacts::resize(std::size_t n) {
   torque_i.resize(n, common::Vec3::Zero());
   torque_j.resize(n, common::Vec3::Zero());
   branch.resize(n, common::Vec3::Zero());
-  fn.resize(n, 0.0);
   twist = Twist::unknown;
 }
 

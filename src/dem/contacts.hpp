@@ -25,7 +25,7 @@ struct Contacts {
   std::vector<common::Vec3> force;               ///< force on j [N]
   std::vector<common::Vec3> torque_i, torque_j;  ///< [N m]
   std::vector<common::Vec3> branch;              ///< branch vector of the last step [m]
-  std::vector<double> fn;                        ///< normal force magnitude [N]
+  // The normal force magnitude kn (r_i + r_j - |branch|) is not stored: Simulation::normal_force.
 
   // Per-sphere list of pairs (CSR), in pair order: sphere s touches pairs
   // sphere_pairs[sphere_offset[s] .. sphere_offset[s+1]); a negative entry -p-1 means s == j of p.

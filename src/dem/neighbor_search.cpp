@@ -195,7 +195,6 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
         fresh.torque_i[p] = c.torque_i[o];
         fresh.torque_j[p] = c.torque_j[o];
         fresh.branch[p] = c.branch[o];
-        fresh.fn[p] = c.fn[o];
       }
       ++p;
     }

@@ -151,7 +151,6 @@ void Simulation::pair_forces_shared() {
         c.torque_j[p] = Vec3(batch.torque2[0][q], batch.torque2[1][q], batch.torque2[2][q]);
         Vec3& br = c.branch[p];  // the branch of the last step in contact
         br = Vec3(touching ? d0 : br[0], touching ? d1 : br[1], touching ? d2 : br[2]);
-        c.fn[p] = batch.fn[q];
         s0 += f0 * d0;
         s1 += f1 * d0;
         s2 += f2 * d0;

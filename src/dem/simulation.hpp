@@ -60,6 +60,14 @@ class Simulation {
   VerletState& verlet() { return verlet_; }
   [[nodiscard]] const VerletState& verlet() const { return verlet_; }
   [[nodiscard]] const CohFrictLaw& law() const { return law_; }
+  /// Normal force magnitude of pair p in the last force computation [N]: kn times the overlap of
+  /// its branch, the law's operations (the same bits); 0 for a pair out of contact.
+  [[nodiscard]] double normal_force(std::size_t p) const {
+    if (contacts_.active[p] == 0) return 0.0;
+    const double ri = spheres_.r[static_cast<std::size_t>(contacts_.i[p])];
+    const double rj = spheres_.r[static_cast<std::size_t>(contacts_.j[p])];
+    return law_.props(ri, rj, 0.0).kn * ((ri + rj) - std::sqrt(contacts_.branch[p].squaredNorm()));
+  }
   /// Properties of pair p (its stiffnesses from the radii, its stored friction coefficient).
   [[nodiscard]] CohFrictProps contact_props(std::size_t p) const {
     return law_.props(spheres_.r[static_cast<std::size_t>(contacts_.i[p])],

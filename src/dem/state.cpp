@@ -144,7 +144,6 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   w.write(pre + "contacts/torque_i", flat(c.torque_i));
   w.write(pre + "contacts/torque_j", flat(c.torque_j));
   w.write(pre + "contacts/branch", flat(c.branch));
-  w.write(pre + "contacts/normal_force", c.fn);
 
   w.write(pre + "verlet/x_ref", flat(vs.x_ref));
   w.write(pre + "verlet/h_ref_inv", flat(vs.h_ref_inv));
@@ -217,7 +216,6 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   c.torque_i = rd.vec3("contacts/torque_i", np);
   c.torque_j = rd.vec3("contacts/torque_j", np);
   c.branch = rd.vec3("contacts/branch", np);
-  c.fn = rd.f64("contacts/normal_force", np);
   c.build_sphere_lists(n);
 
   VerletState& vs = sim.verlet();

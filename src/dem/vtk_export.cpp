@@ -159,8 +159,8 @@ std::string contacts_file(const Simulation& sim, const std::vector<Vec3>& xw) {
     ends[2 * k] = xw[i];
     ends[2 * k + 1] = xw[i] + d;
     const CohFrictHistory hist = c.hist.get(p);
-    fn[k] = c.fn[p];
-    fn_vec[k] = c.fn[p] * hist.normal;
+    fn[k] = sim.normal_force(p);
+    fn_vec[k] = fn[k] * hist.normal;
     shear[k] = hist.shear;
     fs[k] = hist.shear.norm();
     force[k] = c.force[p];

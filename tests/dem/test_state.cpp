@@ -105,9 +105,10 @@ TEST(State, ContactPropertiesAreNamedPerContactFields) {
   const auto tan_phi = s.read_f64("contacts/tan_phi");
   ASSERT_EQ(tan_phi.size(), c.size());
   for (std::size_t p = 0; p < c.size(); ++p) EXPECT_EQ(tan_phi[p], c.tan_phi[p]);
-  // The other properties follow from the radii: not stored since version 3.
+  // The other properties follow from the radii, the normal force from the branch: not stored
+  // since version 3.
   for (const char* derived : {"contacts/kn", "contacts/ks", "contacts/kr", "contacts/kt",
-                              "contacts/roll_cap", "contacts/twist_cap"}) {
+                              "contacts/roll_cap", "contacts/twist_cap", "contacts/normal_force"}) {
     EXPECT_FALSE(s.has(derived)) << derived;
   }
 }
@@ -132,9 +133,10 @@ TEST(State, OtherVersionIsRefusedNamingFieldAndVersions) {
   EXPECT_THROW((void)dem::Rve::load(with_field(s, "dem/version", {4})), common::InputError);
 }
 
-// Version 2 stored every contact property per pair; version 3 only tan_phi (the others follow
-// from the radii). A version-2 state (here: a version-3 one given the six fields, their values
-// scrambled: they are not read) loads and continues with the same bits as the version-3 one.
+// Version 2 stored every contact property and the normal force per pair; version 3 only tan_phi
+// (the others follow from the radii, the normal force from the branch). A version-2 state (here:
+// a version-3 one given the seven fields, their values scrambled: they are not read) loads and
+// continues with the same bits as the version-3 one.
 TEST(State, Version2IsReadAndContinuesAsVersion3) {
   const dem::Rve rve = distinct_rve();
   common::StateStore v3;
@@ -142,7 +144,7 @@ TEST(State, Version2IsReadAndContinuesAsVersion3) {
   const std::size_t np = rve.simulation().contacts().size();
   ASSERT_GT(np, 0u);
   common::StateStore v2 = with_field(v3, "dem/version", {2});
-  for (const char* f : {"kn", "ks", "kr", "kt", "roll_cap", "twist_cap"}) {
+  for (const char* f : {"kn", "ks", "kr", "kt", "roll_cap", "twist_cap", "normal_force"}) {
     v2.write(std::string("contacts/") + f, std::span<const double>(std::vector<double>(np, 7.0)));
   }
   dem::Simulation a = dem::load_simulation(v3);

@@ -196,7 +196,7 @@ TEST(VtkExport, PeriodicContactIsDrawnAcrossTheBoundaryWithItsTrueLength) {
   const auto fn = array(t, "normal_force");
   ASSERT_EQ(fn.size(), 1U);
   EXPECT_GT(fn[0], 0.0);
-  EXPECT_EQ(fn[0], c.fn[p_act]);
+  EXPECT_EQ(fn[0], sim.normal_force(p_act));
   // Linear law: fn = kn * overlap (overlap 0.02 mm); 1e-12 relative: the branch is recomputed.
   const auto overlap = array(t, "overlap");
   ASSERT_EQ(overlap.size(), 1U);
