@@ -59,7 +59,10 @@ std::uint64_t state_hash(const Simulation& sim) {
   f.add_vec3(c.force);
   f.add_vec3(c.torque_i);
   f.add_vec3(c.torque_j);
-  f.add_vec3(c.branch);
+  for (std::size_t p = 0; p < c.size(); ++p) {
+    // Pairs in contact only: nothing reads the branch of a pair apart.
+    if (c.active[p] != 0) f.add(c.branch[p].data(), 3);
+  }
   for (std::size_t p = 0; p < c.size(); ++p) {
     const double fn = sim.normal_force(p);  // stored per pair before 2026-11-26: the same hashes
     f.add(&fn, 1);

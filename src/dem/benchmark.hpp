@@ -33,7 +33,9 @@ struct BenchmarkResult {
   double bytes_per_sphere = 0.0;      ///< heap bytes of spheres + pairs + Verlet state / N [B]
   std::int64_t rebuilds = 0;          ///< neighbour rebuilds during the run
   /// FNV-1a hash of the bits of the final state (positions, velocities, spins, cell, contact
-  /// history and forces, stress): equal hashes = bit-identical runs (thread counts, builds).
+  /// history and forces, the branches of the pairs in contact, stress): equal hashes =
+  /// bit-identical runs (thread counts, builds). (Before 2026-11-26 it hashed the branch of every
+  /// pair: the hashes of older builds differ.)
   std::uint64_t state_hash = 0;
 };
 

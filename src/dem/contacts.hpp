@@ -24,7 +24,8 @@ struct Contacts {
   // Output of the last force computation (zero for inactive pairs).
   std::vector<common::Vec3> force;               ///< force on j [N]
   std::vector<common::Vec3> torque_i, torque_j;  ///< [N m]
-  std::vector<common::Vec3> branch;              ///< branch vector of the last step [m]
+  /// Branch x_j + H k - x_i of the last force computation, of every pair (in contact or not) [m].
+  std::vector<common::Vec3> branch;
   // The normal force magnitude kn (r_i + r_j - |branch|) is not stored: Simulation::normal_force.
 
   // Per-sphere list of pairs (CSR), in pair order: sphere s touches pairs

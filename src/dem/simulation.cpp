@@ -143,14 +143,12 @@ void Simulation::pair_forces_shared() {
       law_.apply_batch(batch, c.tan_phi, c.hist, l, dt, c.twist != Contacts::Twist::none);
       for (int q = 0; q < n; ++q) {
         const auto p = static_cast<std::size_t>(p0 + q);
-        const bool touching = batch.touching[q] != 0;
         const double f0 = batch.force[0][q], f1 = batch.force[1][q], f2 = batch.force[2][q];
         const double d0 = batch.d[0][q], d1 = batch.d[1][q], d2 = batch.d[2][q];
         c.force[p] = Vec3(f0, f1, f2);
         c.torque_i[p] = Vec3(batch.torque1[0][q], batch.torque1[1][q], batch.torque1[2][q]);
         c.torque_j[p] = Vec3(batch.torque2[0][q], batch.torque2[1][q], batch.torque2[2][q]);
-        Vec3& br = c.branch[p];  // the branch of the last step in contact
-        br = Vec3(touching ? d0 : br[0], touching ? d1 : br[1], touching ? d2 : br[2]);
+        c.branch[p] = Vec3(d0, d1, d2);  // every pair's: written, never read here
         s0 += f0 * d0;
         s1 += f1 * d0;
         s2 += f2 * d0;

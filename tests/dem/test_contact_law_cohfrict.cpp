@@ -286,9 +286,14 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
     // Both sides of the selects were exercised: Coulomb sliding, the rolling cap (materials 0
     // and 1), twisting (material 1 only), lanes apart.
     EXPECT_GT(slides, 0);
-    if (m <= 1) EXPECT_GT(rolls_capped, 0);
-    if (m == 1) EXPECT_GT(twisted, 0);
-    if (m != 1) EXPECT_EQ(twisted, 0);
+    if (m <= 1) {
+      EXPECT_GT(rolls_capped, 0);
+    }
+    if (m == 1) {
+      EXPECT_GT(twisted, 0);
+    } else {
+      EXPECT_EQ(twisted, 0);
+    }
     EXPECT_GT(apart, 0);
   }
 }
