@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "common/errors.hpp"
+#include "dem/threads.hpp"
 
 namespace dem {
 
@@ -122,7 +123,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
     Vec3i k;
   };
   std::vector<std::vector<Cand>> per_sphere(n);
-#pragma omp parallel for schedule(dynamic, 64) if (n > 512)
+#pragma omp parallel for schedule(dynamic, 64) if (!one_thread(static_cast <std::int64_t>(n)))
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     auto& out = per_sphere[i];
@@ -221,9 +222,15 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
   const Mat3 f = rebuild_deformation(cell, vs);
   double amax2 = 0.0;
   const auto n = static_cast<std::int64_t>(s.size());
-#pragma omp parallel for reduction(max : amax2) schedule(static) if (n > 512)
-  for (std::int64_t i = 0; i < n; ++i) {
-    amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
+  if (one_thread(n)) {
+    for (std::int64_t i = 0; i < n; ++i) {
+      amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
+    }
+  } else {
+#pragma omp parallel for reduction(max : amax2) schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
+    }
   }
   return rebuild_due(amax2, f, vs.r_max, vs.skin);
 }

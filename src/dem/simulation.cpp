@@ -11,6 +11,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "dem/threads.hpp"
 
 namespace dem {
 
@@ -19,8 +20,33 @@ using common::Vec3;
 using common::Vec3i;
 
 namespace {
-constexpr std::int64_t kStressBlock = 512;      // fixed reduction blocks, independent of threads
-constexpr std::int64_t kParallelSpheres = 512;  // fewer spheres: one thread (fork costs more)
+constexpr std::int64_t kStressBlock = 512;  // fixed reduction blocks, independent of threads
+
+// The step's loops in two forms from one source: kTeam, a work-shared loop of the enclosing
+// region's team (with its implicit barrier); otherwise a plain loop of the calling thread, with no
+// OpenMP construct at all (one_thread(): also inside the farm's region over RVEs, where a
+// work-shared loop would bind to the farm's team). The same iterations in the same order per
+// index: the same bits.
+template <bool kTeam, class F>
+inline void team_for(std::int64_t n, F&& f) {
+  if constexpr (kTeam) {
+#pragma omp for schedule(static)
+    for (std::int64_t q = 0; q < n; ++q) f(q);
+  } else {
+    for (std::int64_t q = 0; q < n; ++q) f(q);
+  }
+}
+
+// f() on one thread of the team (the others wait at the implicit barrier), or on the caller.
+template <bool kTeam, class F>
+inline void team_single(F&& f) {
+  if constexpr (kTeam) {
+#pragma omp single
+    f();
+  } else {
+    f();
+  }
+}
 
 }  // namespace
 
@@ -78,17 +104,22 @@ void Simulation::update_neighbors(bool due) {
 // once (vectorised, bit-identical to the per-contact law, reading and writing the pairs' property
 // and history arrays in place), then copies the outputs back and adds the stress in pair order.
 // Pairs out of overlap get +0 force and torques, which add nothing to the sums.
-void Simulation::pair_forces_shared() {
+template <bool kTeam>
+void Simulation::pair_forces() {
+  const auto np = static_cast<std::int64_t>(contacts_.size());
+  const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
+  CohFrictBatch batch;  // per thread: each thread has its own frame
+  team_for<kTeam>(nblocks, [this, &batch](std::int64_t b) { pair_block(b, batch); });
+}
+
+void Simulation::pair_block(std::int64_t b, CohFrictBatch& batch) {
   const auto np = static_cast<std::int64_t>(contacts_.size());
   const Mat3 h = cell_.h;
   const Mat3 l = cell_.l;
   const double dt = dt_;
   Contacts& c = contacts_;
   const Spheres& s = spheres_;
-  const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
-  CohFrictBatch batch;  // per thread: each thread has its own frame
-#pragma omp for schedule(static)
-  for (std::int64_t b = 0; b < nblocks; ++b) {
+  {
     // The block's stress sum of f (x) d, column-major (entry 3 e + a is f_a d_e), in nine local
     // scalars that stay in registers (an array or a Mat3 is kept in memory: a store-forwarding
     // stall per contact); each entry adds the same products in pair order.
@@ -257,11 +288,15 @@ inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& 
 void Simulation::compute_forces() {
   prepare_pair_pass(force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_));
   const auto ns = static_cast<std::int64_t>(spheres_.size());
-#pragma omp parallel if (ns > kParallelSpheres)
-  {
-    pair_forces_shared();
-#pragma omp for schedule(static)
+  if (one_thread(ns)) {
+    pair_forces<false>();
     for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
+  } else {
+#pragma omp parallel
+    {
+      pair_forces<true>();
+      team_for<true>(ns, [this](std::int64_t q) { sum_sphere(q); });
+    }
   }
   finish_stress();
 }
@@ -270,8 +305,12 @@ void Simulation::integrate() {
   const double dt = dt_;
   const Mat3 l = cell_.l;
   const auto ns = static_cast<std::int64_t>(spheres_.size());
-#pragma omp parallel for schedule(static) if (ns > kParallelSpheres)
-  for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+  if (one_thread(ns)) {
+    for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+  }
   advance_cell_and_clock();
 }
 
@@ -284,36 +323,63 @@ void Simulation::advance_cell_and_clock() {
 void Simulation::step() { step(StepHook{}); }
 
 // The forces, (the hook), the per-sphere sums and the integration of step(), called by every
-// thread of its region.
+// thread of its region (kTeam) or by the calling thread alone.
+template <bool kTeam>
 void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error) {
-  pair_forces_shared();
+  pair_forces<kTeam>();
   if (between) {
-#pragma omp for schedule(static)
-    for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
-#pragma omp single
-    {
+    team_for<kTeam>(ns, [this](std::int64_t q) { sum_sphere(q); });
+    team_single<kTeam>([this, &between, &error] {
       finish_stress();
       try {
         between(*this);
       } catch (...) {
         error = std::current_exception();  // an exception must not leave the region
       }
-    }  // implicit barrier: every thread sees the hook's dt and cell().l
+    });  // implicit barrier: every thread sees the hook's dt and cell().l
     if (!error) {
       const double dt = dt_;
       const Mat3 l = cell_.l;
-#pragma omp for schedule(static)
-      for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
+      team_for<kTeam>(ns, [this, dt, &l](std::int64_t q) { integrate_sphere(q, dt, l); });
     }
   } else {
     const double dt = dt_;
     const Mat3 l = cell_.l;
-#pragma omp for schedule(static)
-    for (std::int64_t q = 0; q < ns; ++q) {
+    team_for<kTeam>(ns, [this, dt, &l](std::int64_t q) {
       sum_sphere(q);
       integrate_sphere(q, dt, l);
+    });
+  }
+}
+
+// The body of step()'s region, run by every thread of its team (kTeam) or by the calling thread
+// alone: amax2 and error are shared.
+template <bool kTeam>
+void Simulation::step_team(const StepHook& between, std::int64_t ns, bool check, const Mat3& f,
+                           double r_max, double skin, double& amax2, std::exception_ptr& error) {
+  if (check) {
+    if constexpr (kTeam) {
+#pragma omp for reduction(max : amax2) schedule(static)
+      for (std::int64_t q = 0; q < ns; ++q) {
+        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
+      }
+    } else {
+      for (std::int64_t q = 0; q < ns; ++q) {
+        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
+      }
     }
   }
+  if (!check || rebuild_due(amax2, f, r_max, skin)) {
+    team_single<kTeam>([this, &error] {
+      try {
+        update_neighbors(true);
+        size_stress_blocks();
+      } catch (...) {
+        error = std::current_exception();
+      }
+    });  // implicit barrier: every thread sees the new pair list (or the error)
+  }
+  if (!error) step_shared<kTeam>(between, ns, error);
 }
 
 void Simulation::step(const StepHook& between) {
@@ -329,26 +395,11 @@ void Simulation::step(const StepHook& between) {
   size_stress_blocks();
   double amax2 = 0.0;
   std::exception_ptr error;
-#pragma omp parallel if (ns > kParallelSpheres)
-  {
-    if (check) {
-#pragma omp for reduction(max : amax2) schedule(static)
-      for (std::int64_t q = 0; q < ns; ++q) {
-        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
-      }
-    }
-    if (!check || rebuild_due(amax2, f, r_max, skin)) {
-#pragma omp single
-      {
-        try {
-          update_neighbors(true);
-          size_stress_blocks();
-        } catch (...) {
-          error = std::current_exception();
-        }
-      }  // implicit barrier: every thread sees the new pair list (or the error)
-    }
-    if (!error) step_shared(between, ns, error);
+  if (one_thread(ns)) {
+    step_team<false>(between, ns, check, f, r_max, skin, amax2, error);
+  } else {
+#pragma omp parallel
+    step_team<true>(between, ns, check, f, r_max, skin, amax2, error);
   }
   if (error) std::rethrow_exception(error);
   if (!between) finish_stress();

@@ -98,9 +98,19 @@ class Simulation {
   void size_stress_blocks();
   /// The part of step() after the neighbour update, run by every thread of its region;
   /// an exception of the hook is stored in `error`.
+  /// kTeam: called by every thread of a parallel region (work-shared loops); otherwise by the
+  /// calling thread alone, without OpenMP constructs (dem::one_thread).
+  template <bool kTeam>
   void step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error);
-  /// Work-shared pair loop (called inside a parallel region): forces, torques, block stresses.
-  void pair_forces_shared();
+  /// The neighbour check and update, then step_shared (the body of step()'s region).
+  template <bool kTeam>
+  void step_team(const StepHook& between, std::int64_t ns, bool check, const common::Mat3& f,
+                 double r_max, double skin, double& amax2, std::exception_ptr& error);
+  /// The pair loop over the stress blocks: forces, torques, block stresses.
+  template <bool kTeam>
+  void pair_forces();
+  /// Stress block b of the pair loop, its runs of CohFrictBatch::kLanes pairs through `batch`.
+  void pair_block(std::int64_t b, CohFrictBatch& batch);
   /// Stress from the block sums, in block order (thread-count independent).
   void finish_stress();
   void sum_sphere(std::int64_t q);
