@@ -223,9 +223,7 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
   double amax2 = 0.0;
   const auto n = static_cast<std::int64_t>(s.size());
   if (one_thread(n)) {
-    for (std::int64_t i = 0; i < n; ++i) {
-      amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
-    }
+    amax2 = max_drift2(s, f, vs);
   } else {
 #pragma omp parallel for reduction(max : amax2) schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {

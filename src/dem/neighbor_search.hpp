@@ -3,6 +3,7 @@
 // deformation since the last build exceed what the skin allows.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -51,6 +52,13 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   // A position that is not finite forces a rebuild, which names it (a NaN would drop out of the
   // maximum unnoticed).
   return d2 == d2 ? d2 : std::numeric_limits<double>::infinity();
+}
+/// The largest rebuild_drift2 over the spheres, on the calling thread.
+[[nodiscard]] inline double max_drift2(const Spheres& s, const common::Mat3& f,
+                                       const VerletState& vs) {
+  double amax2 = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) amax2 = std::max(amax2, rebuild_drift2(s, f, vs, i));
+  return amax2;
 }
 [[nodiscard]] bool rebuild_due(double amax2, const common::Mat3& f, double r_max, double skin);
 

@@ -364,9 +364,7 @@ void Simulation::step_team(const StepHook& between, std::int64_t ns, bool check,
         amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
       }
     } else {
-      for (std::int64_t q = 0; q < ns; ++q) {
-        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
-      }
+      amax2 = max_drift2(spheres_, f, verlet_);
     }
   }
   if (!check || rebuild_due(amax2, f, r_max, skin)) {
