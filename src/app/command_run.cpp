@@ -146,6 +146,15 @@ int command_run(const Options& given, const Comm& comm) {
         s.steps, s.time, s.wall_s, s.times.critical_busy, busy, s.migrations, s.rves_moved,
         s.times.migrate_wall, s.checkpoints.size(),
         s.checkpoints.empty() ? "" : ", last " + s.checkpoints.back());
+    spdlog::info(
+        "work: {} DEM steps in {} RVE steps of this run ({:.3g} per RVE step); {} RVE "
+        "step(s) spared ({:.3g} %, dem.sparing)",
+        s.dem_steps, s.rve_steps,
+        s.rve_steps > 0 ? static_cast<double>(s.dem_steps) / static_cast<double>(s.rve_steps) : 0.0,
+        s.spared_steps,
+        s.rve_steps > 0
+            ? 100.0 * static_cast<double>(s.spared_steps) / static_cast<double>(s.rve_steps)
+            : 0.0);
     spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv",
                  out.string());
   }

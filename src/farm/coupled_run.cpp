@@ -18,6 +18,7 @@
 #include "farm/placement.hpp"
 #include "farm/results.hpp"
 #include "farm/run_schedules.hpp"
+#include "farm/spared_micro.hpp"
 
 namespace farm {
 
@@ -65,6 +66,14 @@ class Master {
                     solver_.points(),
                     sample_means(solver_.points(), farm_.reports(), cfg_.output.axial_axis),
                     solver_.reactions(), solver_.constraint_displacements(), farm_.measure());
+  }
+  /// Adds the last MPM step's DEM steps and spared RVE steps to the run's totals.
+  void count_work(RunSummary& sum) const {
+    for (const MicroReport& r : farm_.reports()) {
+      sum.dem_steps += r.dem_steps;
+      sum.spared_steps += (r.guards & kGuardSpared) != 0 ? 1 : 0;
+    }
+    sum.rve_steps += static_cast<std::int64_t>(farm_.reports().size());
   }
   void checkpoint(RunSummary& sum);
   void balance(std::int64_t step);
@@ -148,6 +157,7 @@ void Master::run(RunSummary& sum) {
   while (more()) {
     solver_.step();
     const std::int64_t s = solver_.step_count();
+    count_work(sum);
     if (scaling > 1.0) {
       const std::string w = quasi_static_.observe(s, solver_.time(), solver_.energies());
       if (!w.empty()) spdlog::warn("{}", w);

@@ -55,6 +55,9 @@ struct RunSummary {
   FarmTimes times;                       ///< farm timing (rank 0)
   std::int64_t migrations = 0;           ///< repartitions that moved RVEs (start-up one included)
   std::int64_t rves_moved = 0;
+  std::int64_t dem_steps = 0;           ///< DEM steps of all RVEs in this run's MPM steps (rank 0)
+  std::int64_t rve_steps = 0;           ///< RVE steps (RVEs x MPM steps) of this run (rank 0)
+  std::int64_t spared_steps = 0;        ///< of which spared (kGuardSpared: no DEM step) (rank 0)
   WaitMode wait = WaitMode::automatic;  ///< the wait mode the farm used (resolved)
 };
 

@@ -108,6 +108,17 @@ TEST(Farm, SmokeTinyCoupledJob) {
     }
     const auto stress = farm::testing::read_words(dir + "/results.h5", "/rve/stress");
     EXPECT_EQ(stress.size(), 7u * 8u * 9u);  // rows for steps 0..6, 8 RVEs
+    // The summary's work (the log's "work:" line) is the sum of the rows' /rve/dem_steps (a row
+    // every step here; row 0, the start state, has none).
+    const auto dem_steps = farm::testing::read_words(dir + "/results.h5", "/rve/dem_steps");
+    ASSERT_EQ(dem_steps.size(), 7u * 8u);
+    std::int64_t total = 0;
+    for (std::size_t k = 8; k < dem_steps.size(); ++k)
+      total += static_cast<std::int64_t>(dem_steps[k]);
+    EXPECT_GT(total, 0);
+    EXPECT_EQ(s.dem_steps, total);
+    EXPECT_EQ(s.rve_steps, 6 * 8);
+    EXPECT_EQ(s.spared_steps, 0);
     std::ifstream csv(dir + "/means.csv");
     std::string line;
     int lines = 0;
