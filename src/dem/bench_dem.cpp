@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     std::printf("dt %.4g s  bytes/sphere %.0f  rebuilds %lld  hash %016llx\n", r.dt,
                 r.bytes_per_sphere, static_cast<long long>(r.rebuilds),
                 static_cast<unsigned long long>(r.state_hash));
+    std::printf("critical_dt %a s  %.2f us per call\n", r.critical_dt, r.us_critical_dt);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_dem: %s\n", e.what());

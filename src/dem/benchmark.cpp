@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <limits>
 
 #include "dem/element_test.hpp"
 #include "dem/loading.hpp"
@@ -131,6 +132,19 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
        bytes(c.branch) + bytes(c.sphere_offset) + bytes(c.sphere_pairs) + bytes(sim.verlet().x_ref);
   r.bytes_per_sphere = b / n;
   r.state_hash = state_hash(sim);
+  // critical_dt is called once per MPM step for every RVE: timed on its own (one thread).
+  r.critical_dt = sim.critical_dt();
+  r.us_critical_dt = std::numeric_limits<double>::infinity();
+  for (int batch = 0; batch < 5; ++batch) {
+    const auto b0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < 100; ++k) {
+      volatile double dt = sim.critical_dt();  // volatile: every call is made
+      (void)dt;
+    }
+    const double us =
+        1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - b0).count() / 100.0;
+    r.us_critical_dt = std::min(r.us_critical_dt, us);
+  }
   return r;
 }
 

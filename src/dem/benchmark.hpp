@@ -32,6 +32,8 @@ struct BenchmarkResult {
   double dt = 0.0;                    ///< DEM time step [s]
   double bytes_per_sphere = 0.0;      ///< heap bytes of spheres + pairs + Verlet state / N [B]
   std::int64_t rebuilds = 0;          ///< neighbour rebuilds during the run
+  double critical_dt = 0.0;           ///< Simulation::critical_dt() of the final state [s]
+  double us_critical_dt = 0.0;        ///< its cost: the fastest of 5 batches of 100 calls [us]
   /// FNV-1a hash of the bits of the final state (positions, velocities, spins, cell, contact
   /// history and forces, the branches of the pairs in contact, stress): equal hashes =
   /// bit-identical runs (thread counts, builds). (Before 2026-11-26 it hashed the branch of every
