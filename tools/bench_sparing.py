@@ -25,7 +25,8 @@ reference run:
   biaxial  (jobs/biaxial_plane_strain_4x8.toml): the global stress ratio sigma_a / sigma_r
            (tools/biaxial_analysis.py: int sigma_zz dV over the specimen's height and area, over
            the 100 kPa confinement) against the log axial strain: max |ratio - ratio_ref| over
-           the reference's peak ratio, before the reference's peak and after it, and the peak
+           the reference's peak ratio, before the reference's peak and after it, and the peak;
+           --noise: the top platen's speed perturbed by 1e-6
 Prints a markdown table (medians over the repetitions) and writes it, with a CSV and a figure of
 DEM steps against error, to --out.
 
@@ -72,6 +73,7 @@ SCENES = {
 # moves the reference quantity: the floor under which a sparing error means nothing.
 PERTURBATION = {
     "footing": [('z = "-1 mm/s"', 'z = "-1.000001 mm/s"')],  # the footing's speed, 1e-6
+    "biaxial": [('z = "-3.0 mm/s"', 'z = "-3.000003 mm/s"')],  # the top platen's speed, 1e-6
 }
 
 
@@ -212,7 +214,7 @@ def main():
     ap.add_argument("--reuse", action="store_true",
                     help="analyse the runs already in --out (their log.txt) instead of running them")
     ap.add_argument("--noise", action="store_true",
-                    help="also the reference perturbed by 1e-6 (footing scenes): the sensitivity floor")
+                    help="also the reference perturbed by 1e-6 (footing and biaxial scenes): the sensitivity floor")
     args = ap.parse_args()
     args.exe = os.path.abspath(args.exe)
     os.makedirs(args.out, exist_ok=True)
