@@ -1,0 +1,65 @@
+#!/usr/bin/python3
+"""Load-settlement curves of strip-footing runs (jobs/footing_plane_strain.toml,
+tools/footing_make_job.py): the bearing pressure q = -footing_rz / (half-width x thickness)
+against the settlement s / B, from each run's reactions.csv (pandas), the half-width and the
+thickness read from the run's resolved job. Prints q at a few settlements per run; with --out, a
+figure of every run's curve.
+
+    /usr/bin/python3 tools/footing_curves.py RUN [RUN ...] [--label NAME ...] [--out curves.png]
+"""
+import argparse
+import os
+import tomllib
+
+import pandas as pd
+
+
+def footing_geometry(run):
+    """(half-width, thickness) [m] of the run's footing: the footing box's upper x, the grid's
+    y spacing (plane strain: one cell through y)."""
+    with open(os.path.join(run, "job.resolved.toml"), "rb") as f:
+        job = tomllib.load(f)
+    box = [v for v in job["mpm"]["velocity"] if v.get("name") == "footing"][0]
+    return box["max"][0], job["mpm"]["grid"]["spacing"][1]
+
+
+def curve(run):
+    """(s / B, q [Pa]) of a run."""
+    half, thick = footing_geometry(run)
+    r = pd.read_csv(os.path.join(run, "reactions.csv"))
+    return -r["footing_uz_m"] / (2 * half), -r["footing_rz_N"] / (half * thick)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--label", action="append", default=[])
+    ap.add_argument("--out")
+    a = ap.parse_args()
+    labels = a.label + [os.path.basename(r.rstrip("/")) for r in a.runs[len(a.label):]]
+    curves = [curve(r) for r in a.runs]
+    marks = (0.02, 0.05, 0.08, 0.1)
+    print("%-40s " % "run" + " ".join("q(s/B=%g) [MPa]" % m for m in marks))
+    for lab, (sb, q) in zip(labels, curves):
+        vals = []
+        for m in marks:
+            k = (sb - m).abs().idxmin()
+            vals.append("%15.3f" % (q[k] / 1e6) if abs(sb[k] - m) < 0.005 else "%15s" % "-")
+        print("%-40s " % lab + " ".join(vals))
+    if a.out:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6.5, 4.2))
+        for lab, (sb, q) in zip(labels, curves):
+            ax.plot(sb, q / 1e6, lw=1, label=lab)
+        ax.set_xlabel("settlement s / B")
+        ax.set_ylabel("bearing pressure q [MPa]")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(a.out, dpi=120)
+
+
+if __name__ == "__main__":
+    main()
