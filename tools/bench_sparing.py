@@ -160,6 +160,19 @@ def measures(out, kind, work):
     return d
 
 
+def reaction_errors(r, r0):
+    """A reaction's error against the reference's, over the rows after the start: at the end
+    (relative to the reference's there) and the largest (relative to the reference's largest)."""
+    return {"reaction end": abs(r[-1] - r0[-1]) / abs(r0[-1]),
+            "reaction max": float(np.max(np.abs(r - r0)) / np.max(np.abs(r0)))}
+
+
+def stress_error(s, s0, p_floor):
+    """Per point and row: max |sigma - sigma_ref| over the components, over max(p_ref, p_floor)."""
+    p0 = np.maximum(-(s0[..., 0] + s0[..., 4] + s0[..., 8]) / 3, p_floor)
+    return np.abs(s - s0).max(axis=2) / p0
+
+
 def errors(kind, m, ref):
     if kind == "biaxial":
         # The run's ratio at the reference's strains (the strains of a row differ slightly).
@@ -182,21 +195,15 @@ def errors(kind, m, ref):
         r, r0 = m["reaction"][1:], ref["reaction"][1:]
         u0 = np.abs(ref["settlement"][1:])
         early = u0 <= 0.7 * u0.max()
-        s, s0 = m["stress"], ref["stress"]
-        p0 = np.maximum(-(s0[..., 0] + s0[..., 4] + s0[..., 8]) / 3, 50e3)
-        e = np.abs(s - s0).max(axis=2) / p0
-        return {"reaction end": abs(r[-1] - r0[-1]) / abs(r0[-1]),
-                "reaction max": float(np.max(np.abs(r - r0)) / np.max(np.abs(r0))),
-                "reaction early": float(np.max(np.abs(r - r0)[early]) / np.max(np.abs(r0))),
-                "stress median": float(np.median(e)), "stress p99": float(np.percentile(e, 99))}
+        e = stress_error(m["stress"], ref["stress"], 50e3)
+        return dict(reaction_errors(r, r0),
+                    **{"reaction early": float(np.max(np.abs(r - r0)[early]) / np.max(np.abs(r0))),
+                       "stress median": float(np.median(e)),
+                       "stress p99": float(np.percentile(e, 99))})
     if kind == "column":
-        r, r0 = m["reaction"][1:], ref["reaction"][1:]
-        s, s0 = m["stress"], ref["stress"]
-        p0 = np.maximum(-(s0[..., 0] + s0[..., 4] + s0[..., 8]) / 3, 1e3)
-        e = np.abs(s - s0).max(axis=2) / p0
-        return {"reaction end": abs(r[-1] - r0[-1]) / abs(r0[-1]),
-                "reaction max": float(np.max(np.abs(r - r0)) / np.max(np.abs(r0))),
-                "stress max": float(e.max()), "stress rms": float(np.sqrt((e ** 2).mean()))}
+        e = stress_error(m["stress"], ref["stress"], 1e3)
+        return dict(reaction_errors(m["reaction"][1:], ref["reaction"][1:]),
+                    **{"stress max": float(e.max()), "stress rms": float(np.sqrt((e ** 2).mean()))})
     q, q0 = m["q"], ref["q"]
     return {"q max": float(np.max(np.abs(q - q0)) / np.max(np.abs(q0)))}
 
