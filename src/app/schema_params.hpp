@@ -45,7 +45,13 @@ void fill_from_job(const Job& job, const common::ParamTable<S, N>& table, S& s) 
     if (!p.in_job()) continue;
     const std::string key = table.name(p);
     if (!job.has(key)) continue;
-    p.set(s, p.is_integer() ? static_cast<double>(job.integer(key)) : job.number(key));
+    // An integer exactly: through a double, 2^63 - 1 became 2^63, whose conversion back is
+    // undefined (it gave -2^63: "output.every = -9223372036854775808: must be >= 1").
+    if (p.is_integer()) {
+      p.set_integer(s, job.integer(key));
+    } else {
+      p.set(s, job.number(key));
+    }
   }
 }
 

@@ -94,16 +94,36 @@ struct Param {
     if (const auto* i = std::get_if<2>(&member)) return static_cast<double>(s.**i);
     return s.*std::get<0>(member);
   }
-  /// Sets the member; an integer member takes v truncated (a job gives integers exactly), an int
-  /// member v clamped to the range of int (check_ranges then reports the clamped value).
+  /// Sets the member; an integer member takes v truncated and clamped to its type's range (a
+  /// double at or beyond 2^63 has no int64 value: its conversion would be undefined), an int
+  /// member v clamped to the range of int (check_ranges then reports the clamped value); NaN
+  /// sets an integer member to 0. Integers from a job go through set_integer, exactly.
   void set(S& s, double v) const {
     if (const auto* i = std::get_if<1>(&member)) {
-      s.** i = static_cast<std::int64_t>(v);
+      constexpr double kTwo63 = 9223372036854775808.0;
+      s.** i = std::isnan(v)  ? 0
+               : v >= kTwo63  ? std::numeric_limits<std::int64_t>::max()
+               : v <= -kTwo63 ? std::numeric_limits<std::int64_t>::min()
+                              : static_cast<std::int64_t>(v);
     } else if (const auto* j = std::get_if<2>(&member)) {
-      s.** j = static_cast<int>(std::clamp(v, double{std::numeric_limits<int>::min()},
-                                           double{std::numeric_limits<int>::max()}));
+      s.** j = std::isnan(v)
+                   ? 0
+                   : static_cast<int>(std::clamp(v, double{std::numeric_limits<int>::min()},
+                                                 double{std::numeric_limits<int>::max()}));
     } else {
       s.*std::get<0>(member) = v;
+    }
+  }
+  /// Sets the member to the integer v exactly (an int member: clamped to the range of int; a
+  /// double member: the nearest double).
+  void set_integer(S& s, std::int64_t v) const {
+    if (const auto* i = std::get_if<1>(&member)) {
+      s.** i = v;
+    } else if (const auto* j = std::get_if<2>(&member)) {
+      s.** j = static_cast<int>(std::clamp<std::int64_t>(v, std::numeric_limits<int>::min(),
+                                                         std::numeric_limits<int>::max()));
+    } else {
+      s.*std::get<0>(member) = static_cast<double>(v);
     }
   }
   /// The default: the member initializer of S.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -90,6 +91,32 @@ TEST(ParamTable, IntMembersAreIntegerRowsClampedToTheRangeOfInt) {
   EXPECT_EQ(k.axis, std::numeric_limits<int>::max());
   k.stiffness = 1.0;
   EXPECT_EQ(error_of(k), "test::Knobs::axis = 2147483647: must be in [0, 2]");
+}
+
+// A job's integer is set exactly (set_integer): through a double, 2^63 - 1 became 2^63, whose
+// conversion to int64 is undefined (it gave -2^63, reported as "= -9223372036854775808: must be
+// >= 1" for every integer key). A double beyond the int64 range is clamped, NaN gives 0.
+TEST(ParamTable, IntegersAreSetExactlyAndDoublesBeyondTheRangeClamped) {
+  Knobs k;
+  const auto& refresh = kKnobs.rows[2];
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  refresh.set_integer(k, kMax);
+  EXPECT_EQ(k.refresh, kMax);
+  refresh.set_integer(k, (std::int64_t{1} << 53) + 1);  // not a double
+  EXPECT_EQ(k.refresh, (std::int64_t{1} << 53) + 1);
+  refresh.set(k, static_cast<double>(kMax));  // 2^63
+  EXPECT_EQ(k.refresh, kMax);
+  refresh.set(k, -1e300);
+  EXPECT_EQ(k.refresh, std::numeric_limits<std::int64_t>::min());
+  refresh.set(k, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(k.refresh, 0);
+  const auto& axis = kKnobs.rows[4];
+  axis.set_integer(k, kMax);
+  EXPECT_EQ(k.axis, std::numeric_limits<int>::max());
+  axis.set_integer(k, -5);
+  EXPECT_EQ(k.axis, -5);
+  kKnobs.rows[1].set_integer(k, 3);
+  EXPECT_EQ(k.safety, 3.0);
 }
 
 TEST(ParamTable, CheckNamesTheFirstKeyOutOfRangeWithValueAndRule) {
