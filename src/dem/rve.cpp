@@ -80,7 +80,7 @@ StepReport Rve::step(const Mat3& l, double dt) {
     p = params_.p_floor;
     rep.guards |= kGuardPressureFloor;
   }
-  const double dt_dem = sim_.numerics().dt_safety * sim_.critical_dt();
+  const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
   const double rho = params_.material.density;
   double t_p = std::max(emax / params_.inertial_number * inertial_time(d50_, rho, p), dt_dem);
   if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
@@ -102,6 +102,7 @@ StepReport Rve::step(const Mat3& l, double dt) {
   sim_.set_dt(t_p / static_cast<double>(n));
   sim_.cell().l = g / t_p;
   for (std::int64_t s = 0; s < n; ++s) sim_.step();
+  dt_cache_.dem_steps += n;
   sim_.cell().l.setZero();
   // Final stress at the deformed configuration (forces of the end state, no motion).
   const double keep = sim_.dt();
@@ -127,14 +128,41 @@ StepReport Rve::step(const Mat3& l, double dt) {
   return rep;
 }
 
+namespace {
+std::int64_t active_contacts(const Simulation& sim) {
+  std::int64_t nc = 0;
+  for (auto a : sim.contacts().active) nc += a;
+  return nc;
+}
+}  // namespace
+
+// With dt_refresh = 1 every step() computes it (each runs at least one DEM step): the results of
+// before this cache, bit for bit. Otherwise the value is kept while fewer than dt_refresh DEM
+// steps have run since (each DEM step strains the cell by at most max_strain_per_step, so the
+// fabric it was computed for has moved by at most dt_refresh times that) and while the contacts
+// have not grown by more than 5 %: the per-sphere stiffness sums grow with new contacts only
+// (the law is linear, its stiffnesses functions of the radii), and the safety factor (0.8 by
+// default) leaves room for a stiffness 1.56 times as large.
+double Rve::critical_dt_for_step() {
+  if (params_.dt_refresh <= 1) {
+    dt_cache_ = DtCache{sim_.critical_dt(), 0, 0};
+    return dt_cache_.critical_dt;
+  }
+  const std::int64_t nc = active_contacts(sim_);
+  const bool grown = 20 * nc > 21 * dt_cache_.contacts;  // more than 5 % more contacts
+  if (!(dt_cache_.critical_dt > 0.0) || dt_cache_.dem_steps >= params_.dt_refresh || grown) {
+    dt_cache_ = DtCache{sim_.critical_dt(), 0, nc};
+  }
+  return dt_cache_.critical_dt;
+}
+
 StepReport Rve::measure() const {
   StepReport rep;
   const Mat3& sigma = sim_.stress();
   rep.p = pressure(sigma);
   rep.q = deviatoric(sigma);
   rep.void_ratio = void_ratio(sim_);
-  std::int64_t nc = 0;
-  for (auto a : sim_.contacts().active) nc += a;
+  const std::int64_t nc = active_contacts(sim_);
   rep.z =
       2.0 * static_cast<double>(nc) / static_cast<double>(std::max<std::size_t>(1, num_spheres()));
   if (nc == 0) rep.guards |= kGuardNoContacts;
@@ -150,6 +178,10 @@ void Rve::save(common::StateWriter& w) const {
   common::write_scalar(w, "rve/max_steps_per_call", params_.max_steps_per_call);
   common::write_scalar(w, "rve/initial_pressure", params_.initial_pressure);
   common::write_scalar(w, "rve/d50_used", d50_);
+  common::write_scalar(w, "rve/dt_refresh", params_.dt_refresh);
+  common::write_scalar(w, "rve/dt_cache/critical_dt", dt_cache_.critical_dt);
+  common::write_scalar(w, "rve/dt_cache/dem_steps", dt_cache_.dem_steps);
+  common::write_scalar(w, "rve/dt_cache/contacts", dt_cache_.contacts);
 }
 
 Rve Rve::load(const common::StateReader& r) {
@@ -163,8 +195,25 @@ Rve Rve::load(const common::StateReader& r) {
   params.max_strain_per_step = common::read_scalar_f64(r, "rve/max_strain_per_step");
   params.max_steps_per_call = common::read_scalar_i64(r, "rve/max_steps_per_call");
   params.initial_pressure = common::read_scalar_f64(r, "rve/initial_pressure");
+  // Written since 2026-11-26 (the same DEM state version): a state without them ran with a
+  // critical time step computed at every RVE step, and continues so.
+  if (r.has("rve/dt_refresh")) params.dt_refresh = common::read_scalar_i64(r, "rve/dt_refresh");
   params.validate();
-  return Rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
+  Rve rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
+  if (r.has("rve/dt_cache/critical_dt")) {
+    rve.dt_cache_.critical_dt = common::read_scalar_f64(r, "rve/dt_cache/critical_dt");
+    rve.dt_cache_.dem_steps = common::read_scalar_i64(r, "rve/dt_cache/dem_steps");
+    rve.dt_cache_.contacts = common::read_scalar_i64(r, "rve/dt_cache/contacts");
+    if (!(rve.dt_cache_.critical_dt >= 0.0) || !std::isfinite(rve.dt_cache_.critical_dt) ||
+        rve.dt_cache_.dem_steps < 0 || rve.dt_cache_.contacts < 0) {
+      throw common::InputError(
+          "dem state: fields 'rve/dt_cache/*' = (" + std::to_string(rve.dt_cache_.critical_dt) +
+          ", " + std::to_string(rve.dt_cache_.dem_steps) + ", " +
+          std::to_string(rve.dt_cache_.contacts) +
+          "): the cached critical time step must be finite and >= 0 s and its counts >= 0");
+    }
+  }
+  return rve;
 }
 
 }  // namespace dem

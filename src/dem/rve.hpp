@@ -25,6 +25,8 @@ struct RveParams {
   double max_strain_per_step = 1e-5;  ///< bound on max|L dt_DEM| per DEM step [-]
   std::int64_t max_steps_per_call = 2'000'000;  ///< cap on DEM steps per step() [-]
   double initial_pressure = 0.0;  ///< > 0: equilibrate isotropically at construction [Pa]
+  /// DEM steps between computations of the critical time step in step(); 1: every step() [-]
+  std::int64_t dt_refresh = 1;
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
   /// kNumerics, kRveParams).
@@ -48,6 +50,12 @@ inline constexpr auto kRveParams = common::make_table<RveParams>(
       "Guard: smallest pressure used in T_p (an RVE losing its contacts)."},
      {"d50", &RveParams::d50, Unit::Length, common::ge(0), Source::cpp_only,
       "d50 of eq. (11); 0: the mass median of the spheres."},
+     {"dt_refresh", &RveParams::dt_refresh, Unit::Dimensionless, common::ge(1), Source::job_default,
+      "DEM steps between computations of an RVE's critical time step: an RVE step computes it "
+      "anew once this many DEM steps have run since the last computation, or when the RVE has "
+      "more than 5 % more contacts than then (its stiffness grew). 1: at every RVE step. Larger "
+      "values save the computation (half a DEM step) in RVE steps of one or two DEM steps, as "
+      "YADE's GlobalStiffnessTimeStepper.timeStepUpdateInterval does; docs/dem.md."},
      {"max_steps_per_call", &RveParams::max_steps_per_call, Unit::Dimensionless, common::ge(1),
       Source::cpp_only, "Cap on the DEM steps of one step()."},
      {"initial_pressure", &RveParams::initial_pressure, Unit::Pressure, common::ge(0),
@@ -107,11 +115,26 @@ class Rve {
   [[nodiscard]] const Simulation& simulation() const { return sim_; }
   Simulation& simulation() { return sim_; }
 
+  /// The critical time step of the last computation and what it was computed for (part of the
+  /// state: saved and loaded, so that a restart continues bit for bit). The state is assumed to
+  /// change only through step() between computations (simulation() gives write access for
+  /// tests and preparation, which run before the first step()).
+  struct DtCache {
+    double critical_dt = 0.0;    ///< [s]; 0: none (computed at the next step())
+    std::int64_t dem_steps = 0;  ///< DEM steps run since [-]
+    std::int64_t contacts = 0;   ///< contacts in the state it was computed for [-]
+  };
+  [[nodiscard]] const DtCache& dt_cache() const { return dt_cache_; }
+
  private:
   Rve(Simulation sim, const RveParams& params, double d50);
+  /// The critical time step for this step(): the cached one, or computed anew (dt_refresh).
+  double critical_dt_for_step();
+
   Simulation sim_;
   RveParams params_;
   double d50_ = 0.0;
+  DtCache dt_cache_;
 };
 
 /// Mass-median diameter of a set of radii [m].

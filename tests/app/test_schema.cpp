@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "app/dem_setup.hpp"
@@ -216,6 +218,26 @@ TEST(Schema, JobValuesFillTheDemStructsAndAbsentKeysTakeTheStructDefaults) {
   EXPECT_EQ(p.target.stress_tol, dem::EquilibriumTarget{}.stress_tol);
   EXPECT_EQ(p.target.unbalanced_tol, dem::EquilibriumTarget{}.unbalanced_tol);
   EXPECT_EQ(p.target.check_every, dem::EquilibriumTarget{}.check_every);
+}
+
+// Integer keys reach their members exactly, up to 2^63 - 1 (through a double every integer key
+// at 2^63 - 1 was refused as "= -9223372036854775808: must be >= 1", without file or line).
+TEST(Schema, IntegerKeysFillTheirMembersExactly) {
+  const std::string text = std::string(kDemJob) +
+                           "[dem.coupling]\ninertial_number = 1e-3\n"
+                           "dt_refresh = 9223372036854775807\n"
+                           "max_strain_per_step = 1e-5\n";
+  const app::Job job = app::Job::parse(text, "dem.toml");
+  dem::RveParams p;
+  app::fill_from_job(job, dem::kRveParams, p);
+  EXPECT_EQ(p.dt_refresh, std::numeric_limits<std::int64_t>::max());
+  EXPECT_NO_THROW(common::check_ranges(dem::kRveParams, p));
+  const app::Job odd = app::Job::parse(std::string(kDemJob) +
+                                           "[dem.coupling]\ninertial_number = 1e-3\n"
+                                           "dt_refresh = 9007199254740993\n",  // 2^53 + 1
+                                       "dem.toml");
+  app::fill_from_job(odd, dem::kRveParams, p);
+  EXPECT_EQ(p.dt_refresh, (std::int64_t{1} << 53) + 1);
 }
 
 }  // namespace

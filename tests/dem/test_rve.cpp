@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
@@ -149,6 +153,145 @@ TEST(Rve, SaveLoadContinuesBitForBit) {
   EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
   EXPECT_TRUE(store.has("contacts/shear_force"));
   EXPECT_TRUE(store.has("spheres/x"));
+}
+
+// dem.coupling.dt_refresh (docs/dem.md "RVE step"): the critical time step of an RVE step is
+// the one computed at its start (default: every step, the results of before the key), or kept
+// while fewer than dt_refresh DEM steps have run since it was computed and the contacts have not
+// grown by more than 5 %.
+std::int64_t active_contacts(const dem::Rve& rve) {
+  std::int64_t nc = 0;
+  for (auto a : rve.simulation().contacts().active) nc += a;
+  return nc;
+}
+
+TEST(Rve, CriticalDtIsComputedAtEveryStepByDefault) {
+  dem::Rve rve(dem_test::reference_packing(), params());
+  ASSERT_EQ(rve.params().dt_refresh, 1);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1.0;
+  l(0, 1) = 0.5;
+  for (int k = 0; k < 4; ++k) {
+    const double fresh = rve.simulation().critical_dt();
+    const dem::StepReport r = rve.step(l, 1e-6);
+    EXPECT_EQ(rve.dt_cache().critical_dt, fresh) << "step " << k;
+    EXPECT_EQ(rve.dt_cache().dem_steps, r.dem_steps);
+    EXPECT_LE(r.dt_dem, rve.simulation().numerics().dt_safety * fresh);
+  }
+}
+
+// Zero increments: one relaxation DEM step per RVE step, which moves the spheres a little (the
+// critical time step changes in its last bits) and creates no contacts.
+TEST(Rve, CriticalDtIsKeptForDtRefreshDemSteps) {
+  dem::RveParams p = params();
+  p.dt_refresh = 10;
+  dem::Rve rve(dem_test::reference_packing(), p);
+  double kept = 0.0;
+  int stale = 0;  // steps that ran with a value other than a fresh computation's
+  for (int k = 0; k < 25; ++k) {
+    const double fresh = rve.simulation().critical_dt();
+    const dem::StepReport r = rve.step(Mat3::Zero(), 1e-9);
+    ASSERT_EQ(r.dem_steps, 1);
+    if (k % 10 == 0) {  // computed at steps 0, 10, 20
+      EXPECT_EQ(rve.dt_cache().critical_dt, fresh) << "step " << k;
+      EXPECT_EQ(rve.dt_cache().dem_steps, 1);
+      kept = fresh;
+    } else {
+      EXPECT_EQ(rve.dt_cache().critical_dt, kept) << "step " << k;
+      EXPECT_EQ(rve.dt_cache().dem_steps, k % 10 + 1);
+      stale += fresh != kept ? 1 : 0;
+    }
+    EXPECT_EQ(r.t_p, rve.simulation().numerics().dt_safety * kept);
+  }
+  EXPECT_GT(stale, 0);  // the test can tell a kept value from a computed one
+}
+
+// Compression creates contacts: the kept value is computed anew as soon as the contacts at the
+// start of a step are more than 5 % above those it was computed for, whatever dt_refresh says.
+TEST(Rve, CriticalDtIsComputedAnewWhenContactsGrow) {
+  dem::RveParams p = params();
+  p.dt_refresh = 1'000'000;
+  p.max_strain_per_step = 1e-4;
+  p.inertial_number = 0.1;  // fast compression: a few tens of DEM steps per RVE step
+  dem::Rve rve(dem_test::reference_packing(), p);
+  (void)rve.step(Mat3::Zero(), 1e-9);
+  const Mat3 l = -Mat3::Identity();  // isotropic compression, 0.2 % per RVE step
+  int grown = 0;
+  int kept = 0;
+  for (int k = 0; k < 8; ++k) {
+    const double before = rve.dt_cache().critical_dt;
+    const std::int64_t ref = rve.dt_cache().contacts;
+    const std::int64_t nc = active_contacts(rve);
+    const double fresh = rve.simulation().critical_dt();
+    (void)rve.step(l, 2e-3);
+    if (20 * nc > 21 * ref) {
+      ++grown;
+      EXPECT_EQ(rve.dt_cache().critical_dt, fresh) << "step " << k;
+      EXPECT_EQ(rve.dt_cache().contacts, nc);
+    } else {
+      ++kept;
+      EXPECT_EQ(rve.dt_cache().critical_dt, before) << "step " << k;
+    }
+  }
+  EXPECT_GT(grown, 0);
+  EXPECT_GT(kept, 0);
+}
+
+common::StateStore copy_without(const common::StateStore& s, const std::string& prefix) {
+  common::StateStore out;
+  for (const auto& [name, field] : s.fields()) {
+    if (name.rfind(prefix, 0) == 0) continue;
+    std::visit([&out, &name](const auto& v) { out.write(name, std::span(v)); }, field);
+  }
+  return out;
+}
+
+dem::Rve stepped_with_kept_dt(int steps) {
+  dem::RveParams p = params();
+  p.dt_refresh = 7;
+  dem::Rve rve(dem_test::reference_packing(), p);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1e-3;
+  for (int k = 0; k < steps; ++k) (void)rve.step(l, 1e-6);
+  return rve;
+}
+
+// A state saved between two computations continues bit for bit: the kept value and its counts
+// are part of it. A state written before they were (no rve/dt_* fields) loads as dt_refresh = 1.
+TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
+  dem::Rve a = stepped_with_kept_dt(3);
+  ASSERT_GT(a.dt_cache().dem_steps, 0);
+  ASSERT_LT(a.dt_cache().dem_steps, 7);
+  common::StateStore store;
+  a.save(store);
+  dem::Rve b = dem::Rve::load(common::StateStore::deserialize(store.serialize()));
+  EXPECT_EQ(b.params().dt_refresh, 7);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1e-3;
+  for (int k = 0; k < 12; ++k) {
+    const auto ra = a.step(l, 1e-6);
+    const auto rb = b.step(l, 1e-6);
+    ASSERT_EQ(ra.dem_steps, rb.dem_steps);
+    ASSERT_EQ(ra.t_p, rb.t_p);
+  }
+  EXPECT_EQ(std::memcmp(&a.dt_cache(), &b.dt_cache(), sizeof(dem::Rve::DtCache)), 0);
+  const auto& xa = a.simulation().spheres().x;
+  const auto& xb = b.simulation().spheres().x;
+  EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
+
+  const dem::Rve c = dem::Rve::load(copy_without(store, "rve/dt_"));  // a state of before
+  EXPECT_EQ(c.params().dt_refresh, 1);
+  EXPECT_EQ(c.dt_cache().critical_dt, 0.0);
+
+  // A cached value that cannot be: refused, naming the fields.
+  common::StateStore bad = copy_without(store, "rve/dt_cache/critical_dt");
+  bad.write("rve/dt_cache/critical_dt", std::span<const double>(std::vector<double>{-1.0}));
+  try {
+    (void)dem::Rve::load(bad);
+    ADD_FAILURE() << "a negative cached critical time step was accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rve/dt_cache"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Rve, MissingFieldIsInputError) {

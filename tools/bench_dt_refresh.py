@@ -1,0 +1,147 @@
+#!/usr/bin/python3
+"""Speed against error of keeping an RVE's critical time step over several DEM steps
+(dem.coupling.dt_refresh, docs/dem.md "RVE step").
+
+Runs each scene of tools/bench_sparing.py with dem.coupling.dt_refresh = 1 (the reference: the
+critical time step computed at every RVE step) and the given larger values, in repetitions that
+alternate the variants (the machine's load drifts), every run on --np ranks with one thread per
+rank, niced. Per variant: the DEM steps (the log's "work:" line), the medians of the loop's wall
+time and of the critical rank's RVE time, their ratios to the reference's (medians of the
+per-repetition ratios: each repetition runs every variant within a few minutes), and the error
+of the scene's reference quantity against the reference run (bench_sparing's measures: footing
+reaction and point stresses, collapse runout and height, biaxial stress ratio, element q(eps),
+column base reaction and point stresses). --noise adds the reference perturbed by 1e-6
+(footing and biaxial scenes): the scene's own sensitivity, under which an error means nothing.
+--tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off.
+
+  tools/bench_dt_refresh.py --out /tmp/bench_dt [--scenes footing] [--refresh 1,5,20,100]
+      [--reps 3] [--np 2] [--tolerance 0] [--noise]
+Prints a markdown table and writes it with a CSV to --out.
+"""
+import argparse
+import csv
+import os
+import statistics
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_sparing as bs  # noqa: E402 (a tool beside this one: scenes, measures, errors)
+
+
+def run(args, scene, refresh, rep, perturbed):
+    name = "%s_refresh%d_tol%g%s_rep%d" % (scene, refresh, args.tolerance,
+                                          "_perturbed" if perturbed else "", rep)
+    job = os.path.join(args.out, "jobs", name + ".toml")
+    out = os.path.join(args.out, "runs", name)
+    os.makedirs(os.path.dirname(job), exist_ok=True)
+    text = bs.job_text(scene, args.tolerance, args.max_spared, perturbed)
+    assert "\n[dem.coupling]\n" in text, scene
+    text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\ndt_refresh = %d\n" % refresh, 1)
+    with open(job, "w") as f:
+        f.write(text)
+    log_txt = os.path.join(out, "log.txt")
+    if args.reuse and os.path.exists(log_txt) and "] info: work: " in open(log_txt).read():
+        return (out,) + bs.parse_log(open(log_txt).read())
+    env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    cmd = ["nice", "-n", "5", "mpirun", "-n", str(args.np), args.exe, "run", job, "--out", out,
+           "--force"]
+    log = subprocess.run(cmd, env=env, cwd=bs.ROOT, capture_output=True, text=True)
+    if log.returncode != 0:
+        sys.exit("run failed (exit %d): %s\n%s" % (log.returncode, " ".join(cmd),
+                                                   log.stderr[-3000:]))
+    return (out,) + bs.parse_log(log.stdout + log.stderr)
+
+
+def ratio(base, runs, k):
+    """Median over the repetitions of the reference's time over the variant's (NaN when a time
+    is below the log's resolution)."""
+    r = [b[k] / x[k] for b, x in zip(base, runs) if b[k] > 0 and x[k] > 0]
+    return statistics.median(r) if r else float("nan")
+
+
+def error_text(r):
+    if "q max" in r:
+        return "q: %.2f %%" % (100 * r["q max"])
+    if "pre-peak" in r:
+        return "sigma_a/sigma_r: before the peak %.2f %%, after %.2f %%, peak %.2f %%" % (
+            100 * r["pre-peak"], 100 * r["post-peak"], 100 * r["peak"])
+    if "runout" in r:
+        return "runout %.2f %%, H_f %.2f %%" % (100 * r["runout"], 100 * r["height"])
+    if "stress median" in r:
+        return ("footing reaction %.2f %% at the end, max %.2f %% (to 0.7 of the settlement "
+                "%.2f %%); point stress median %.2f %%, 99th percentile %.1f %%" % (
+                    100 * r["reaction end"], 100 * r["reaction max"], 100 * r["reaction early"],
+                    100 * r["stress median"], 100 * r["stress p99"]))
+    return "reaction %.1e (max %.1e); stress max %.2f %%, rms %.2f %% of p" % (
+        r["reaction end"], r["reaction max"], 100 * r["stress max"], 100 * r["stress rms"])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(bs.ROOT, "build", "mpmxdem"))
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--scenes", default="footing")
+    ap.add_argument("--refresh", default="1,5,20,100", help="comma list; the first is the reference")
+    ap.add_argument("--tolerance", type=float, default=0.0, help="dem.sparing.tolerance of every run")
+    ap.add_argument("--max-spared", type=int, default=20)
+    ap.add_argument("--noise", action="store_true",
+                    help="also the reference perturbed by 1e-6 (footing and biaxial scenes)")
+    ap.add_argument("--reuse", action="store_true",
+                    help="analyse the runs already in --out (their log.txt) instead of running them")
+    args = ap.parse_args()
+    args.exe = os.path.abspath(args.exe)
+    os.makedirs(args.out, exist_ok=True)
+    refresh = [int(x) for x in args.refresh.split(",")]
+    rows = []
+    for scene in args.scenes.split(","):
+        kind = bs.SCENES[scene][2]
+        variants = [(n, False) for n in refresh] + ([(refresh[0], True)] if args.noise else [])
+        res = {v: [] for v in variants}
+        for rep in range(args.reps):
+            for v in variants:  # alternating: every repetition runs every variant once
+                out, wall, rve, work = run(args, scene, v[0], rep, v[1])
+                res[v].append((out, wall, rve, work))
+                print("%s dt_refresh %d%s rep %d: wall %.2f s, RVE %.2f s, %d DEM steps" % (
+                    scene, v[0], " perturbed" if v[1] else "", rep, wall, rve, work["dem_steps"]),
+                    flush=True)
+        base = res[variants[0]]
+        ref = bs.measures(base[0][0], kind, base[0][3])
+        for v in variants:
+            m = bs.measures(res[v][0][0], kind, res[v][0][3])
+            for other in res[v][1:]:  # every repetition gives the same bits: same DEM steps
+                assert other[3]["dem_steps"] == m["dem_steps"], (scene, v)
+            row = {"scene": scene, "dt_refresh": v[0], "perturbed": int(v[1]),
+                   "tolerance": args.tolerance, "dem_steps": m["dem_steps"],
+                   "dem_steps_ratio": m["dem_steps"] / ref["dem_steps"],
+                   "wall_s": statistics.median(x[1] for x in res[v]),
+                   "rve_s": statistics.median(x[2] for x in res[v]),
+                   "wall_speedup": ratio(base, res[v], 1), "rve_speedup": ratio(base, res[v], 2)}
+            row.update(bs.errors(kind, m, ref))
+            rows.append(row)
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(os.path.join(args.out, "bench_dt_refresh.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| scene | dt_refresh | DEM steps | against 1 | loop wall [s] | speed-up | "
+             "RVE time [s] | speed-up | error against dt_refresh %d |" % refresh[0],
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append("| %s | %s | %d | %+.1f %% | %.1f | %.2fx | %.1f | %.2fx | %s |" % (
+            r["scene"], "%d, perturbed 1e-6" % r["dt_refresh"] if r["perturbed"] else
+            "%d" % r["dt_refresh"], r["dem_steps"], 100 * (r["dem_steps_ratio"] - 1), r["wall_s"],
+            r["wall_speedup"], r["rve_s"], r["rve_speedup"], error_text(r)))
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(args.out, "bench_dt_refresh.md"), "w") as f:
+        f.write(table + "\n")
+
+
+if __name__ == "__main__":
+    main()
