@@ -50,6 +50,7 @@ dem::RveParams rve_params(const Job& job) {
   p.material = dem_material(job);
   p.numerics = dem_numerics(job);
   fill_from_job(job, dem::kRveParams, p);
+  p.carry_end_forces = job.text("dem.coupling.end_forces") == "carried";
   p.initial_pressure = 0.0;  // the prototype is prepared by prepared_sample()
   p.validate();
   return p;

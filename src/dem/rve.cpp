@@ -101,14 +101,27 @@ StepReport Rve::step(const Mat3& l, double dt) {
   }
   sim_.set_dt(t_p / static_cast<double>(n));
   sim_.cell().l = g / t_p;
-  for (std::int64_t s = 0; s < n; ++s) sim_.step();
+  std::int64_t s0 = 0;
+  if (forces_carried_) {
+    sim_.integrate();  // the first DEM step with the forces the last step() computed
+    s0 = 1;
+  }
+  for (std::int64_t s = s0; s < n; ++s) sim_.step();
   dt_cache_.dem_steps += n;
-  sim_.cell().l.setZero();
-  // Final stress at the deformed configuration (forces of the end state, no motion).
-  const double keep = sim_.dt();
-  sim_.set_dt(0.0);
-  sim_.compute_forces();
-  sim_.set_dt(keep);
+  if (params_.carry_end_forces) {
+    // Forces of the end state with this step's dt and L: the contacts' shear, rolling and
+    // twisting increments of the last DEM step's motion, which a DEM step would compute next.
+    sim_.compute_forces();
+    sim_.cell().l.setZero();
+    forces_carried_ = true;
+  } else {
+    sim_.cell().l.setZero();
+    // Final stress at the deformed configuration (forces of the end state, no motion).
+    const double keep = sim_.dt();
+    sim_.set_dt(0.0);
+    sim_.compute_forces();
+    sim_.set_dt(keep);
+  }
 
   const Mat3& sigma = sim_.stress();
   if (!sigma.allFinite()) {
@@ -182,6 +195,8 @@ void Rve::save(common::StateWriter& w) const {
   common::write_scalar(w, "rve/dt_cache/critical_dt", dt_cache_.critical_dt);
   common::write_scalar(w, "rve/dt_cache/dem_steps", dt_cache_.dem_steps);
   common::write_scalar(w, "rve/dt_cache/contacts", dt_cache_.contacts);
+  common::write_scalar(w, "rve/carry_end_forces", std::int64_t{params_.carry_end_forces ? 1 : 0});
+  common::write_scalar(w, "rve/forces_carried", std::int64_t{forces_carried_ ? 1 : 0});
 }
 
 Rve Rve::load(const common::StateReader& r) {
@@ -198,8 +213,24 @@ Rve Rve::load(const common::StateReader& r) {
   // Written since 2026-11-26 (the same DEM state version): a state without them ran with a
   // critical time step computed at every RVE step, and continues so.
   if (r.has("rve/dt_refresh")) params.dt_refresh = common::read_scalar_i64(r, "rve/dt_refresh");
+  const auto flag = [&r](const char* name) {
+    if (!r.has(name)) return false;
+    const std::int64_t v = common::read_scalar_i64(r, name);
+    if (v != 0 && v != 1) {
+      throw common::InputError("dem state: field '" + std::string(name) +
+                               "' = " + std::to_string(v) + ": must be 0 or 1");
+    }
+    return v == 1;
+  };
+  params.carry_end_forces = flag("rve/carry_end_forces");
   params.validate();
   Rve rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
+  rve.forces_carried_ = flag("rve/forces_carried");
+  if (rve.forces_carried_ && !params.carry_end_forces) {
+    throw common::InputError(
+        "dem state: field 'rve/forces_carried' = 1 with 'rve/carry_end_forces' = 0: carried "
+        "forces belong to a state that carries them");
+  }
   if (r.has("rve/dt_cache/critical_dt")) {
     rve.dt_cache_.critical_dt = common::read_scalar_f64(r, "rve/dt_cache/critical_dt");
     rve.dt_cache_.dem_steps = common::read_scalar_i64(r, "rve/dt_cache/dem_steps");

@@ -27,6 +27,11 @@ struct RveParams {
   double initial_pressure = 0.0;  ///< > 0: equilibrate isotropically at construction [Pa]
   /// DEM steps between computations of the critical time step in step(); 1: every step() [-]
   std::int64_t dt_refresh = 1;
+  /// The forces of the end state carried to the next step() (job key dem.coupling.end_forces =
+  /// "carried"): computed with the step's dt and L, they give its stress and drive the next
+  /// step's first DEM step, one force evaluation fewer per step(). false ("separate"): a
+  /// zero-length evaluation gives the stress, the next step() computes the forces again.
+  bool carry_end_forces = false;
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
   /// kNumerics, kRveParams).
@@ -135,6 +140,9 @@ class Rve {
   RveParams params_;
   double d50_ = 0.0;
   DtCache dt_cache_;
+  /// carry_end_forces: the spheres' forces are those of the current state, computed by the last
+  /// step() with its dt and L (part of the state; false after construction).
+  bool forces_carried_ = false;
 };
 
 /// Mass-median diameter of a set of radii [m].

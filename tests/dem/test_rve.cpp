@@ -294,6 +294,76 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
   }
 }
 
+// dem.coupling.end_forces = "carried" (docs/dem.md "RVE step"): the end state's forces are
+// computed with the step's dt and L and drive the next step's first DEM step. The same motion as
+// "separate" but for the contacts' increments at the steps' ends (the last DEM step's shear,
+// rolling and twisting increments counted with its own dt instead of the next step's): the
+// stresses agree to a small fraction of p, and the work differs by one force evaluation per step.
+TEST(Rve, CarriedEndForcesGiveTheSeparateEvaluationsStress) {
+  dem::RveParams p = params();
+  dem::Rve separate(dem_test::reference_packing(), p);
+  p.carry_end_forces = true;
+  dem::Rve carried = dem::Rve::from_simulation(separate.simulation(), p);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1.0;
+  l(0, 1) = 0.5;
+  double largest = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    const double dt = k % 2 == 0 ? 2e-6 : 3e-7;  // the DEM step changes between RVE steps
+    const dem::StepReport a = separate.step(l, dt);
+    const dem::StepReport b = carried.step(l, dt);
+    ASSERT_EQ(a.dem_steps, b.dem_steps) << "step " << k;
+    largest = std::max(largest, (separate.stress() - carried.stress()).cwiseAbs().maxCoeff() / a.p);
+  }
+  EXPECT_GT(largest, 0.0);   // other bits
+  EXPECT_LT(largest, 1e-3);  // the same state
+  const auto& xa = separate.simulation().spheres().x;
+  const auto& xb = carried.simulation().spheres().x;
+  double dx = 0.0;
+  for (std::size_t i = 0; i < xa.size(); ++i) dx = std::max(dx, (xa[i] - xb[i]).norm());
+  // The spheres move alike: the modes differ in T_p (through the end stress's p) and in the
+  // increments at the steps' ends: 1.1 % of the cell's affine displacement (|h| times the strain)
+  // here, the bound 5 %.
+  const double affine = (3 * 2e-6 + 3 * 3e-7) * separate.simulation().cell().h.norm();
+  EXPECT_LT(dx, 0.05 * affine);
+}
+
+TEST(Rve, CarriedEndForcesContinueBitForBitAfterSaveLoad) {
+  dem::RveParams p = params();
+  p.carry_end_forces = true;
+  dem::Rve a(dem_test::reference_packing(), p);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1.0;
+  (void)a.step(l, 1e-6);
+  common::StateStore store;
+  a.save(store);
+  EXPECT_EQ(store.read_i64("rve/forces_carried"), std::vector<std::int64_t>{1});
+  dem::Rve b = dem::Rve::load(common::StateStore::deserialize(store.serialize()));
+  EXPECT_TRUE(b.params().carry_end_forces);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_EQ(a.step(l, 1e-6).dem_steps, b.step(l, 1e-6).dem_steps);
+  }
+  const Mat3 sa = a.stress();
+  const Mat3 sb = b.stress();
+  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sizeof(Mat3)), 0);
+  const auto& xa = a.simulation().spheres().x;
+  const auto& xb = b.simulation().spheres().x;
+  EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
+  // Carried forces in a state that does not carry them cannot be: refused, naming the fields.
+  common::StateStore bad = copy_without(store, "rve/carry_end_forces");
+  bad.write("rve/carry_end_forces", std::span<const std::int64_t>(std::vector<std::int64_t>{0}));
+  try {
+    (void)dem::Rve::load(bad);
+    ADD_FAILURE() << "carried forces without carry_end_forces were accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rve/forces_carried"), std::string::npos) << e.what();
+  }
+  // A state of before the key loads as "separate".
+  const dem::Rve old =
+      dem::Rve::load(copy_without(copy_without(store, "rve/carry_end_forces"), "rve/forces_"));
+  EXPECT_FALSE(old.params().carry_end_forces);
+}
+
 TEST(Rve, MissingFieldIsInputError) {
   common::StateStore empty;
   EXPECT_THROW((void)dem::Rve::load(empty), common::InputError);

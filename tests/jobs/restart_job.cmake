@@ -1,9 +1,9 @@
 # Restart through the command line, compared with h5diff and no tolerance: A runs STEPS steps on 2
 # ranks; B runs STEPS/2 on 3 ranks (checkpoint at the end), then restarts from that checkpoint on 2
 # ranks to STEPS. A's and B's results.h5 must be identical. A damaged checkpoint is then refused
-# with exit 2 and a message naming the file, and nothing in B changes. Optional COUPLING: a line
-# added to the job's [dem.coupling] table (the edited job is written to DIR/job.toml; the job must
-# not name files relative to its own directory).
+# with exit 2 and a message naming the file, and nothing in B changes. Optional COUPLING: lines
+# (separated by '|') added to the job's [dem.coupling] table (the edited job is written to
+# DIR/job.toml; the job must not name files relative to its own directory).
 math(EXPR half "${STEPS} / 2")
 file(REMOVE_RECURSE "${DIR}")
 if(DEFINED COUPLING)
@@ -12,7 +12,8 @@ if(DEFINED COUPLING)
   if(at EQUAL -1)
     message(FATAL_ERROR "${JOB} has no [dem.coupling] table to add '${COUPLING}' to")
   endif()
-  string(REPLACE "\n[dem.coupling]\n" "\n[dem.coupling]\n${COUPLING}\n" text "${text}")
+  string(REPLACE "|" "\n" lines "${COUPLING}")
+  string(REPLACE "\n[dem.coupling]\n" "\n[dem.coupling]\n${lines}\n" text "${text}")
   file(WRITE "${DIR}/job.toml" "${text}")
   set(JOB "${DIR}/job.toml")
 endif()

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""Speed against error of keeping an RVE's critical time step over several DEM steps
-(dem.coupling.dt_refresh, docs/dem.md "RVE step").
+"""Speed against error of the RVE step's work-saving options (docs/dem.md "RVE step"):
+dem.coupling.dt_refresh (the critical time step kept over several DEM steps) and
+dem.coupling.end_forces = "carried" (one force evaluation fewer per RVE step).
 
-Runs each scene of tools/bench_sparing.py with dem.coupling.dt_refresh = 1 (the reference: the
-critical time step computed at every RVE step) and the given larger values, in repetitions that
+Runs each scene of tools/bench_sparing.py with each variant of its [dem.coupling] table (the
+first is the reference; a variant is one or more lines joined with '+', e.g.
+'dt_refresh = 20+end_forces = "carried"'), in repetitions that
 alternate the variants (the machine's load drifts), every run on --np ranks with one thread per
 rank, niced. Per variant: the DEM steps (the log's "work:" line), the medians of the loop's wall
 time and of the critical rank's RVE time, their ratios to the reference's (medians of the
@@ -14,13 +16,16 @@ column base reaction and point stresses). --noise adds the reference perturbed b
 (footing and biaxial scenes): the scene's own sensitivity, under which an error means nothing.
 --tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off.
 
-  tools/bench_dt_refresh.py --out /tmp/bench_dt [--scenes footing] [--refresh 1,5,20,100]
-      [--reps 3] [--np 2] [--tolerance 0] [--noise]
-Prints a markdown table and writes it with a CSV to --out.
+  tools/bench_coupling.py --out /tmp/bench_dt [--scenes footing] [--refresh 1,5,20,100]
+      [--variants 'dt_refresh = 1;end_forces = "carried"'] [--reps 3] [--np 2] [--tolerance 0]
+      [--noise]
+--refresh 1,5 is short for --variants 'dt_refresh = 1;dt_refresh = 5'. Prints a markdown table
+and writes it with a CSV (bench_coupling.csv) to --out.
 """
 import argparse
 import csv
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -29,15 +34,20 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_sparing as bs  # noqa: E402 (a tool beside this one: scenes, measures, errors)
 
 
-def run(args, scene, refresh, rep, perturbed):
-    name = "%s_refresh%d_tol%g%s_rep%d" % (scene, refresh, args.tolerance,
-                                          "_perturbed" if perturbed else "", rep)
+def slug(variant):
+    return re.sub(r"[^A-Za-z0-9]+", "_", variant).strip("_")
+
+
+def run(args, scene, variant, rep, perturbed):
+    name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), args.tolerance,
+                                    "_perturbed" if perturbed else "", rep)
     job = os.path.join(args.out, "jobs", name + ".toml")
     out = os.path.join(args.out, "runs", name)
     os.makedirs(os.path.dirname(job), exist_ok=True)
     text = bs.job_text(scene, args.tolerance, args.max_spared, perturbed)
     assert "\n[dem.coupling]\n" in text, scene
-    text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\ndt_refresh = %d\n" % refresh, 1)
+    lines = "".join(x.strip() + "\n" for x in variant.split("+"))
+    text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\n" + lines, 1)
     with open(job, "w") as f:
         f.write(text)
     log_txt = os.path.join(out, "log.txt")
@@ -85,7 +95,9 @@ def main():
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--scenes", default="footing")
-    ap.add_argument("--refresh", default="1,5,20,100", help="comma list; the first is the reference")
+    ap.add_argument("--refresh", default="", help="comma list of dt_refresh values; the first is the reference")
+    ap.add_argument("--variants", default="",
+                    help="';'-separated [dem.coupling] variants ('+' joins lines); the first is the reference")
     ap.add_argument("--tolerance", type=float, default=0.0, help="dem.sparing.tolerance of every run")
     ap.add_argument("--max-spared", type=int, default=20)
     ap.add_argument("--noise", action="store_true",
@@ -95,17 +107,21 @@ def main():
     args = ap.parse_args()
     args.exe = os.path.abspath(args.exe)
     os.makedirs(args.out, exist_ok=True)
-    refresh = [int(x) for x in args.refresh.split(",")]
+    if args.variants:
+        variants_text = [v.strip() for v in args.variants.split(";")]
+    else:
+        variants_text = ["dt_refresh = %d" % int(x) for x in (args.refresh or "1,5,20,100").split(",")]
     rows = []
     for scene in args.scenes.split(","):
         kind = bs.SCENES[scene][2]
-        variants = [(n, False) for n in refresh] + ([(refresh[0], True)] if args.noise else [])
+        variants = [(v, False) for v in variants_text] + (
+            [(variants_text[0], True)] if args.noise else [])
         res = {v: [] for v in variants}
         for rep in range(args.reps):
             for v in variants:  # alternating: every repetition runs every variant once
                 out, wall, rve, work = run(args, scene, v[0], rep, v[1])
                 res[v].append((out, wall, rve, work))
-                print("%s dt_refresh %d%s rep %d: wall %.2f s, RVE %.2f s, %d DEM steps" % (
+                print("%s [%s]%s rep %d: wall %.2f s, RVE %.2f s, %d DEM steps" % (
                     scene, v[0], " perturbed" if v[1] else "", rep, wall, rve, work["dem_steps"]),
                     flush=True)
         base = res[variants[0]]
@@ -114,7 +130,7 @@ def main():
             m = bs.measures(res[v][0][0], kind, res[v][0][3])
             for other in res[v][1:]:  # every repetition gives the same bits: same DEM steps
                 assert other[3]["dem_steps"] == m["dem_steps"], (scene, v)
-            row = {"scene": scene, "dt_refresh": v[0], "perturbed": int(v[1]),
+            row = {"scene": scene, "variant": v[0], "perturbed": int(v[1]),
                    "tolerance": args.tolerance, "dem_steps": m["dem_steps"],
                    "dem_steps_ratio": m["dem_steps"] / ref["dem_steps"],
                    "wall_s": statistics.median(x[1] for x in res[v]),
@@ -125,21 +141,22 @@ def main():
     keys = []
     for r in rows:
         keys += [k for k in r if k not in keys]
-    with open(os.path.join(args.out, "bench_dt_refresh.csv"), "w", newline="") as f:
+    with open(os.path.join(args.out, "bench_coupling.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
         w.writerows(rows)
-    lines = ["| scene | dt_refresh | DEM steps | against 1 | loop wall [s] | speed-up | "
-             "RVE time [s] | speed-up | error against dt_refresh %d |" % refresh[0],
+    lines = ["| scene | [dem.coupling] | DEM steps | against the reference | loop wall [s] | "
+             "speed-up | RVE time [s] | speed-up | error against the reference (%s) |"
+             % variants_text[0],
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append("| %s | %s | %d | %+.1f %% | %.1f | %.2fx | %.1f | %.2fx | %s |" % (
-            r["scene"], "%d, perturbed 1e-6" % r["dt_refresh"] if r["perturbed"] else
-            "%d" % r["dt_refresh"], r["dem_steps"], 100 * (r["dem_steps_ratio"] - 1), r["wall_s"],
+            r["scene"], "%s, perturbed 1e-6" % r["variant"] if r["perturbed"] else r["variant"],
+            r["dem_steps"], 100 * (r["dem_steps_ratio"] - 1), r["wall_s"],
             r["wall_speedup"], r["rve_s"], r["rve_speedup"], error_text(r)))
     table = "\n".join(lines)
     print(table)
-    with open(os.path.join(args.out, "bench_dt_refresh.md"), "w") as f:
+    with open(os.path.join(args.out, "bench_coupling.md"), "w") as f:
         f.write(table + "\n")
 
 
