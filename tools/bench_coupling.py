@@ -14,7 +14,8 @@ of the scene's reference quantity against the reference run (bench_sparing's mea
 reaction and point stresses, collapse runout and height, biaxial stress ratio, element q(eps),
 column base reaction and point stresses). --noise adds the reference perturbed by 1e-6
 (footing and biaxial scenes): the scene's own sensitivity, under which an error means nothing.
---tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off.
+--tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off; a variant's
+part 'sparing.tolerance = x' sets it for that variant alone.
 
   tools/bench_coupling.py --out /tmp/bench_dt [--scenes footing] [--refresh 1,5,20,100]
       [--variants 'dt_refresh = 1;end_forces = "carried"'] [--reps 3] [--np 2] [--tolerance 0]
@@ -38,16 +39,29 @@ def slug(variant):
     return re.sub(r"[^A-Za-z0-9]+", "_", variant).strip("_")
 
 
+def split_variant(args, variant):
+    """([dem.coupling] lines, the sparing tolerance): a part 'sparing.tolerance = x' of the
+    variant sets dem.sparing.tolerance for it (else --tolerance)."""
+    lines, tol = [], args.tolerance
+    for x in variant.split("+"):
+        m = re.match(r"\s*sparing\.tolerance\s*=\s*(\S+)\s*$", x)
+        if m:
+            tol = float(m.group(1))
+        else:
+            lines.append(x.strip())
+    return lines, tol
+
+
 def run(args, scene, variant, rep, perturbed):
-    name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), args.tolerance,
+    lines, tol = split_variant(args, variant)
+    name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol,
                                     "_perturbed" if perturbed else "", rep)
     job = os.path.join(args.out, "jobs", name + ".toml")
     out = os.path.join(args.out, "runs", name)
     os.makedirs(os.path.dirname(job), exist_ok=True)
-    text = bs.job_text(scene, args.tolerance, args.max_spared, perturbed)
+    text = bs.job_text(scene, tol, args.max_spared, perturbed)
     assert "\n[dem.coupling]\n" in text, scene
-    lines = "".join(x.strip() + "\n" for x in variant.split("+"))
-    text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\n" + lines, 1)
+    text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\n" + "".join(x + "\n" for x in lines), 1)
     with open(job, "w") as f:
         f.write(text)
     log_txt = os.path.join(out, "log.txt")
@@ -131,7 +145,7 @@ def main():
             for other in res[v][1:]:  # every repetition gives the same bits: same DEM steps
                 assert other[3]["dem_steps"] == m["dem_steps"], (scene, v)
             row = {"scene": scene, "variant": v[0], "perturbed": int(v[1]),
-                   "tolerance": args.tolerance, "dem_steps": m["dem_steps"],
+                   "tolerance": split_variant(args, v[0])[1], "dem_steps": m["dem_steps"],
                    "dem_steps_ratio": m["dem_steps"] / ref["dem_steps"],
                    "wall_s": statistics.median(x[1] for x in res[v]),
                    "rve_s": statistics.median(x[2] for x in res[v]),
