@@ -85,23 +85,6 @@ def ratio(base, runs, k):
     return statistics.median(r) if r else float("nan")
 
 
-def error_text(r):
-    if "q max" in r:
-        return "q: %.2f %%" % (100 * r["q max"])
-    if "pre-peak" in r:
-        return "sigma_a/sigma_r: before the peak %.2f %%, after %.2f %%, peak %.2f %%" % (
-            100 * r["pre-peak"], 100 * r["post-peak"], 100 * r["peak"])
-    if "runout" in r:
-        return "runout %.2f %%, H_f %.2f %%" % (100 * r["runout"], 100 * r["height"])
-    if "stress median" in r:
-        return ("footing reaction %.2f %% at the end, max %.2f %% (to 0.7 of the settlement "
-                "%.2f %%); point stress median %.2f %%, 99th percentile %.1f %%" % (
-                    100 * r["reaction end"], 100 * r["reaction max"], 100 * r["reaction early"],
-                    100 * r["stress median"], 100 * r["stress p99"]))
-    return "reaction %.1e (max %.1e); stress max %.2f %%, rms %.2f %% of p" % (
-        r["reaction end"], r["reaction max"], 100 * r["stress max"], 100 * r["stress rms"])
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(bs.ROOT, "build", "mpmxdem"))
@@ -167,7 +150,7 @@ def main():
         lines.append("| %s | %s | %d | %+.1f %% | %.1f | %.2fx | %.1f | %.2fx | %s |" % (
             r["scene"], "%s, perturbed 1e-6" % r["variant"] if r["perturbed"] else r["variant"],
             r["dem_steps"], 100 * (r["dem_steps_ratio"] - 1), r["wall_s"],
-            r["wall_speedup"], r["rve_s"], r["rve_speedup"], error_text(r)))
+            r["wall_speedup"], r["rve_s"], r["rve_speedup"], bs.error_text(r)))
     table = "\n".join(lines)
     print(table)
     with open(os.path.join(args.out, "bench_coupling.md"), "w") as f:

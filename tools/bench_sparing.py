@@ -208,6 +208,24 @@ def errors(kind, m, ref):
     return {"q max": float(np.max(np.abs(q - q0)) / np.max(np.abs(q0)))}
 
 
+def error_text(r):
+    """A table row's error of the scene's reference quantity, in words (rows of errors())."""
+    if "q max" in r:
+        return "q: %.2f %%" % (100 * r["q max"])
+    if "pre-peak" in r:
+        return "sigma_a/sigma_r: before the peak %.2f %%, after %.2f %%, peak %.2f %%" % (
+            100 * r["pre-peak"], 100 * r["post-peak"], 100 * r["peak"])
+    if "runout" in r:
+        return "runout %.2f %%, H_f %.2f %%" % (100 * r["runout"], 100 * r["height"])
+    if "stress median" in r:  # a footing
+        return ("footing reaction %.2f %% at the end, max %.2f %% (to 0.7 of the settlement "
+                "%.2f %%); point stress median %.2f %%, 99th percentile %.1f %%" % (
+                    100 * r["reaction end"], 100 * r["reaction max"], 100 * r["reaction early"],
+                    100 * r["stress median"], 100 * r["stress p99"]))
+    return "reaction %.1e (max %.1e); stress max %.2f %%, rms %.2f %% of p" % (
+        r["reaction end"], r["reaction max"], 100 * r["stress max"], 100 * r["stress rms"])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "mpmxdem"))
@@ -267,21 +285,7 @@ def main():
     lines = ["| scene | tolerance | max spared | DEM steps | fewer | spared | loop wall [s] | "
              "RVE time [s] | error |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        if "q max" in r:
-            err = "q: %.2f %%" % (100 * r["q max"])
-        elif "pre-peak" in r:
-            err = "sigma_a/sigma_r: before the peak %.2f %%, after %.2f %%, peak %.2f %%" % (
-                100 * r["pre-peak"], 100 * r["post-peak"], 100 * r["peak"])
-        elif "runout" in r:
-            err = "runout %.2f %%, H_f %.2f %%" % (100 * r["runout"], 100 * r["height"])
-        elif r["scene"].startswith("footing"):
-            err = ("footing reaction %.2f %% at the end, max %.2f %% (to 0.7 of the settlement %.2f %%); "
-                   "point stress median %.2f %%, 99th percentile %.1f %%" % (
-                       100 * r["reaction end"], 100 * r["reaction max"], 100 * r["reaction early"],
-                       100 * r["stress median"], 100 * r["stress p99"]))
-        else:
-            err = "reaction %.1e (max %.1e); stress max %.2f %%, rms %.2f %% of p" % (
-                r["reaction end"], r["reaction max"], 100 * r["stress max"], 100 * r["stress rms"])
+        err = error_text(r)
         lines.append("| %s | %s | %d | %d | %.1fx | %.0f %% | %.1f | %.1f | %s |" % (
             r["scene"], "0, perturbed 1e-6" if r.get("perturbed") else "%g" % r["tolerance"], r["max_spared_steps"], r["dem_steps"], r["fewer"],
             100 * r["spared"], r["wall_s"], r["rve_s"], err))

@@ -130,6 +130,17 @@ TEST(Rve, LosingAllContactsGivesZeroStressNoNan) {
   EXPECT_GT(r.void_ratio, 0.9);
 }
 
+// The same bits: stress and sphere positions.
+void expect_same_stress_and_positions(const dem::Rve& a, const dem::Rve& b) {
+  const Mat3 sa = a.stress();
+  const Mat3 sb = b.stress();
+  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sizeof(Mat3)), 0);
+  const auto& xa = a.simulation().spheres().x;
+  const auto& xb = b.simulation().spheres().x;
+  ASSERT_EQ(xa.size(), xb.size());
+  EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
+}
+
 TEST(Rve, SaveLoadContinuesBitForBit) {
   dem::Rve a(dem_test::reference_packing(), params());
   Mat3 l = Mat3::Zero();
@@ -145,12 +156,7 @@ TEST(Rve, SaveLoadContinuesBitForBit) {
     const auto rb = b.step(l, 2e-5);
     EXPECT_EQ(ra.dem_steps, rb.dem_steps);
   }
-  const Mat3 sa = a.stress();
-  const Mat3 sb = b.stress();
-  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sizeof(Mat3)), 0);
-  const auto& xa = a.simulation().spheres().x;
-  const auto& xb = b.simulation().spheres().x;
-  EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
+  expect_same_stress_and_positions(a, b);
   EXPECT_TRUE(store.has("contacts/shear_force"));
   EXPECT_TRUE(store.has("spheres/x"));
 }
@@ -343,12 +349,7 @@ TEST(Rve, CarriedEndForcesContinueBitForBitAfterSaveLoad) {
   for (int k = 0; k < 3; ++k) {
     ASSERT_EQ(a.step(l, 1e-6).dem_steps, b.step(l, 1e-6).dem_steps);
   }
-  const Mat3 sa = a.stress();
-  const Mat3 sb = b.stress();
-  EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sizeof(Mat3)), 0);
-  const auto& xa = a.simulation().spheres().x;
-  const auto& xb = b.simulation().spheres().x;
-  EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
+  expect_same_stress_and_positions(a, b);
   // Carried forces in a state that does not carry them cannot be: refused, naming the fields.
   common::StateStore bad = copy_without(store, "rve/carry_end_forces");
   bad.write("rve/carry_end_forces", std::span<const std::int64_t>(std::vector<std::int64_t>{0}));
