@@ -13,7 +13,7 @@ per-repetition ratios: each repetition runs every variant within a few minutes),
 of the scene's reference quantity against the reference run (bench_sparing's measures: footing
 reaction and point stresses, collapse runout and height, biaxial stress ratio, element q(eps),
 column base reaction and point stresses). --noise adds the reference perturbed by 1e-6
-(footing and biaxial scenes): the scene's own sensitivity, under which an error means nothing.
+(footing, biaxial and collapse scenes): the scene's own sensitivity, under which an error means nothing.
 --tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off; a variant's
 part 'sparing.tolerance = x' sets it for that variant alone.
 
@@ -98,7 +98,7 @@ def main():
     ap.add_argument("--tolerance", type=float, default=0.0, help="dem.sparing.tolerance of every run")
     ap.add_argument("--max-spared", type=int, default=20)
     ap.add_argument("--noise", action="store_true",
-                    help="also the reference perturbed by 1e-6 (footing and biaxial scenes)")
+                    help="also the reference perturbed by 1e-6 (footing, biaxial and collapse scenes)")
     ap.add_argument("--reuse", action="store_true",
                     help="analyse the runs already in --out (their log.txt) instead of running them")
     args = ap.parse_args()

@@ -15,7 +15,8 @@ reference run:
   element  (jobs/triaxial_mpmxdem_small.toml): q(eps_ax) of /means/q, max |q - q_ref| / max q_ref
   collapse (jobs/column_collapse_a0.5.toml, to rest): the runout of the connected deposit
            (L_f - L0) / L0 and the final height at the back wall H_f / H0
-           (tools/mpm_column_collapse.py), differences relative to the reference run's
+           (tools/mpm_column_collapse.py), differences relative to the reference run's;
+           --noise: gravity changed by 1e-6
   footing  (jobs/footing_plane_strain.toml; _wide, _wider: the layer 2 and 3 times as wide and
            deep, tools/footing_make_job.py): the footing's reaction (z of /constraints/reaction
            "footing") against its settlement, relative to the reference's largest: at the end,
@@ -74,6 +75,7 @@ SCENES = {
 PERTURBATION = {
     "footing": [('z = "-1 mm/s"', 'z = "-1.000001 mm/s"')],  # the footing's speed, 1e-6
     "biaxial": [('z = "-3.0 mm/s"', 'z = "-3.000003 mm/s"')],  # the top platen's speed, 1e-6
+    "collapse": [('"-9.81 m/s^2"', '"-9.81001 m/s^2"')],  # gravity, 1e-6
 }
 
 
@@ -239,7 +241,7 @@ def main():
     ap.add_argument("--reuse", action="store_true",
                     help="analyse the runs already in --out (their log.txt) instead of running them")
     ap.add_argument("--noise", action="store_true",
-                    help="also the reference perturbed by 1e-6 (footing and biaxial scenes): the sensitivity floor")
+                    help="also the reference perturbed by 1e-6 (footing, biaxial and collapse scenes): the sensitivity floor")
     args = ap.parse_args()
     args.exe = os.path.abspath(args.exe)
     os.makedirs(args.out, exist_ok=True)
