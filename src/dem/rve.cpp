@@ -235,13 +235,18 @@ Rve Rve::load(const common::StateReader& r) {
     rve.dt_cache_.critical_dt = common::read_scalar_f64(r, "rve/dt_cache/critical_dt");
     rve.dt_cache_.dem_steps = common::read_scalar_i64(r, "rve/dt_cache/dem_steps");
     rve.dt_cache_.contacts = common::read_scalar_i64(r, "rve/dt_cache/contacts");
+    // contacts at most the pairs: the growth test multiplies it by 21.
+    const auto pairs = static_cast<std::int64_t>(rve.sim_.contacts().size());
     if (!(rve.dt_cache_.critical_dt >= 0.0) || !std::isfinite(rve.dt_cache_.critical_dt) ||
-        rve.dt_cache_.dem_steps < 0 || rve.dt_cache_.contacts < 0) {
+        rve.dt_cache_.dem_steps < 0 || rve.dt_cache_.contacts < 0 ||
+        rve.dt_cache_.contacts > pairs) {
       throw common::InputError(
           "dem state: fields 'rve/dt_cache/*' = (" + std::to_string(rve.dt_cache_.critical_dt) +
           ", " + std::to_string(rve.dt_cache_.dem_steps) + ", " +
           std::to_string(rve.dt_cache_.contacts) +
-          "): the cached critical time step must be finite and >= 0 s and its counts >= 0");
+          "): the cached critical time step must be finite and >= 0 s, its DEM steps >= 0 and "
+          "its contacts in [0, " +
+          std::to_string(pairs) + "] (the state's pairs)");
     }
   }
   return rve;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 #include <variant>
@@ -298,6 +299,11 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
   } catch (const common::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("rve/dt_cache"), std::string::npos) << e.what();
   }
+  // A contact count beyond the state's pairs (its growth test multiplies it): refused too.
+  common::StateStore many = copy_without(store, "rve/dt_cache/contacts");
+  many.write("rve/dt_cache/contacts", std::span<const std::int64_t>(std::vector<std::int64_t>{
+                                          std::numeric_limits<std::int64_t>::max()}));
+  EXPECT_THROW((void)dem::Rve::load(many), common::InputError);
 }
 
 // dem.coupling.end_forces = "carried" (docs/dem.md "RVE step"): the end state's forces are
