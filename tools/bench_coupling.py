@@ -24,7 +24,6 @@ part 'sparing.tolerance = x' sets it for that variant alone.
 and writes it with a CSV (bench_coupling.csv) to --out.
 """
 import argparse
-import csv
 import os
 import re
 import statistics
@@ -135,13 +134,7 @@ def main():
                    "wall_speedup": ratio(base, res[v], 1), "rve_speedup": ratio(base, res[v], 2)}
             row.update(bs.errors(kind, m, ref))
             rows.append(row)
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(os.path.join(args.out, "bench_coupling.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    bs.write_csv(os.path.join(args.out, "bench_coupling.csv"), rows)
     lines = ["| scene | [dem.coupling] | DEM steps | against the reference | loop wall [s] | "
              "speed-up | RVE time [s] | speed-up | error against the reference (%s) |"
              % variants_text[0],

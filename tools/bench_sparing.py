@@ -210,6 +210,17 @@ def errors(kind, m, ref):
     return {"q max": float(np.max(np.abs(q - q0)) / np.max(np.abs(q0)))}
 
 
+def write_csv(path, rows):
+    """The rows as a CSV whose columns are the union of the rows' keys, in first-seen order."""
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
 def error_text(r):
     """A table row's error of the scene's reference quantity, in words (rows of errors())."""
     if "q max" in r:
@@ -277,13 +288,7 @@ def main():
                    "rve_s": statistics.median(x[2] for x in res[v])}
             row.update(errors(kind, m, ref))
             rows.append(row)
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(os.path.join(args.out, "bench_sparing.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(os.path.join(args.out, "bench_sparing.csv"), rows)
     lines = ["| scene | tolerance | max spared | DEM steps | fewer | spared | loop wall [s] | "
              "RVE time [s] | error |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
