@@ -14,7 +14,8 @@ of the scene's reference quantity against the reference run (bench_sparing's mea
 reaction and point stresses, collapse runout and height, biaxial stress ratio, element q(eps),
 column base reaction and point stresses). --noise adds the reference perturbed by 1e-6
 (footing, biaxial and collapse scenes): the scene's own sensitivity, under which an error means nothing.
---tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off; a variant's
+--perturb 'OLD=>NEW' (repeatable) adds the reference with a replacement of one's own (more
+samples of that sensitivity). --tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off; a variant's
 part 'sparing.tolerance = x' sets it for that variant alone.
 
   tools/bench_coupling.py --out /tmp/bench_dt [--scenes footing] [--refresh 1,5,20,100]
@@ -53,8 +54,9 @@ def split_variant(args, variant):
 
 def run(args, scene, variant, rep, perturbed):
     lines, tol = split_variant(args, variant)
-    name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol,
-                                    "_perturbed" if perturbed else "", rep)
+    name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol, "" if not perturbed else
+                                    "_perturbed" + ("_" + slug(perturbed) if isinstance(perturbed, str) else ""),
+                                    rep)
     job = os.path.join(args.out, "jobs", name + ".toml")
     out = os.path.join(args.out, "runs", name)
     os.makedirs(os.path.dirname(job), exist_ok=True)
@@ -75,6 +77,13 @@ def run(args, scene, variant, rep, perturbed):
         sys.exit("run failed (exit %d): %s\n%s" % (log.returncode, " ".join(cmd),
                                                    log.stderr[-3000:]))
     return (out,) + bs.parse_log(log.stdout + log.stderr)
+
+
+def label(perturbed):
+    """How a run's job differs from its variant's: '' or ', perturbed ...'."""
+    if isinstance(perturbed, str):
+        return ", perturbed: %s" % perturbed.replace("=>", " -> ")
+    return ", perturbed 1e-6" if perturbed else ""
 
 
 def ratio(base, runs, k):
@@ -98,6 +107,9 @@ def main():
     ap.add_argument("--max-spared", type=int, default=20)
     ap.add_argument("--noise", action="store_true",
                     help="also the reference perturbed by 1e-6 (footing, biaxial and collapse scenes)")
+    ap.add_argument("--perturb", action="append", default=[],
+                    help="also the reference with the job text OLD replaced by NEW ('OLD=>NEW', "
+                    "repeatable): more samples of the scene's sensitivity")
     ap.add_argument("--reuse", action="store_true",
                     help="analyse the runs already in --out (their log.txt) instead of running them")
     args = ap.parse_args()
@@ -111,14 +123,15 @@ def main():
     for scene in args.scenes.split(","):
         kind = bs.SCENES[scene][2]
         variants = [(v, False) for v in variants_text] + (
-            [(variants_text[0], True)] if args.noise else [])
+            [(variants_text[0], True)] if args.noise else []) + [
+            (variants_text[0], x) for x in args.perturb]
         res = {v: [] for v in variants}
         for rep in range(args.reps):
             for v in variants:  # alternating: every repetition runs every variant once
                 out, wall, rve, work = run(args, scene, v[0], rep, v[1])
                 res[v].append((out, wall, rve, work))
                 print("%s [%s]%s rep %d: wall %.2f s, RVE %.2f s, %d DEM steps" % (
-                    scene, v[0], " perturbed" if v[1] else "", rep, wall, rve, work["dem_steps"]),
+                    scene, v[0], label(v[1]), rep, wall, rve, work["dem_steps"]),
                     flush=True)
         base = res[variants[0]]
         ref = bs.measures(base[0][0], kind, base[0][3])
@@ -126,7 +139,7 @@ def main():
             m = bs.measures(res[v][0][0], kind, res[v][0][3])
             for other in res[v][1:]:  # every repetition gives the same bits: same DEM steps
                 assert other[3]["dem_steps"] == m["dem_steps"], (scene, v)
-            row = {"scene": scene, "variant": v[0], "perturbed": int(v[1]),
+            row = {"scene": scene, "variant": v[0] + label(v[1]), "perturbed": int(bool(v[1])),
                    "tolerance": split_variant(args, v[0])[1], "dem_steps": m["dem_steps"],
                    "dem_steps_ratio": m["dem_steps"] / ref["dem_steps"],
                    "wall_s": statistics.median(x[1] for x in res[v]),
@@ -141,7 +154,7 @@ def main():
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append("| %s | %s | %d | %+.1f %% | %.1f | %.2fx | %.1f | %.2fx | %s |" % (
-            r["scene"], "%s, perturbed 1e-6" % r["variant"] if r["perturbed"] else r["variant"],
+            r["scene"], r["variant"],
             r["dem_steps"], 100 * (r["dem_steps_ratio"] - 1), r["wall_s"],
             r["wall_speedup"], r["rve_s"], r["rve_speedup"], bs.error_text(r)))
     table = "\n".join(lines)

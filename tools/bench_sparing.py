@@ -81,7 +81,9 @@ PERTURBATION = {
 
 def job_text(scene, tol, max_spared, perturbed=False):
     path, repl, kind = SCENES[scene]
-    if perturbed:
+    if isinstance(perturbed, str):  # "OLD=>NEW": a perturbation of the caller's own
+        repl = repl + [tuple(perturbed.split("=>", 1))]
+    elif perturbed:
         repl = repl + PERTURBATION[kind]
     if isinstance(path, dict):  # a footing written by tools/footing_make_job.py
         sys.path.insert(0, os.path.join(ROOT, "tools"))
