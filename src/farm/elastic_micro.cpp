@@ -117,6 +117,13 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
       throw common::InputError(std::string("elastic micro state: field '") + name + "' has " +
                                std::to_string(v.size()) + " values, expected 9");
     }
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (!std::isfinite(v[k])) {
+        throw common::InputError(std::string("elastic micro state: field '") + name + "' value " +
+                                 std::to_string(k) + " is " + std::to_string(v[k]) +
+                                 ": a state holds finite numbers only");
+      }
+    }
     return common::Mat3(common::row_major(v.data()));
   };
   ElasticMicroParams params;
@@ -131,6 +138,10 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   auto m = std::make_unique<ElasticMicro>(common::read_scalar_i64(r, "elastic/id"), params);
   m->stress_ = matrix("elastic/stress");
   m->j_ = common::read_scalar_f64(r, "elastic/j");
+  if (!std::isfinite(m->j_)) {
+    throw common::InputError("elastic micro state: field 'elastic/j' = " + std::to_string(m->j_) +
+                             ": a state holds finite numbers only");
+  }
   m->steps_ = common::read_scalar_i64(r, "elastic/steps");
   return m;
 }

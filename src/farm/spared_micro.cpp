@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <span>
 #include <string>
 #include <utility>
@@ -39,8 +40,30 @@ std::vector<double> nine(const Mat3& m) {
   return v;
 }
 
+/// A field of finite numbers (a state is checkpoint input: a NaN would pass every comparison
+/// that decides whether to step the RVE, and the run would go on wrongly instead of failing).
+std::vector<double> read_finite(const common::StateReader& r, const char* name) {
+  std::vector<double> v = r.read_f64(name);
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (!std::isfinite(v[k])) {
+      throw common::InputError(std::string("spared micro state: field '") + name + "' value " +
+                               std::to_string(k) + " is " + std::to_string(v[k]) +
+                               ": a state holds finite numbers only");
+    }
+  }
+  return v;
+}
+double read_finite_scalar(const common::StateReader& r, const char* name) {
+  const std::vector<double> v = read_finite(r, name);
+  if (v.size() != 1) {
+    throw common::InputError(std::string("spared micro state: field '") + name +
+                             "' must hold 1 value, has " + std::to_string(v.size()));
+  }
+  return v[0];
+}
+
 Mat3 read_nine(const common::StateReader& r, const char* name) {
-  const std::vector<double> v = r.read_f64(name);
+  const std::vector<double> v = read_finite(r, name);
   if (v.size() != 9) {
     throw common::InputError(std::string("spared micro state: field '") + name +
                              "' must hold 9 values, has " + std::to_string(v.size()));
@@ -182,31 +205,34 @@ std::unique_ptr<MicroModel> SparedMicro::load(const common::StateReader& r,
   }
   auto m = std::make_unique<SparedMicro>(std::move(inner), options, std::move(tangent));
   m->g_acc_ = read_nine(r, "spare/g_acc");
-  m->dt_acc_ = common::read_scalar_f64(r, "spare/dt_acc");
+  m->dt_acc_ = read_finite_scalar(r, "spare/dt_acc");
   m->n_spared_ = common::read_scalar_i64(r, "spare/n_spared");
-  const std::vector<double> b = r.read_f64("spare/base");
-  const std::vector<double> c = r.read_f64("spare/tangent");
-  if (b.size() != 4 || c.size() != 81 || m->n_spared_ < 0) {
+  const std::vector<double> b = read_finite(r, "spare/base");
+  const std::vector<double> c = read_finite(r, "spare/tangent");
+  const std::int64_t have_c = common::read_scalar_i64(r, "spare/have_tangent");
+  if (b.size() != 4 || c.size() != 81 || m->n_spared_ < 0 || m->dt_acc_ < 0.0 ||
+      (have_c != 0 && have_c != 1)) {
     throw common::InputError(
-        "spared micro state: spare/base must hold 4 values, spare/tangent 81 and spare/n_spared "
-        "must be >= 0");
+        "spared micro state: spare/base must hold 4 values, spare/tangent 81, spare/n_spared "
+        "and spare/dt_acc must be >= 0 and spare/have_tangent 0 or 1 (n_spared " +
+        std::to_string(m->n_spared_) + ", dt_acc " + std::to_string(m->dt_acc_) +
+        ", have_tangent " + std::to_string(have_c) + ")");
   }
   m->base_.p = b[0];
   m->base_.q = b[1];
   m->base_.void_ratio = b[2];
   m->base_.z = b[3];
   m->base_.guards = static_cast<std::uint32_t>(common::read_scalar_i64(r, "spare/base_guards"));
-  m->have_c_ = common::read_scalar_i64(r, "spare/have_tangent") != 0;
+  m->have_c_ = have_c != 0;
   std::copy(c.begin(), c.end(), m->c_.data());
   // A restart may change the tolerance: the RVE's allowance stays within the new bounds.
   const double tol = options.tolerance;
-  m->allowance_ =
-      std::clamp(common::read_scalar_f64(r, "spare/allowance"), kMinAllowance * tol, tol);
+  m->allowance_ = std::clamp(read_finite_scalar(r, "spare/allowance"), kMinAllowance * tol, tol);
   m->cap_ = std::clamp<std::int64_t>(common::read_scalar_i64(r, "spare/cap"), 1,
                                      options.max_spared_steps);
-  m->alpha_ = common::read_scalar_f64(r, "spare/alpha");
+  m->alpha_ = read_finite_scalar(r, "spare/alpha");
   m->e_fit_ = read_nine(r, "spare/alpha_strain");
-  m->last_drift_ = common::read_scalar_f64(r, "spare/last_drift");
+  m->last_drift_ = read_finite_scalar(r, "spare/last_drift");
   if (m->n_spared_ > 0) m->sigma_ = m->predict(m->inner_->stress(), m->g_acc_);
   return m;
 }

@@ -451,6 +451,16 @@ std::vector<double> read_sized(const common::StateReader& r, const std::string& 
     throw common::InputError("mpm checkpoint: field " + name + " has " + std::to_string(d.size()) +
                              " values, expected " + std::to_string(expected));
   }
+  // A checkpoint holds finite numbers only: a NaN position or velocity would pass the grid's
+  // bounds checks and the run would continue wrongly instead of failing.
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    if (!std::isfinite(d[k])) {
+      throw common::InputError("mpm checkpoint: field " + name + " value " + std::to_string(k) +
+                               " is " + std::to_string(d[k]) +
+                               ": a checkpoint holds finite "
+                               "numbers only");
+    }
+  }
   return d;
 }
 
@@ -494,17 +504,18 @@ void Solver::save(common::StateWriter& w) const {
 
 void Solver::load(const common::StateReader& r) {
   const std::vector<std::int64_t> step = r.read_i64("solver/step");
-  const std::vector<double> time = r.read_f64("solver/time");
-  if (step.size() != 1 || time.size() != 1) {
+  if (step.size() != 1 || r.read_f64("solver/time").size() != 1) {
     throw common::InputError("mpm checkpoint: solver/step and solver/time must hold one value");
+  }
+  const std::vector<double> time = read_sized(r, "solver/time", 1);
+  if (step[0] < 0) {
+    throw common::InputError("mpm checkpoint: solver/step = " + std::to_string(step[0]) +
+                             ": must be >= 0");
   }
   // Absent from checkpoints written before the energy accounting: the work restarts from 0.
   double work = 0.0;
   if (r.has("solver/internal_work")) {
-    const std::vector<double> w = r.read_f64("solver/internal_work");
-    if (w.size() != 1)
-      throw common::InputError("mpm checkpoint: solver/internal_work must hold one value");
-    work = w[0];
+    work = read_sized(r, "solver/internal_work", 1)[0];
   }
   MaterialPoints pts;
   const std::vector<std::int64_t> ids = r.read_i64("points/id");

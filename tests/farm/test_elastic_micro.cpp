@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -132,4 +133,31 @@ TEST(ElasticMicro, LoadRefusesMissingField) {
   common::StateStore s;
   s.write("elastic/id", std::vector<std::int64_t>{1});
   EXPECT_THROW(farm::ElasticMicro::load(s), common::InputError);
+}
+
+// A state's stress or volume ratio that is not finite is refused naming the field.
+TEST(ElasticMicro, LoadRefusesValuesNotFinite) {
+  farm::ElasticMicro a(5, params());
+  common::StateStore good;
+  a.save(good);
+  const auto with = [&good](const std::string& field, std::vector<double> value) {
+    common::StateStore out;
+    for (const auto& [name, f] : good.fields()) {
+      if (name != field) std::visit([&](const auto& v) { out.write(name, v); }, f);
+    }
+    out.write(field, value);
+    return out;
+  };
+  std::vector<double> st = good.read_f64("elastic/stress");
+  st[5] = std::nan("");
+  for (const auto& [state, needle] :
+       {std::pair{with("elastic/stress", st), std::string("'elastic/stress' value 5 is nan")},
+        std::pair{with("elastic/j", {HUGE_VAL}), std::string("'elastic/j' = inf")}}) {
+    try {
+      (void)farm::ElasticMicro::load(state);
+      ADD_FAILURE() << needle;
+    } catch (const common::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
 }

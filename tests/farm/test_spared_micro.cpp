@@ -6,8 +6,14 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "common/errors.hpp"
 #include "common/state_store.hpp"
 #include "common/tensor.hpp"
 #include "dem/packing_io.hpp"
@@ -253,3 +259,50 @@ TEST(SparedMicro, RveWithoutContactsPredictsZeroStress) {
 }
 
 }  // namespace
+
+// The spared part of a state is checkpoint input like the rest: a value that is not finite, or a
+// count or flag out of its range, is refused naming the field (a NaN in the accumulated
+// increment or the allowance would pass every comparison that decides to step the RVE).
+TEST(SparedMicro, StateValuesOutOfRangeAreRefusedNamingTheField) {
+  farm::SparingOptions o;
+  o.tolerance = 1e-4;
+  const farm::MicroKind kind =
+      farm::spared_kind(dem_kind(), o, farm::is_dem_micro, farm::dem_micro_tangent);
+  auto a = kind.create(0);
+  for (int s = 0; s < 3; ++s) a->step(path_l(s) * 1e-3, 2e-6);
+  common::StateStore good;
+  a->save(good);
+  const double nan = std::nan("");
+  const auto with = [&good](const std::string& name, auto value) {
+    common::StateStore out;
+    for (const auto& [n, f] : good.fields()) {
+      if (n == name) continue;
+      std::visit([&out, &n](const auto& v) { out.write(n, std::span(v.data(), v.size())); }, f);
+    }
+    out.write(name, std::span(value.data(), value.size()));
+    return out;
+  };
+  std::vector<double> g = good.read_f64("spare/g_acc");
+  g[4] = nan;
+  std::vector<double> c = good.read_f64("spare/tangent");
+  c[80] = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<common::StateStore, std::string>> cases = {
+      {with("spare/g_acc", g), "'spare/g_acc' value 4 is nan"},
+      {with("spare/tangent", c), "'spare/tangent' value 80 is inf"},
+      {with("spare/allowance", std::vector<double>{nan}), "'spare/allowance' value 0 is nan"},
+      {with("spare/last_drift", std::vector<double>{nan}), "'spare/last_drift' value 0 is nan"},
+      {with("spare/alpha", std::vector<double>{nan}), "'spare/alpha' value 0 is nan"},
+      {with("spare/dt_acc", std::vector<double>{-1.0}), "dt_acc -1"},
+      {with("spare/have_tangent", std::vector<std::int64_t>{3}), "have_tangent 3"},
+      {with("spare/n_spared", std::vector<std::int64_t>{-2}), "n_spared -2"},
+  };
+  for (const auto& [state, needle] : cases) {
+    try {
+      (void)kind.load(state);
+      ADD_FAILURE() << "loaded: " << needle;
+    } catch (const common::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW((void)kind.load(good));
+}

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -67,6 +68,18 @@ TEST(LinearElastic, StateRoundTrip) {
   b.load(store, "material/0/");
   EXPECT_EQ(b.stress(3), s);
   EXPECT_EQ(b.stress(0), Mat3::Zero());
+  // A stress that is not finite is refused naming the field and the value.
+  common::StateStore bad;
+  std::vector<double> flat = store.read_f64("material/0/stress");
+  flat[30] = std::nan("");
+  bad.write("material/0/stress", flat);
+  try {
+    b.load(bad, "material/0/");
+    ADD_FAILURE() << "loaded a NaN stress";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material/0/stress: value 30 is nan"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

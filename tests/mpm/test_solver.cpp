@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
@@ -98,6 +102,40 @@ TEST(Solver, CheckpointMissingFieldIsInputError) {
     std::visit([&](const auto& v) { partial.write(name, v); }, field);
   }
   expect_message([&] { s.load(partial); }, {"points/v"});
+}
+
+// A checkpoint's numbers are input: one that is not finite (a NaN position would pass the grid's
+// bounds checks) is refused naming the field and the value's index, as is a negative step.
+TEST(Solver, CheckpointValuesNotFiniteAreInputErrors) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  mpm::LinearElastic mat(1e5, 0.3, 1800.0);
+  mpm::Solver s(cfg, small_block(cfg.grid), {&mat});
+  common::StateStore store;
+  s.save(store);
+  const auto with = [&store](const std::string& field, std::size_t k, double value) {
+    common::StateStore out;
+    for (const auto& [name, f] : store.fields()) {
+      if (name != field) std::visit([&](const auto& v) { out.write(name, v); }, f);
+    }
+    std::vector<double> v = store.read_f64(field);
+    v.at(k) = value;
+    out.write(field, v);
+    return out;
+  };
+  const double nan = std::nan("");
+  const double inf = std::numeric_limits<double>::infinity();
+  expect_message([&] { s.load(with("points/x", 4, nan)); }, {"points/x value 4 is nan", "finite"});
+  expect_message([&] { s.load(with("points/v", 0, inf)); }, {"points/v value 0 is inf"});
+  expect_message([&] { s.load(with("points/stress", 17, nan)); }, {"points/stress value 17"});
+  expect_message([&] { s.load(with("points/mass", 2, inf)); }, {"points/mass value 2 is inf"});
+  expect_message([&] { s.load(with("solver/time", 0, nan)); }, {"solver/time value 0 is nan"});
+  common::StateStore negative;
+  for (const auto& [name, f] : store.fields()) {
+    if (name != "solver/step") std::visit([&](const auto& v) { negative.write(name, v); }, f);
+  }
+  negative.write("solver/step", std::vector<std::int64_t>{-3});
+  expect_message([&] { s.load(negative); }, {"solver/step = -3", ">= 0"});
+  EXPECT_NO_THROW(s.load(store));
 }
 
 TEST(Solver, PointLeavingTheGridNamesIdStepAndPosition) {
