@@ -16,7 +16,8 @@ column base reaction and point stresses). --noise adds the reference perturbed b
 (footing, biaxial and collapse scenes): the scene's own sensitivity, under which an error means nothing.
 --perturb 'OLD=>NEW' (repeatable) adds the reference with a replacement of one's own (more
 samples of that sensitivity). --tolerance runs every variant with sparing on (dem.sparing.tolerance) instead of off; a variant's
-part 'sparing.tolerance = x' sets it for that variant alone.
+part 'sparing.tolerance = x' sets it for that variant alone, a part 'numerics.KEY = x' sets
+dem.numerics.KEY (e.g. 'numerics.verlet_skin_min = 0.03': the adaptive Verlet skin).
 
   tools/bench_coupling.py --out /tmp/bench_dt [--scenes footing] [--refresh 1,5,20,100]
       [--variants 'dt_refresh = 1;end_forces = "carried"'] [--reps 3] [--np 2] [--tolerance 0]
@@ -40,20 +41,24 @@ def slug(variant):
 
 
 def split_variant(args, variant):
-    """([dem.coupling] lines, the sparing tolerance): a part 'sparing.tolerance = x' of the
-    variant sets dem.sparing.tolerance for it (else --tolerance)."""
-    lines, tol = [], args.tolerance
+    """([dem.coupling] lines, the sparing tolerance, [dem.numerics] lines): a part
+    'sparing.tolerance = x' of the variant sets dem.sparing.tolerance for it (else --tolerance),
+    a part 'numerics.KEY = x' sets dem.numerics.KEY (e.g. numerics.verlet_skin_min = 0.03)."""
+    lines, tol, numerics = [], args.tolerance, []
     for x in variant.split("+"):
         m = re.match(r"\s*sparing\.tolerance\s*=\s*(\S+)\s*$", x)
+        n = re.match(r"\s*numerics\.(.*)$", x)
         if m:
             tol = float(m.group(1))
+        elif n:
+            numerics.append(n.group(1).strip())
         else:
             lines.append(x.strip())
-    return lines, tol
+    return lines, tol, numerics
 
 
 def run(args, scene, variant, rep, perturbed):
-    lines, tol = split_variant(args, variant)
+    lines, tol, numerics = split_variant(args, variant)
     name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol, "" if not perturbed else
                                     "_perturbed" + ("_" + slug(perturbed) if isinstance(perturbed, str) else ""),
                                     rep)
@@ -63,6 +68,9 @@ def run(args, scene, variant, rep, perturbed):
     text = bs.job_text(scene, tol, args.max_spared, perturbed)
     assert "\n[dem.coupling]\n" in text, scene
     text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\n" + "".join(x + "\n" for x in lines), 1)
+    if numerics:
+        assert "[dem.numerics]" not in text, scene
+        text += "\n[dem.numerics]\n" + "".join(x + "\n" for x in numerics)
     with open(job, "w") as f:
         f.write(text)
     log_txt = os.path.join(out, "log.txt")

@@ -10,6 +10,7 @@
 #include "app/insitu.hpp"
 #include "app/job.hpp"
 #include "common/errors.hpp"
+#include "dem/params.hpp"
 
 namespace app {
 
@@ -127,6 +128,19 @@ void loading_rules(const Job& job, Rules& r) {
   }
 }
 
+void numerics_rules(const Job& job, Rules& r) {
+  // The adaptive skin's range [verlet_skin_min, verlet_skin] (each key's own range: the schema).
+  const std::string lo = "dem.numerics.verlet_skin_min";
+  if (!job.has(lo)) return;
+  const double hi = job.has("dem.numerics.verlet_skin") ? job.number("dem.numerics.verlet_skin")
+                                                        : dem::Numerics{}.skin_factor;
+  if (job.number(lo) > hi) {
+    r.fail(lo, fmt::format("must be <= dem.numerics.verlet_skin ({:g}): the thinnest skin of "
+                           "the adaptive range, whose widest is verlet_skin",
+                           hi));
+  }
+}
+
 void mpm_rules(const Job& job, Rules& r) {
   if (!job.has_section("mpm")) return;
   const auto& origin = job.numbers("mpm.grid.origin");
@@ -157,12 +171,13 @@ void mpm_rules(const Job& job, Rules& r) {
       const double tol = 1e-9 * h[a];
       if (job.text("mpm.shape_function") == "ugimp" && !thickness &&
           (lo[a] <= origin[a] + tol || hi[a] >= top - tol)) {
-        r.fail(lo[a] <= origin[a] + tol ? base + "min" : base + "max",
-               fmt::format("with mpm.shape_function = \"ugimp\" the box must not reach the "
-                           "boundary of the grid [{}, {}] on axis {} (uGIMP's 3-node stencil reaches "
-                           "past the points' own cells: pad mpm.grid by a cell and hold that node "
-                           "plane with the wall)",
-                           origin[a], top, "xyz"[a]));
+        r.fail(
+            lo[a] <= origin[a] + tol ? base + "min" : base + "max",
+            fmt::format("with mpm.shape_function = \"ugimp\" the box must not reach the "
+                        "boundary of the grid [{}, {}] on axis {} (uGIMP's 3-node stencil reaches "
+                        "past the points' own cells: pad mpm.grid by a cell and hold that node "
+                        "plane with the wall)",
+                        origin[a], top, "xyz"[a]));
         break;
       }
     }
@@ -357,6 +372,7 @@ void check_job_rules(const Job& job) {
   Rules r(job);
   sample_rules(job, r);
   loading_rules(job, r);
+  numerics_rules(job, r);
   mpm_rules(job, r);
   stress_level_rules(job, r);
   for (const std::string& e : check_insitu_rules(job)) r.add(e);

@@ -121,6 +121,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   struct Cand {
     std::int32_t j;
     Vec3i k;
+    bool shell;  // not touching: within the skin only
   };
   std::vector<std::vector<Cand>> per_sphere(n);
 #pragma omp parallel for schedule(dynamic, 64) if (!one_thread(static_cast <std::int64_t>(n)))
@@ -149,7 +150,11 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
             if (static_cast<std::size_t>(j) <= i) continue;
             const Vec3 d = s.x[j] + shift - s.x[i];
             const double rc = s.r[i] + s.r[j] + vs.skin;
-            if (d.squaredNorm() < rc * rc) out.push_back({j, k});
+            const double d2 = d.squaredNorm();
+            if (d2 < rc * rc) {
+              const double rs = s.r[i] + s.r[j];
+              out.push_back({j, k, d2 >= rs * rs});
+            }
           }
         }
       }
@@ -173,8 +178,10 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   fresh.resize(total);
   std::size_t p = 0;
   std::size_t q = 0;
+  std::int64_t shell = 0;
   for (std::size_t i = 0; i < n; ++i) {
     for (const Cand& cd : per_sphere[i]) {
+      shell += cd.shell ? 1 : 0;
       fresh.i[p] = static_cast<std::int32_t>(i);
       fresh.j[p] = cd.j;
       fresh.k[p] = cd.k;
@@ -211,11 +218,25 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
 
   vs.x_ref = s.x;
   vs.h_ref_inv = hinv;
+  vs.shell_pairs = shell;
   ++vs.builds;
 }
 
 bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState& vs) {
-  if (vs.x_ref.size() != s.size()) return true;
+  return drift_measure(s, cell, vs) >= vs.skin;
+}
+
+bool rebuild_due(double amax2, const Mat3& f, double r_max, double skin) {
+  return rebuild_measure(amax2, f, r_max, skin) >= skin;
+}
+
+double rebuild_measure(double amax2, const Mat3& f, double r_max, double skin) {
+  const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
+  return 2.0 * std::sqrt(amax2) + eps * (2.0 * r_max + skin);
+}
+
+double drift_measure(const Spheres& s, const PeriodicCell& cell, const VerletState& vs) {
+  if (vs.x_ref.size() != s.size()) return std::numeric_limits<double>::infinity();
   // Branch change of any pair: d = F d0 + (a_j - a_i), F = H H0^-1, a = x - F x0. A pair outside
   // the list had |d0| >= R_i + R_j + skin; it cannot touch while
   // 2 max|a| + ||F - I|| (2 r_max + skin) < skin.
@@ -230,12 +251,7 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
       amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
     }
   }
-  return rebuild_due(amax2, f, vs.r_max, vs.skin);
-}
-
-bool rebuild_due(double amax2, const Mat3& f, double r_max, double skin) {
-  const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
-  return 2.0 * std::sqrt(amax2) + eps * (2.0 * r_max + skin) >= skin;
+  return rebuild_measure(amax2, f, vs.r_max, vs.skin);
 }
 
 }  // namespace dem

@@ -21,6 +21,8 @@ struct VerletState {
   double skin = 0.0;                                  ///< skin distance [m]
   double r_max = 0.0;                                 ///< largest radius [m]
   std::int64_t builds = 0;                            ///< number of builds so far
+  std::int64_t built_at_step = 0;  ///< the Simulation's step count at the last build
+  std::int64_t shell_pairs = 0;    ///< pairs of the last build not touching then (gap >= 0)
 };
 
 /// Re-map the cell to a less skewed cell of the same lattice when some |c_b . c_a| / |c_a|^2
@@ -61,5 +63,11 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   return amax2;
 }
 [[nodiscard]] bool rebuild_due(double amax2, const common::Mat3& f, double r_max, double skin);
+/// What rebuild_due compares with the skin: 2 max|a| + ||F - I||_F (2 r_max + skin) [m].
+[[nodiscard]] double rebuild_measure(double amax2, const common::Mat3& f, double r_max,
+                                     double skin);
+/// rebuild_measure of the spheres' current positions (+inf without a list of them).
+[[nodiscard]] double drift_measure(const Spheres& s, const PeriodicCell& cell,
+                                   const VerletState& vs);
 
 }  // namespace dem

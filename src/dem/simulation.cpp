@@ -90,8 +90,27 @@ void Simulation::update_neighbors(bool due) {
   if (due) {
     remap_and_wrap(spheres_, cell_, contacts_, num_.max_skew);
     build_pairs(spheres_, cell_, contacts_, verlet_);
+    verlet_.built_at_step = steps_;
     force_rebuild_ = false;
   }
+}
+
+SkinInputs Simulation::skin_inputs() const {
+  SkinInputs in;
+  in.skin = verlet_.skin;
+  in.steps = steps_ - verlet_.built_at_step;
+  in.shell_pairs = verlet_.shell_pairs;
+  in.spheres = static_cast<std::int64_t>(spheres_.size());
+  in.lo = num_.skin_min_factor * verlet_.r_max;
+  in.hi = num_.skin_factor * verlet_.r_max;
+  return in;
+}
+
+SkinDecision Simulation::neighbor_check(double measure, const SkinInputs& list) const {
+  if (!(num_.skin_min_factor > 0.0)) return {measure >= list.skin, list.skin};
+  SkinInputs in = list;
+  in.measure = measure;
+  return decide_skin(in);
 }
 
 // One parallel region per step: the pair loop and the per-sphere loop are work-shared loops of
@@ -286,7 +305,13 @@ inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& 
 }
 
 void Simulation::compute_forces() {
-  prepare_pair_pass(force_rebuild_ || needs_rebuild(spheres_, cell_, verlet_));
+  bool due = force_rebuild_;
+  if (!due) {
+    const SkinDecision d = neighbor_check(drift_measure(spheres_, cell_, verlet_), skin_inputs());
+    due = d.rebuild;
+    if (due && verlet_.x_ref.size() == spheres_.size()) verlet_.skin = d.skin;
+  }
+  prepare_pair_pass(due);
   const auto ns = static_cast<std::int64_t>(spheres_.size());
   if (one_thread(ns)) {
     pair_forces<false>();
@@ -356,7 +381,8 @@ void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exce
 // alone: amax2 and error are shared.
 template <bool kTeam>
 void Simulation::step_team(const StepHook& between, std::int64_t ns, bool check, const Mat3& f,
-                           double r_max, double skin, double& amax2, std::exception_ptr& error) {
+                           double r_max, const SkinInputs& list, double& amax2,
+                           std::exception_ptr& error) {
   if (check) {
     if constexpr (kTeam) {
 #pragma omp for reduction(max : amax2) schedule(static)
@@ -367,9 +393,13 @@ void Simulation::step_team(const StepHook& between, std::int64_t ns, bool check,
       amax2 = max_drift2(spheres_, f, verlet_);
     }
   }
-  if (!check || rebuild_due(amax2, f, r_max, skin)) {
-    team_single<kTeam>([this, &error] {
+  // Every thread takes the same decision from the reduced maximum and the copied list inputs.
+  SkinDecision d{true, list.skin};
+  if (check) d = neighbor_check(rebuild_measure(amax2, f, r_max, list.skin), list);
+  if (d.rebuild) {
+    team_single<kTeam>([this, &error, check, &d] {
       try {
+        if (check) verlet_.skin = d.skin;  // a forced rebuild keeps the skin
         update_neighbors(true);
         size_stress_blocks();
       } catch (...) {
@@ -389,15 +419,15 @@ void Simulation::step(const StepHook& between) {
   const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
   const Mat3 f = check ? rebuild_deformation(cell_, verlet_) : Mat3::Identity();
   const double r_max = verlet_.r_max;
-  const double skin = verlet_.skin;
+  const SkinInputs list = skin_inputs();
   size_stress_blocks();
   double amax2 = 0.0;
   std::exception_ptr error;
   if (one_thread(ns)) {
-    step_team<false>(between, ns, check, f, r_max, skin, amax2, error);
+    step_team<false>(between, ns, check, f, r_max, list, amax2, error);
   } else {
 #pragma omp parallel
-    step_team<true>(between, ns, check, f, r_max, skin, amax2, error);
+    step_team<true>(between, ns, check, f, r_max, list, amax2, error);
   }
   if (error) std::rethrow_exception(error);
   if (!between) finish_stress();

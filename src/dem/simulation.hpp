@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "dem/adaptive_skin.hpp"
 #include "dem/contact_law_cohfrict.hpp"
 #include "dem/contacts.hpp"
 #include "dem/neighbor_search.hpp"
@@ -105,7 +106,12 @@ class Simulation {
   /// The neighbour check and update, then step_shared (the body of step()'s region).
   template <bool kTeam>
   void step_team(const StepHook& between, std::int64_t ns, bool check, const common::Mat3& f,
-                 double r_max, double skin, double& amax2, std::exception_ptr& error);
+                 double r_max, const SkinInputs& list, double& amax2, std::exception_ptr& error);
+  /// The current list's inputs to the skin choice (measure 0: the caller's).
+  [[nodiscard]] SkinInputs skin_inputs() const;
+  /// Whether to rebuild the list with the drift `measure`, and with which skin: the fixed skin
+  /// when measure >= skin (rebuild_due), or decide_skin with dem.numerics.verlet_skin_min > 0.
+  [[nodiscard]] SkinDecision neighbor_check(double measure, const SkinInputs& list) const;
   /// The pair loop over the stress blocks: forces, torques, block stresses.
   template <bool kTeam>
   void pair_forces();

@@ -1,6 +1,10 @@
 // Named-field state of a Simulation (flat arrays; vectors as 3N doubles, matrices row-major).
 #include "dem/state.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -53,6 +57,29 @@ struct Reader {
       throw common::InputError("dem state: field '" + prefix + name + "' has " +
                                std::to_string(v.size()) + " values, expected " + std::to_string(n));
     }
+    // A state holds finite numbers only: a NaN would drop out of the comparisons that guard the
+    // neighbour list or the time step, and the run would continue wrongly instead of failing.
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (!std::isfinite(v[k])) {
+        throw common::InputError("dem state: field '" + prefix + name + "' value " +
+                                 std::to_string(k) + " is " + std::to_string(v[k]) +
+                                 ": a state holds finite numbers only");
+      }
+    }
+    return v;
+  }
+  /// A scalar f64 field, finite.
+  double scalar(const std::string& name) const { return f64(name, 1)[0]; }
+  /// A field of flags: every value 0 or 1.
+  std::vector<std::int64_t> flags(const std::string& name, std::size_t n) const {
+    auto v = i64(name, n);
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (v[k] != 0 && v[k] != 1) {
+        throw common::InputError("dem state: field '" + prefix + name + "' value " +
+                                 std::to_string(k) + " is " + std::to_string(v[k]) +
+                                 ": must be 0 or 1");
+      }
+    }
     return v;
   }
   std::vector<std::int64_t> i64(const std::string& name, std::size_t n) const {
@@ -102,6 +129,7 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   for (const auto& f : kNumericsFields)
     common::write_scalar(w, pre + "params/numerics/" + f.name, num.*f.member);
   common::write_scalar(w, pre + "params/numerics/dt_refresh", num.dt_refresh);
+  common::write_scalar(w, pre + "params/numerics/skin_min_factor", num.skin_min_factor);
   w.write(pre + "cell/h", flat(sim.cell().h));
   w.write(pre + "cell/l", flat(sim.cell().l));
   w.write(pre + "spheres/x", flat(s.x));
@@ -150,6 +178,8 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   common::write_scalar(w, pre + "verlet/skin", vs.skin);
   common::write_scalar(w, pre + "verlet/r_max", vs.r_max);
   common::write_scalar(w, pre + "verlet/builds", vs.builds);
+  common::write_scalar(w, pre + "verlet/built_at_step", vs.built_at_step);
+  common::write_scalar(w, pre + "verlet/shell_pairs", vs.shell_pairs);
   common::write_scalar(w, pre + "verlet/pending", std::int64_t{sim.neighbors_pending() ? 1 : 0});
 
   common::write_scalar(w, pre + "counters/time", sim.time());
@@ -163,11 +193,15 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   check_state_version(r, pre);
   Material mat;
   for (const auto& f : kMaterialFields)
-    mat.*f.member = common::read_scalar_f64(r, pre + "params/material/" + f.name);
+    mat.*f.member = rd.scalar(std::string("params/material/") + f.name);
   Numerics num;
   for (const auto& f : kNumericsFields)
-    num.*f.member = common::read_scalar_f64(r, pre + "params/numerics/" + f.name);
+    num.*f.member = rd.scalar(std::string("params/numerics/") + f.name);
   num.dt_refresh = common::read_scalar_i64(r, pre + "params/numerics/dt_refresh");
+  // Written since the adaptive skin (2026-11-26, the same state version): absent, a fixed skin.
+  if (r.has(pre + "params/numerics/skin_min_factor")) {
+    num.skin_min_factor = rd.scalar("params/numerics/skin_min_factor");
+  }
 
   const auto radii = r.read_f64(pre + "spheres/r");
   const std::size_t n = radii.size();
@@ -178,15 +212,15 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   s.w = rd.vec3("spheres/w", n);
   s.force = rd.vec3("spheres/force", n);
   s.torque = rd.vec3("spheres/torque", n);
-  const auto fixed = rd.i64("spheres/fixed", n);
+  const auto fixed = rd.flags("spheres/fixed", n);
   for (std::size_t i = 0; i < n; ++i) s.fixed[i] = static_cast<std::uint8_t>(fixed[i]);
   PeriodicCell cell;
   cell.h = rd.mat3("cell/h");
   cell.l = rd.mat3("cell/l");
   Simulation sim(std::move(s), cell, mat, num);
 
-  const auto active = r.read_i64(pre + "contacts/active");
-  const std::size_t np = active.size();
+  const std::size_t np = r.read_i64(pre + "contacts/active").size();
+  const auto active = rd.flags("contacts/active", np);
   const auto pair = rd.i64("contacts/pair", 2 * np);
   const auto image = rd.i64("contacts/image", 3 * np);
   // Version 2 also stored kn, ks, kr, kt, roll_cap and twist_cap per pair: functions of the radii
@@ -201,10 +235,14 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   for (std::size_t p = 0; p < np; ++p) {
     c.i[p] = static_cast<std::int32_t>(pair[2 * p]);
     c.j[p] = static_cast<std::int32_t>(pair[2 * p + 1]);
-    if (c.i[p] < 0 || c.j[p] < 0 || static_cast<std::size_t>(c.i[p]) >= n ||
-        static_cast<std::size_t>(c.j[p]) >= n) {
-      throw common::InputError("dem state: field '" + pre +
-                               "contacts/pair' names a sphere out of range");
+    // i < j (as the neighbour search builds them): a pair of a sphere with itself would touch
+    // along no normal. Checked on the stored values, before any narrowing.
+    if (pair[2 * p] < 0 || pair[2 * p] >= pair[2 * p + 1] ||
+        static_cast<std::uint64_t>(pair[2 * p + 1]) >= n) {
+      throw common::InputError("dem state: field '" + pre + "contacts/pair' pair " +
+                               std::to_string(p) + " = (" + std::to_string(pair[2 * p]) + ", " +
+                               std::to_string(pair[2 * p + 1]) + "): must be spheres i < j < " +
+                               std::to_string(n));
     }
     c.k[p] = common::Vec3i(static_cast<int>(image[3 * p]), static_cast<int>(image[3 * p + 1]),
                            static_cast<int>(image[3 * p + 2]));
@@ -221,14 +259,50 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   VerletState& vs = sim.verlet();
   vs.x_ref = rd.vec3("verlet/x_ref", r.read_f64(pre + "verlet/x_ref").size() / 3);
   vs.h_ref_inv = rd.mat3("verlet/h_ref_inv");
-  vs.skin = common::read_scalar_f64(r, pre + "verlet/skin");
-  vs.r_max = common::read_scalar_f64(r, pre + "verlet/r_max");
+  vs.skin = rd.scalar("verlet/skin");
+  vs.r_max = rd.scalar("verlet/r_max");
   vs.builds = common::read_scalar_i64(r, pre + "verlet/builds");
-  sim.set_neighbors_pending(common::read_scalar_i64(r, pre + "verlet/pending") != 0);
+  sim.set_neighbors_pending(rd.flags("verlet/pending", 1)[0] != 0);
+  // The list's guarantee rests on these: a skin of zero or less, or an r_max below the largest
+  // radius, would let contacts form unseen. The list (x_ref) is that of all spheres or none.
+  const double r_largest = n > 0 ? *std::max_element(radii.begin(), radii.end()) : 0.0;
+  if (!(vs.skin > 0.0) || vs.r_max < r_largest || vs.builds < 0 ||
+      (!vs.x_ref.empty() && vs.x_ref.size() != n)) {
+    throw common::InputError(
+        "dem state: fields '" + pre + "verlet/*': skin " + std::to_string(vs.skin) + " m, r_max " +
+        std::to_string(vs.r_max) + " m, builds " + std::to_string(vs.builds) + ", x_ref of " +
+        std::to_string(vs.x_ref.size()) + " spheres: the skin must be > 0, r_max " +
+        ">= the largest radius (" + std::to_string(r_largest) + " m), builds >= 0 and x_ref of " +
+        "0 or " + std::to_string(n) + " spheres");
+  }
 
-  sim.set_counters(common::read_scalar_f64(r, pre + "counters/time"),
-                   common::read_scalar_i64(r, pre + "counters/steps"));
-  sim.set_dt(common::read_scalar_f64(r, pre + "counters/dt"));
+  const double time = rd.scalar("counters/time");
+  const std::int64_t steps = common::read_scalar_i64(r, pre + "counters/steps");
+  const double dt = rd.scalar("counters/dt");
+  if (steps < 0 || dt < 0.0) {
+    throw common::InputError("dem state: fields '" + pre +
+                             "counters/steps' = " + std::to_string(steps) + ", '" + pre +
+                             "counters/dt' = " + std::to_string(dt) + ": must be >= 0");
+  }
+  // The adaptive skin's inputs (written since it came, 2026-11-26): absent, the list counts as
+  // built at this step with no pair to spare (its skin then changes at its next due rebuild).
+  vs.built_at_step = r.has(pre + "verlet/built_at_step")
+                         ? common::read_scalar_i64(r, pre + "verlet/built_at_step")
+                         : steps;
+  vs.shell_pairs = r.has(pre + "verlet/shell_pairs")
+                       ? common::read_scalar_i64(r, pre + "verlet/shell_pairs")
+                       : 0;
+  if (vs.built_at_step < 0 || vs.built_at_step > steps || vs.shell_pairs < 0 ||
+      vs.shell_pairs > static_cast<std::int64_t>(np)) {
+    throw common::InputError(
+        "dem state: fields '" + pre +
+        "verlet/built_at_step' = " + std::to_string(vs.built_at_step) + ", '" + pre +
+        "verlet/shell_pairs' = " + std::to_string(vs.shell_pairs) +
+        ": the step of the last build must be in [0, " + std::to_string(steps) +
+        "] (counters/steps) and the shell pairs in [0, " + std::to_string(np) + "] (the pairs)");
+  }
+  sim.set_counters(time, steps);
+  sim.set_dt(dt);
   sim.set_stress(rd.mat3("stress"));
   return sim;
 }

@@ -102,6 +102,19 @@ TEST(Job, CrossKeyRulesNameBothKeys) {
       << err2;
 }
 
+// The adaptive skin's range: its thinnest skin must not exceed its widest (verlet_skin, given or
+// default).
+TEST(Job, AdaptiveSkinRangeIsChecked) {
+  const std::string base = std::string(kDemJob) + "\n[dem.numerics]\nverlet_skin_min = 0.2\n";
+  const std::string err = error_of(base);
+  EXPECT_NE(err.find("job.toml:20: dem.numerics.verlet_skin_min = 0.2: must be <= "
+                     "dem.numerics.verlet_skin (0.1)"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(error_of(base + "verlet_skin = 0.25\n"), "(no error)");
+  EXPECT_NE(error_of(base + "verlet_skin = 0.15\n").find("(0.15)"), std::string::npos);
+}
+
 TEST(Job, OptionalPhysicsNeedsAllItsParametersOnceSwitchedOn) {
   const std::string text = std::string(kDemJob) + "\n[dem.material.twisting]\nstiffness = 0.5\n";
   const std::string err = error_of(text);

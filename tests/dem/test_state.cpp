@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <initializer_list>
+#include <limits>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,6 +30,7 @@ dem::Rve distinct_rve() {
   p.numerics.damping = 0.21;
   p.numerics.dt_safety = 0.75;
   p.numerics.skin_factor = 0.13;
+  p.numerics.skin_min_factor = 0.035;
   p.numerics.dt_refresh = 77;
   p.numerics.max_skew = 0.55;
   p.inertial_number = 3e-4;
@@ -38,14 +42,32 @@ dem::Rve distinct_rve() {
 }
 
 /// A copy of `s` with `name` replaced by `value` (a StateStore field is written once).
+template <class T>
 common::StateStore with_field(const common::StateStore& s, const std::string& name,
-                              std::vector<std::int64_t> value) {
+                              std::vector<T> value) {
   common::StateStore out;
   for (const auto& [n, f] : s.fields()) {
     if (n == name) continue;
     std::visit([&out, &n](const auto& v) { out.write(n, std::span(v.data(), v.size())); }, f);
   }
-  out.write(name, std::span<const std::int64_t>(value));
+  out.write(name, std::span<const T>(value));
+  return out;
+}
+common::StateStore with_field(const common::StateStore& s, const std::string& name,
+                              std::initializer_list<std::int64_t> value) {
+  return with_field(s, name, std::vector<std::int64_t>(value));
+}
+
+/// `name`'s values with value k replaced by v.
+template <class T>
+std::vector<T> changed(const common::StateStore& s, const std::string& name, std::size_t k, T v) {
+  std::vector<T> out;
+  if constexpr (std::is_same_v<T, double>) {
+    out = s.read_f64(name);
+  } else {
+    out = s.read_i64(name);
+  }
+  out.at(k) = v;
   return out;
 }
 
@@ -69,6 +91,7 @@ TEST(State, ParametersAreNamedScalarFields) {
       {"params/numerics/damping", p.numerics.damping},
       {"params/numerics/dt_safety", p.numerics.dt_safety},
       {"params/numerics/skin_factor", p.numerics.skin_factor},
+      {"params/numerics/skin_min_factor", p.numerics.skin_min_factor},
       {"params/numerics/max_skew", p.numerics.max_skew},
       {"rve/inertial_number", p.inertial_number},
       {"rve/d50", p.d50},
@@ -83,6 +106,11 @@ TEST(State, ParametersAreNamedScalarFields) {
     EXPECT_EQ(s.read_f64(name), std::vector<double>{value}) << name;
   }
   EXPECT_EQ(s.read_i64("params/numerics/dt_refresh"), std::vector<std::int64_t>{77});
+  EXPECT_EQ(s.read_i64("verlet/built_at_step"),
+            std::vector<std::int64_t>{rve.simulation().verlet().built_at_step});
+  EXPECT_EQ(s.read_i64("verlet/shell_pairs"),
+            std::vector<std::int64_t>{rve.simulation().verlet().shell_pairs});
+  EXPECT_GT(rve.simulation().verlet().shell_pairs, 0);
   EXPECT_EQ(s.read_i64("rve/max_steps_per_call"), std::vector<std::int64_t>{5000});
   EXPECT_EQ(s.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
   for (const char* old : {"params/material", "params/numerics", "rve/params", "contacts/props",
@@ -162,4 +190,66 @@ TEST(State, Version2IsReadAndContinuesAsVersion3) {
   dem::save_simulation(b, sb);
   EXPECT_TRUE(sa.fields() == sb.fields());
   EXPECT_EQ(sb.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
+}
+
+// A state is checkpoint input: values that would let a run go on wrongly instead of failing (a
+// NaN drops out of the comparisons that guard the neighbour list; a skin of 0 or an r_max below
+// the largest radius lets contacts form unseen; a pair of a sphere with itself has no normal)
+// are refused, naming the field. One example per rule; the rules cover every field of the kind.
+TEST(State, ValuesThatWouldMisleadTheRunAreRefusedNamingTheField) {
+  common::StateStore s;
+  distinct_rve().save(s);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double r_max = s.read_f64("verlet/r_max")[0];
+  struct Case {
+    common::StateStore state;
+    const char* field;
+    const char* rule;
+  };
+  std::vector<Case> cases;
+  cases.push_back({with_field(s, "spheres/x", changed(s, "spheres/x", 7, nan)),
+                   "'spheres/x' value 7", "finite numbers only"});
+  cases.push_back(
+      {with_field(s, "contacts/shear_force", changed(s, "contacts/shear_force", 4, inf)),
+       "'contacts/shear_force' value 4", "finite numbers only"});
+  cases.push_back({with_field(s, "cell/h", changed(s, "cell/h", 0, nan)), "'cell/h' value 0",
+                   "finite numbers only"});
+  cases.push_back({with_field(s, "verlet/h_ref_inv", changed(s, "verlet/h_ref_inv", 8, nan)),
+                   "'verlet/h_ref_inv' value 8", "finite numbers only"});
+  cases.push_back({with_field(s, "params/numerics/damping", std::vector<double>{nan}),
+                   "'params/numerics/damping' value 0", "finite numbers only"});
+  cases.push_back(
+      {with_field(s, "verlet/skin", std::vector<double>{0.0}), "verlet/*", "the skin must be > 0"});
+  cases.push_back({with_field(s, "verlet/skin", std::vector<double>{nan}), "'verlet/skin'",
+                   "finite numbers only"});
+  cases.push_back({with_field(s, "verlet/r_max", std::vector<double>{0.5 * r_max}), "verlet/*",
+                   ">= the largest radius"});
+  cases.push_back({with_field(s, "verlet/builds", {-1}), "verlet/*", "builds >= 0"});
+  cases.push_back(
+      {with_field(s, "verlet/pending", {2}), "'verlet/pending' value 0", "must be 0 or 1"});
+  cases.push_back({with_field(s, "spheres/fixed", changed<std::int64_t>(s, "spheres/fixed", 3, 5)),
+                   "'spheres/fixed' value 3", "must be 0 or 1"});
+  cases.push_back(
+      {with_field(s, "contacts/active", changed<std::int64_t>(s, "contacts/active", 2, -1)),
+       "'contacts/active' value 2", "must be 0 or 1"});
+  {
+    std::vector<std::int64_t> pair = s.read_i64("contacts/pair");
+    pair[11] = pair[10];  // pair 5 of a sphere with itself
+    cases.push_back({with_field(s, "contacts/pair", pair), "'contacts/pair' pair 5",
+                     "must be spheres i < j <"});
+  }
+  cases.push_back({with_field(s, "counters/dt", std::vector<double>{-1e-6}),
+                   "'counters/dt' = ", "must be >= 0"});
+  for (const Case& c : cases) {
+    try {
+      (void)dem::Rve::load(c.state);
+      ADD_FAILURE() << "loaded a state with " << c.field;
+    } catch (const common::InputError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(c.field), std::string::npos) << m;
+      EXPECT_NE(m.find(c.rule), std::string::npos) << m;
+    }
+  }
+  EXPECT_NO_THROW((void)dem::Rve::load(s));  // the unchanged state loads
 }
