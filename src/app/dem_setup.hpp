@@ -20,7 +20,9 @@ namespace app {
 [[nodiscard]] double dem_d50(const Job& job, const dem::Packing& packing);
 /// A prepared simulation: generated clouds are compacted (lowered friction, restored, then
 /// re-equilibrated); loaded packings are re-equilibrated at the preparation pressure (their
-/// tangential forces are not stored). Logs what it did. `sample`: see dem_packing.
+/// tangential forces are not stored). Logs what it did. `sample`: see dem_packing. Prepared
+/// with the fixed skin and returned so (Numerics::skin_min_factor 0): the caller switches the
+/// adaptive skin on for what follows.
 [[nodiscard]] dem::Simulation prepared_sample(const Job& job, std::int64_t sample = 0);
 
 }  // namespace app

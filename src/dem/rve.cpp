@@ -39,12 +39,16 @@ double mass_median_diameter(const std::vector<double>& radii) {
 namespace {
 Simulation build(const Packing& pk, const RveParams& params) {
   params.validate();
-  Simulation sim = make_simulation(pk, params.material, params.numerics);
+  // Equilibrated with the fixed skin (as app::prepared_sample): the adaptive one from then on.
+  Numerics fixed = params.numerics;
+  fixed.skin_min_factor = 0.0;
+  Simulation sim = make_simulation(pk, params.material, fixed);
   if (params.initial_pressure > 0.0) {
     EquilibriumTarget t;
     t.pressure = params.initial_pressure;
     equilibrate(sim, t);
   }
+  sim.set_skin_min_factor(params.numerics.skin_min_factor);
   return sim;
 }
 }  // namespace
@@ -56,6 +60,7 @@ Rve::Rve(const Packing& pk, const RveParams& params)
 
 Rve Rve::from_simulation(Simulation sim, const RveParams& params) {
   params.validate();
+  sim.set_skin_min_factor(params.numerics.skin_min_factor);
   const double d50 = params.d50 > 0.0 ? params.d50 : mass_median_diameter(sim.spheres().r);
   return Rve(std::move(sim), params, d50);
 }

@@ -94,6 +94,8 @@ class Rve {
   Rve(const Packing& packing, const RveParams& params);
   /// Wrap an already prepared simulation (contact history kept: shear forces and moments).
   /// `params.initial_pressure` is ignored (nothing is re-equilibrated).
+  /// The RVE of a prepared simulation; its adaptive skin is switched to params' (a preparation
+  /// runs with the fixed skin: the prepared sample does not depend on that knob).
   [[nodiscard]] static Rve from_simulation(Simulation sim, const RveParams& params);
 
   /// Deform the cell by the increment L dt over T_p = max(max|L dt| / I sqrt(rho d50^2 / p),

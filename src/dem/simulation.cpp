@@ -95,6 +95,13 @@ void Simulation::update_neighbors(bool due) {
   }
 }
 
+void Simulation::set_skin_min_factor(double f) {
+  Numerics num = num_;
+  num.skin_min_factor = f;
+  num.validate();
+  num_ = num;
+}
+
 SkinInputs Simulation::skin_inputs() const {
   SkinInputs in;
   in.skin = verlet_.skin;

@@ -87,6 +87,9 @@ class Simulation {
   /// Whether a rebuild is pending (state restore needs it).
   [[nodiscard]] bool neighbors_pending() const { return force_rebuild_; }
   void set_neighbors_pending(bool pending) { force_rebuild_ = pending; }
+  /// Switch the adaptive skin (Numerics::skin_min_factor; 0: the fixed skin) from the next
+  /// neighbour check on. Throws common::InputError if outside [0, skin_factor].
+  void set_skin_min_factor(double f);
   /// Restore the stress of the last force computation (state restore) [Pa].
   void set_stress(const common::Mat3& s) { stress_ = s; }
 
