@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""Is a [dem.coupling] option a bias or noise on a sensitive scene? (issue 17, docs/benchmarks.md)
+
+A single run of an option against a single reference says little where the scene's response is
+chaotic (the biaxial's softening branch moves by several per cent under a 1e-6 perturbation of
+the platen speed). This runs two families, the reference variant and the option, each on the
+same K perturbations of the scene (the platen or footing speed scaled by 1 + k 1e-6, k in
+--offsets), and compares them per strain:
+  - the spread within each family (the sample standard deviation over its K runs),
+  - the difference of the family means, and Welch's t of that difference (|t| > ~2.5 at
+    K = 5 is a difference the noise does not explain),
+summarised over two ranges of the reference family's mean curve: biaxial, the stress ratio before
+and after its peak; footing, the reaction up to 0.7 of the settlement and after (values relative
+to the curve's largest).
+
+  /usr/bin/python3 tools/coupling_bias.py --out OUT [--scene biaxial] \
+      [--variants 'dt_refresh = 1;end_forces = "carried"'] [--offsets 0,3,-3,6,-4.5] [--reuse]
+
+Runs go through tools/bench_coupling.py's run() (2 ranks x 1 thread, niced); the runs of a
+family alternate with the other's. Writes coupling_bias.csv (per strain: both means, both
+standard deviations, t) and prints the summary. Scenes: biaxial (the stress ratio sigma_a /
+sigma_r of tools/biaxial_analysis.py), footing (the footing's reaction against its settlement).
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_coupling as bc  # noqa: E402
+import bench_sparing as bs  # noqa: E402
+
+# The scene's loading speed (perturbed), the curve compared and the split of its two ranges.
+SPEED = {"biaxial": ('z = "-3.0 mm/s"', -3.0), "footing": ('z = "-1 mm/s"', -1.0)}
+
+
+def curve(kind, m):
+    """(x, y) of a run: biaxial: axial strain, stress ratio; footing: settlement, reaction."""
+    if kind == "biaxial":
+        return m["eps"], m["ratio"]
+    return np.abs(m["settlement"]), np.abs(m["reaction"])
+
+
+def split(kind, x, y):
+    """Index that ends the first range: the peak (biaxial) or 0.7 of the settlement (footing)."""
+    if kind == "biaxial":
+        return int(np.argmax(y))
+    return int(np.searchsorted(x, 0.7 * x.max()))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(bs.ROOT, "build", "mpmxdem"))
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--scene", default="biaxial", choices=sorted(SPEED))
+    ap.add_argument("--variants", default='dt_refresh = 1;end_forces = "carried"')
+    ap.add_argument("--offsets", default="0,3,-3,6,-4.5",
+                    help="perturbations k: the speed times 1 + k 1e-6 (0: the job's own)")
+    ap.add_argument("--reuse", action="store_true")
+    args = ap.parse_args()
+    args.exe = os.path.abspath(args.exe)
+    # what bench_coupling.run() reads of its arguments
+    args.tolerance, args.max_spared = 0.0, 20
+    os.makedirs(args.out, exist_ok=True)
+    variants = [v.strip() for v in args.variants.split(";")]
+    assert len(variants) == 2, "two variants: the reference and the option"
+    old, speed = SPEED[args.scene]
+    offsets = [float(x) for x in args.offsets.split(",")]
+    kind = bs.SCENES[args.scene][2]
+    curves = {v: [] for v in variants}
+    for k in offsets:
+        pert = False if k == 0 else "%s=>%s" % (old, old.replace(
+            repr(speed), "%.10g" % (speed * (1.0 + k * 1e-6))))
+        for v in variants:
+            out, wall, rve, work = bc.run(args, args.scene, v, 0, pert)
+            m = bs.measures(out, kind, work)
+            curves[v].append(m)
+            print("%s [%s] k %+g: wall %.1f s, %d DEM steps, peak %.6g" % (
+                args.scene, v, k, wall, work["dem_steps"], curve(kind, m)[1].max()), flush=True)
+    eps = curve(kind, curves[variants[0]][0])[0]
+    fam = {v: np.array([np.interp(eps, *curve(kind, m)) for m in curves[v]]) for v in variants}
+    mean = {v: fam[v].mean(axis=0) for v in variants}
+    sd = {v: fam[v].std(axis=0, ddof=1) for v in variants}
+    n = len(offsets)
+    diff = mean[variants[1]] - mean[variants[0]]
+    se = np.sqrt((sd[variants[0]] ** 2 + sd[variants[1]] ** 2) / n)
+    t = np.where(se > 0, diff / np.where(se > 0, se, 1.0), 0.0)
+    kpk = split(kind, eps, mean[variants[0]])
+    peak = mean[variants[0]].max()
+    with open(os.path.join(args.out, "coupling_bias.csv"), "w") as f:
+        f.write("%s,mean_ref,sd_ref,mean_opt,sd_opt,t\n" % ("eps" if kind == "biaxial" else "settlement"))
+        for r in zip(eps, mean[variants[0]], sd[variants[0]], mean[variants[1]], sd[variants[1]], t):
+            f.write(",".join("%.8g" % x for x in r) + "\n")
+    print("reference: %s; option: %s; %d perturbations each (k = %s)" % (
+        variants[0], variants[1], n, args.offsets))
+    print("| range | spread of the reference (sd / peak): median, max | of the option | "
+          "mean difference (/ peak): median, max abs | mean over the range (signed) | "
+          "|t|: median, max | strains with |t| > 2.5 |")
+    print("|---|---|---|---|---|---|---|")
+    names = ("pre-peak", "post-peak") if kind == "biaxial" else ("to 0.7 of the settlement", "after")
+    for name, sl in zip(names, (slice(1, kpk + 1), slice(kpk, None))):
+        a = lambda x: np.abs(x[sl]) / peak  # noqa: E731
+        print("| %s | %.2f %%, %.2f %% | %.2f %%, %.2f %% | %.2f %%, %.2f %% | %+.2f %% | %.1f, %.1f | %.0f %% |" % (
+            name, 100 * np.median(a(sd[variants[0]])), 100 * a(sd[variants[0]]).max(),
+            100 * np.median(a(sd[variants[1]])), 100 * a(sd[variants[1]]).max(),
+            100 * np.median(a(diff)), 100 * a(diff).max(), 100 * diff[sl].mean() / peak,
+            np.median(np.abs(t[sl])), np.abs(t[sl]).max(), 100 * np.mean(np.abs(t[sl]) > 2.5)))
+
+
+if __name__ == "__main__":
+    main()
