@@ -32,7 +32,7 @@ import bench_coupling as bc  # noqa: E402
 import bench_sparing as bs  # noqa: E402
 
 # The scene's loading speed (perturbed), the curve compared and the split of its two ranges.
-SPEED = {"biaxial": ('z = "-3.0 mm/s"', -3.0), "footing": ('z = "-1 mm/s"', -1.0)}
+SPEED = {"biaxial": ('z = "-3.0 mm/s"', "-3.0"), "footing": ('z = "-1 mm/s"', "-1")}
 
 
 def curve(kind, m):
@@ -71,8 +71,9 @@ def main():
     kind = bs.SCENES[args.scene][2]
     curves = {v: [] for v in variants}
     for k in offsets:
-        pert = False if k == 0 else "%s=>%s" % (old, old.replace(
-            repr(speed), "%.10g" % (speed * (1.0 + k * 1e-6))))
+        new = old.replace(speed, "%.10g" % (float(speed) * (1.0 + k * 1e-6)))
+        assert k == 0 or new != old, (old, speed)
+        pert = False if k == 0 else "%s=>%s" % (old, new)
         for v in variants:
             out, wall, rve, work = bc.run(args, args.scene, v, 0, pert)
             m = bs.measures(out, kind, work)

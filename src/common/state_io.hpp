@@ -6,6 +6,7 @@
 // instead of silently shifting a layout (docs/checkpoint.md).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -52,6 +53,19 @@ T only_value(const std::vector<T>& v, std::string_view name) {
   return v[0];
 }
 }  // namespace detail
+
+/// Throws InputError "<what> value k is <v>: a state holds finite numbers only" for the first
+/// value that is not finite: a state is checkpoint input, and a NaN would drop out of the
+/// comparisons that guard a run (neighbour lists, sparing, grid bounds) instead of failing.
+/// `what` names the field as its reader does ("dem state: field 'spheres/x'").
+inline void require_finite(std::span<const double> values, std::string_view what) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (!std::isfinite(values[k])) {
+      throw InputError(std::string(what) + " value " + std::to_string(k) + " is " +
+                       std::to_string(values[k]) + ": a state holds finite numbers only");
+    }
+  }
+}
 
 /// Reads a field written by write_scalar. Throws InputError naming the field when it is missing,
 /// of the other type or not of exactly one value.

@@ -57,15 +57,7 @@ struct Reader {
       throw common::InputError("dem state: field '" + prefix + name + "' has " +
                                std::to_string(v.size()) + " values, expected " + std::to_string(n));
     }
-    // A state holds finite numbers only: a NaN would drop out of the comparisons that guard the
-    // neighbour list or the time step, and the run would continue wrongly instead of failing.
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      if (!std::isfinite(v[k])) {
-        throw common::InputError("dem state: field '" + prefix + name + "' value " +
-                                 std::to_string(k) + " is " + std::to_string(v[k]) +
-                                 ": a state holds finite numbers only");
-      }
-    }
+    common::require_finite(v, "dem state: field '" + prefix + name + "'");
     return v;
   }
   /// A scalar f64 field, finite.

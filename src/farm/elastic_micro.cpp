@@ -117,13 +117,7 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
       throw common::InputError(std::string("elastic micro state: field '") + name + "' has " +
                                std::to_string(v.size()) + " values, expected 9");
     }
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      if (!std::isfinite(v[k])) {
-        throw common::InputError(std::string("elastic micro state: field '") + name + "' value " +
-                                 std::to_string(k) + " is " + std::to_string(v[k]) +
-                                 ": a state holds finite numbers only");
-      }
-    }
+    common::require_finite(v, std::string("elastic micro state: field '") + name + "'");
     return common::Mat3(common::row_major(v.data()));
   };
   ElasticMicroParams params;

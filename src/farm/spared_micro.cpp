@@ -40,17 +40,11 @@ std::vector<double> nine(const Mat3& m) {
   return v;
 }
 
-/// A field of finite numbers (a state is checkpoint input: a NaN would pass every comparison
-/// that decides whether to step the RVE, and the run would go on wrongly instead of failing).
+/// A field of finite numbers (a NaN would pass every comparison that decides whether to step
+/// the RVE).
 std::vector<double> read_finite(const common::StateReader& r, const char* name) {
   std::vector<double> v = r.read_f64(name);
-  for (std::size_t k = 0; k < v.size(); ++k) {
-    if (!std::isfinite(v[k])) {
-      throw common::InputError(std::string("spared micro state: field '") + name + "' value " +
-                               std::to_string(k) + " is " + std::to_string(v[k]) +
-                               ": a state holds finite numbers only");
-    }
-  }
+  common::require_finite(v, std::string("spared micro state: field '") + name + "'");
   return v;
 }
 double read_finite_scalar(const common::StateReader& r, const char* name) {

@@ -83,13 +83,7 @@ void LinearElastic::load(const common::StateReader& reader, std::string_view pre
     throw common::InputError("checkpoint field " + name + ": size " + std::to_string(flat.size()) +
                              " is not a multiple of 9");
   }
-  for (std::size_t k = 0; k < flat.size(); ++k) {
-    if (!std::isfinite(flat[k])) {
-      throw common::InputError("checkpoint field " + name + ": value " + std::to_string(k) +
-                               " is " + std::to_string(flat[k]) +
-                               ": a checkpoint holds finite numbers only");
-    }
-  }
+  common::require_finite(flat, "checkpoint field " + name + ":");
   stress_.resize(flat.size() / 9);
   for (std::size_t p = 0; p < stress_.size(); ++p) {
     for (int i = 0; i < 3; ++i) {

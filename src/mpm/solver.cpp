@@ -451,16 +451,7 @@ std::vector<double> read_sized(const common::StateReader& r, const std::string& 
     throw common::InputError("mpm checkpoint: field " + name + " has " + std::to_string(d.size()) +
                              " values, expected " + std::to_string(expected));
   }
-  // A checkpoint holds finite numbers only: a NaN position or velocity would pass the grid's
-  // bounds checks and the run would continue wrongly instead of failing.
-  for (std::size_t k = 0; k < d.size(); ++k) {
-    if (!std::isfinite(d[k])) {
-      throw common::InputError("mpm checkpoint: field " + name + " value " + std::to_string(k) +
-                               " is " + std::to_string(d[k]) +
-                               ": a checkpoint holds finite "
-                               "numbers only");
-    }
-  }
+  common::require_finite(d, "mpm checkpoint: field " + name);  // a NaN passes the grid's bounds
   return d;
 }
 
