@@ -44,7 +44,7 @@ int bench_dem(const Options& o, int max_threads) {
     for (int t = 1; t <= std::max(2, max_threads); t *= 2) {
       cfg.threads = t;
       const dem::BenchmarkResult r =
-          dem::run_benchmark(base, dem::reference_material(), dem::Numerics{}, cfg);
+          dem::run_benchmark(base, dem::reference_material(), dem::benchmark_numerics(), cfg);
       if (t == 1) one = r.us_per_particle_step;
       std::printf("%s speedup=%.2f\n", dem::to_string(r).c_str(), one / r.us_per_particle_step);
       std::fflush(stdout);

@@ -131,7 +131,6 @@ int command_dem(const Options& o, const Comm& comm) {
   if (comm.rank != 0) return 0;
 
   dem::Simulation sim = std::move(*sample);
-  sim.set_skin_min_factor(job.number("dem.numerics.verlet_skin_min"));  // prepared with the fixed
   dem::Packing prepared{sim.cell(), sim.spheres().x, sim.spheres().r};
   prepared.cell.l.setZero();
   dem::write_packing((out / "prepared_packing.txt").string(), prepared,

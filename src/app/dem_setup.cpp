@@ -90,13 +90,9 @@ double dem_d50(const Job& job, const dem::Packing& packing) {
 dem::Simulation prepared_sample(const Job& job, std::int64_t sample) {
   bool generated = false;
   const dem::Packing packing = dem_packing(job, generated, sample);
-  // The fixed skin (dem.numerics.verlet_skin) for the preparation: the prepared sample must not
-  // depend on the adaptive skin, a speed knob (the compaction is chaotic: round-off of another
-  // list history gives another packing). Its users switch it on after (dem::Rve::from_simulation,
-  // the `dem` command's loading).
-  dem::Numerics num = dem_numerics(job);
-  num.skin_min_factor = 0.0;
-  dem::Simulation sim = dem::make_simulation(packing, dem_material(job), num);
+  // prepare / equilibrate run with the fixed skin (dem::FixedSkinScope): the prepared sample does
+  // not depend on dem.numerics.verlet_skin_min, which applies to what follows.
+  dem::Simulation sim = dem::make_simulation(packing, dem_material(job), dem_numerics(job));
   dem::Preparation prep = dem_preparation(job);
   // Strain-rate bound of the servo from the inertial number: I / t_ref, t_ref = d50 sqrt(rho / p).
   prep.compaction_rate =

@@ -21,8 +21,7 @@ namespace app {
 /// A prepared simulation: generated clouds are compacted (lowered friction, restored, then
 /// re-equilibrated); loaded packings are re-equilibrated at the preparation pressure (their
 /// tangential forces are not stored). Logs what it did. `sample`: see dem_packing. Prepared
-/// with the fixed skin and returned so (Numerics::skin_min_factor 0): the caller switches the
-/// adaptive skin on for what follows.
+/// with the fixed skin (dem::FixedSkinScope); the job's adaptive skin applies to what follows.
 [[nodiscard]] dem::Simulation prepared_sample(const Job& job, std::int64_t sample = 0);
 
 }  // namespace app

@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     cfg.threads = argc > 3 ? std::atoi(argv[3]) : 1;
     cfg.steps = argc > 4 ? std::atoll(argv[4]) : 3000;
     const auto r = dem::run_benchmark(dem::read_packing(path), dem::reference_material(),
-                                      dem::Numerics{}, cfg);
+                                      dem::benchmark_numerics(), cfg);
     std::printf("spheres %lld threads %d steps %lld wall %.3f s cpu %.3f s\n",
                 static_cast<long long>(r.spheres), r.threads, static_cast<long long>(r.steps),
                 r.wall_s, r.cpu_s);

@@ -102,6 +102,7 @@ Simulation make_simulation(const Packing& pk, const Material& mat, const Numeric
 
 std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t,
                          const CheckObserver& observe) {
+  const FixedSkinScope fixed(sim);
   MixedControl mc;
   mc.stress_axis = {true, true, true};
   mc.target = Vec3::Constant(-t.pressure);

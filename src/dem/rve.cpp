@@ -39,16 +39,12 @@ double mass_median_diameter(const std::vector<double>& radii) {
 namespace {
 Simulation build(const Packing& pk, const RveParams& params) {
   params.validate();
-  // Equilibrated with the fixed skin (as app::prepared_sample): the adaptive one from then on.
-  Numerics fixed = params.numerics;
-  fixed.skin_min_factor = 0.0;
-  Simulation sim = make_simulation(pk, params.material, fixed);
+  Simulation sim = make_simulation(pk, params.material, params.numerics);
   if (params.initial_pressure > 0.0) {
     EquilibriumTarget t;
     t.pressure = params.initial_pressure;
-    equilibrate(sim, t);
+    equilibrate(sim, t);  // with the fixed skin (FixedSkinScope)
   }
-  sim.set_skin_min_factor(params.numerics.skin_min_factor);
   return sim;
 }
 }  // namespace
@@ -103,6 +99,15 @@ StepReport Rve::step(const Mat3& l, double dt) {
     rep.guards |= kGuardStepCap;
   } else {
     n = std::max<std::int64_t>(static_cast<std::int64_t>(n_wanted), 1);
+  }
+  if (params_.carry_end_forces && !forces_carried_) {
+    // The first carried step (a new RVE, or a state of "separate"): the forces of the current
+    // state with no increment (no motion has happened with this step's dt and L; a DEM step
+    // would count one with them), as "separate" computes its end forces; then carried on.
+    sim_.cell().l.setZero();
+    sim_.set_dt(0.0);
+    sim_.compute_forces();
+    forces_carried_ = true;
   }
   sim_.set_dt(t_p / static_cast<double>(n));
   sim_.cell().l = g / t_p;

@@ -31,7 +31,7 @@ struct RveParams {
   /// "carried"): computed with the step's dt and L, they give its stress and drive the next
   /// step's first DEM step, one force evaluation fewer per step(). false ("separate"): a
   /// zero-length evaluation gives the stress, the next step() computes the forces again.
-  bool carry_end_forces = false;
+  bool carry_end_forces = true;
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
   /// kNumerics, kRveParams).
@@ -94,8 +94,7 @@ class Rve {
   Rve(const Packing& packing, const RveParams& params);
   /// Wrap an already prepared simulation (contact history kept: shear forces and moments).
   /// `params.initial_pressure` is ignored (nothing is re-equilibrated).
-  /// The RVE of a prepared simulation; its adaptive skin is switched to params' (a preparation
-  /// runs with the fixed skin: the prepared sample does not depend on that knob).
+  /// The RVE of a prepared simulation, with params' adaptive skin (Numerics::skin_min_factor).
   [[nodiscard]] static Rve from_simulation(Simulation sim, const RveParams& params);
 
   /// Deform the cell by the increment L dt over T_p = max(max|L dt| / I sqrt(rho d50^2 / p),

@@ -90,6 +90,12 @@ class Simulation {
   /// Switch the adaptive skin (Numerics::skin_min_factor; 0: the fixed skin) from the next
   /// neighbour check on. Throws common::InputError if outside [0, skin_factor].
   void set_skin_min_factor(double f);
+  /// Sets skin_min_factor without validation and returns the previous value (FixedSkinScope).
+  double exchange_skin_min_factor(double f) noexcept {
+    const double old = num_.skin_min_factor;
+    num_.skin_min_factor = f;
+    return old;
+  }
   /// Restore the stress of the last force computation (state restore) [Pa].
   void set_stress(const common::Mat3& s) { stress_ = s; }
 
@@ -138,6 +144,21 @@ class Simulation {
   std::int64_t steps_ = 0;
   bool force_rebuild_ = true;
   std::vector<common::Mat3> block_stress_;  ///< scratch of the pair pass (no state)
+};
+
+/// For its lifetime `sim` runs with the fixed skin: the preparations (equilibrate, prepare,
+/// reach_stress) use it, so that a prepared sample does not depend on the adaptive skin, a speed
+/// knob (a compaction is chaotic: another history of the lists' round-off gives another sample).
+class FixedSkinScope {
+ public:
+  explicit FixedSkinScope(Simulation& sim) : sim_(sim), saved_(sim.exchange_skin_min_factor(0.0)) {}
+  ~FixedSkinScope() { sim_.exchange_skin_min_factor(saved_); }
+  FixedSkinScope(const FixedSkinScope&) = delete;
+  FixedSkinScope& operator=(const FixedSkinScope&) = delete;
+
+ private:
+  Simulation& sim_;
+  double saved_;
 };
 
 }  // namespace dem

@@ -85,6 +85,7 @@ void TensorController::update(Simulation& sim) {
 }
 
 std::int64_t reach_stress(Simulation& sim, const StressTarget& t, const CheckObserver& observe) {
+  const FixedSkinScope fixed(sim);
   const Mat3& s = t.stress;
   if (!s.allFinite() || (s - s.transpose()).cwiseAbs().maxCoeff() > 1e-12 * s.cwiseAbs().maxCoeff())
     throw common::InputError("dem: reach_stress: the target stress must be finite and symmetric");

@@ -313,6 +313,7 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
 // stresses agree to a small fraction of p, and the work differs by one force evaluation per step.
 TEST(Rve, CarriedEndForcesGiveTheSeparateEvaluationsStress) {
   dem::RveParams p = params();
+  p.carry_end_forces = false;  // "separate" (the default is "carried")
   dem::Rve separate(dem_test::reference_packing(), p);
   p.carry_end_forces = true;
   dem::Rve carried = dem::Rve::from_simulation(separate.simulation(), p);
