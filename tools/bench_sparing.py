@@ -160,6 +160,7 @@ def measures(out, kind, work):
         import mpm_column_collapse  # noqa: E402 (a tool beside this one)
         summ = mpm_column_collapse.analyse(out)["summ"]
         d["runout"] = summ["runout_connected_over_L0"]
+        d["runout_all"] = summ["runout_over_L0"]
         d["height"] = summ["Hf_over_H0"]
     return d
 

@@ -19,7 +19,9 @@ to the curve's largest).
 Runs go through tools/bench_coupling.py's run() (2 ranks x 1 thread, niced); the runs of a
 family alternate with the other's. Writes coupling_bias.csv (per strain: both means, both
 standard deviations, t) and prints the summary. Scenes: biaxial (the stress ratio sigma_a /
-sigma_r of tools/biaxial_analysis.py), footing (the footing's reaction against its settlement).
+sigma_r of tools/biaxial_analysis.py), footing (the footing's reaction against its settlement),
+collapse (gravity perturbed; the runout of all points and of the connected deposit and H_f / H0:
+scalars, each family's mean and standard deviation and Welch's t).
 """
 import argparse
 import os
@@ -32,7 +34,8 @@ import bench_coupling as bc  # noqa: E402
 import bench_sparing as bs  # noqa: E402
 
 # The scene's loading speed (perturbed), the curve compared and the split of its two ranges.
-SPEED = {"biaxial": ('z = "-3.0 mm/s"', "-3.0"), "footing": ('z = "-1 mm/s"', "-1")}
+SPEED = {"biaxial": ('z = "-3.0 mm/s"', "-3.0"), "footing": ('z = "-1 mm/s"', "-1"),
+         "collapse": ('"-9.81 m/s^2"', "-9.81")}  # the collapse: gravity
 
 
 def curve(kind, m):
@@ -78,8 +81,24 @@ def main():
             out, wall, rve, work = bc.run(args, args.scene, v, 0, pert)
             m = bs.measures(out, kind, work)
             curves[v].append(m)
-            print("%s [%s] k %+g: wall %.1f s, %d DEM steps, peak %.6g" % (
-                args.scene, v, k, wall, work["dem_steps"], curve(kind, m)[1].max()), flush=True)
+            print("%s [%s] k %+g: wall %.1f s, %d DEM steps, %s" % (
+                args.scene, v, k, wall, work["dem_steps"],
+                "runout %.4f (connected %.4f), H_f/H0 %.4f" % (m["runout_all"], m["runout"], m["height"])
+                if kind == "collapse" else "peak %.6g" % curve(kind, m)[1].max()), flush=True)
+    if kind == "collapse":  # scalar measures: each family's mean and sd, Welch's t
+        print("reference: %s; option: %s; %d perturbations each (k = %s)" % (
+            variants[0], variants[1], len(offsets), args.offsets))
+        print("| measure | reference: mean, sd | option: mean, sd | difference | Welch's t |")
+        print("|---|---|---|---|---|")
+        for key, name in (("runout_all", "runout (L_f - L0) / L0, all points"),
+                          ("runout", "runout, connected deposit"), ("height", "H_f / H0")):
+            a = np.array([m[key] for m in curves[variants[0]]])
+            b = np.array([m[key] for m in curves[variants[1]]])
+            se = np.sqrt((a.var(ddof=1) + b.var(ddof=1)) / len(offsets))
+            print("| %s | %.4f, %.4f | %.4f, %.4f | %+.4f | %.2f |" % (
+                name, a.mean(), a.std(ddof=1), b.mean(), b.std(ddof=1), b.mean() - a.mean(),
+                (b.mean() - a.mean()) / se if se > 0 else 0.0))
+        return
     eps = curve(kind, curves[variants[0]][0])[0]
     fam = {v: np.array([np.interp(eps, *curve(kind, m)) for m in curves[v]]) for v in variants}
     mean = {v: fam[v].mean(axis=0) for v in variants}
