@@ -91,7 +91,7 @@ inertial_number = 1e-2
 [dem.coupling]
 inertial_number = 4e-3         # I_n of eq. 11 (as the biaxial)
 pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the footing's edge)
-# dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.3x on this
+# dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.33x on this
                                # footing, errors inside its sensitivity (docs/benchmarks.md)
 
 [mpm]
