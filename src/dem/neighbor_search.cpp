@@ -172,6 +172,25 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   std::sort(old_active.begin(), old_active.end(),
             [&](std::size_t a, std::size_t b) { return key_of(c, a) < key_of(c, b); });
 
+  // An active contact of the old list that the new one lacks is farther than r_i + r_j + skin:
+  // no longer touching, it ends (the force pass would end it). Beyond r_i + r_j + skin_max (the
+  // widest skin, the fixed skin's own) the spheres jumped farther in one list's life than any
+  // list allows: a strain increment or a time step too large for the packing.
+  const double limit = std::max(vs.skin, vs.skin_max);
+  const auto lost = [&](std::size_t o) {
+    const auto i = static_cast<std::size_t>(c.i[o]);
+    const auto j = static_cast<std::size_t>(c.j[o]);
+    const Vec3i& k = c.k[o];
+    const Vec3 d = s.x[j] + cell.h * k.cast<double>() - s.x[i];
+    const double rl = s.r[i] + s.r[j] + limit;
+    if (!(d.squaredNorm() < rl * rl)) {
+      throw common::NumericalError(
+          "dem: active contact lost by the neighbour search (pair " + std::to_string(i) + "-" +
+          std::to_string(j) +
+          "): spheres moved farther than the Verlet skin between two list builds (a strain "
+          "increment or a time step too large for the packing)");
+    }
+  };
   Contacts fresh;
   std::size_t total = 0;
   for (const auto& v : per_sphere) total += v.size();
@@ -186,14 +205,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
       fresh.j[p] = cd.j;
       fresh.k[p] = cd.k;
       const Key kp = key_of(fresh, p);
-      while (q < old_active.size() && key_of(c, old_active[q]) < kp) {
-        // An active contact vanished from the list: only possible if the skin was violated.
-        throw common::NumericalError(
-            "dem: active contact lost by the neighbour search (pair " +
-            std::to_string(c.i[old_active[q]]) + "-" + std::to_string(c.j[old_active[q]]) +
-            "): spheres moved farther than the Verlet skin between two list builds (a strain "
-            "increment or a time step too large for the packing)");
-      }
+      while (q < old_active.size() && key_of(c, old_active[q]) < kp) lost(old_active[q++]);
       if (q < old_active.size() && key_of(c, old_active[q]) == kp) {
         const std::size_t o = old_active[q++];
         fresh.active[p] = 1;
@@ -207,12 +219,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
       ++p;
     }
   }
-  if (q != old_active.size()) {
-    throw common::NumericalError(
-        "dem: active contact lost by the neighbour search: spheres moved farther than the Verlet "
-        "skin between two list builds (a strain increment or a time step too large for the "
-        "packing)");
-  }
+  while (q < old_active.size()) lost(old_active[q++]);
   fresh.build_sphere_lists(n);
   c = std::move(fresh);
 

@@ -21,6 +21,10 @@ struct VerletState {
   double skin = 0.0;                                  ///< skin distance [m]
   double r_max = 0.0;                                 ///< largest radius [m]
   std::int64_t builds = 0;                            ///< number of builds so far
+  /// The widest skin [m] (the adaptive skin's; 0: the skin): an active contact of the old list
+  /// that the new one lacks has separated (it is no longer touching) and ends, unless it moved
+  /// beyond r_i + r_j + skin_max, the numerical failure of a step too large for the packing.
+  double skin_max = 0.0;
   std::int64_t built_at_step = 0;  ///< the Simulation's step count at the last build
   std::int64_t shell_pairs = 0;    ///< pairs of the last build not touching then (gap >= 0)
 };
@@ -31,9 +35,10 @@ struct VerletState {
 bool remap_and_wrap(Spheres& s, PeriodicCell& cell, Contacts& c, double max_skew);
 
 /// New candidate pair list: all (i < j, k) with |x_j + H k - x_i| < r_i + r_j + skin, sorted by
-/// (i, j, k). Contact history of active pairs of `old` is carried over (they are always found
-/// again, the skin guarantees it). Builds the per-sphere lists. Throws NumericalError if the cell
-/// is thinner than 2 r_max + skin.
+/// (i, j, k). Contact history of active pairs of `old` is carried over; one the new list lacks is
+/// not touching and ends, unless it is farther than r_i + r_j + max(skin, skin_max): then
+/// NumericalError (a step too large for the packing). Builds the per-sphere lists. Throws
+/// NumericalError if the cell is thinner than 2 r_max + skin.
 void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, VerletState& vs);
 
 /// True when some pair not in the list may have come into contact since the last build.

@@ -75,6 +75,7 @@ Simulation::Simulation(Spheres spheres, const PeriodicCell& cell, const Material
     rmax = std::max(rmax, r);
   }
   verlet_.skin = num.skin_factor * rmax;
+  verlet_.skin_max = verlet_.skin;  // the adaptive skin's widest
   contacts_.resize(0);
 }
 

@@ -5,6 +5,7 @@
 #include <set>
 #include <tuple>
 
+#include "common/errors.hpp"
 #include "dem/neighbor_search.hpp"
 
 namespace {
@@ -81,3 +82,30 @@ TEST(NeighborSearch, RemapKeepsBranchVectors) {
 }
 
 }  // namespace
+
+// An active contact that the new list lacks has separated: with the adaptive skin (a thin list,
+// skin_max the widest) it ends if it is within r_i + r_j + skin_max, and is the numerical failure
+// of a step too large for the packing beyond; with the fixed skin (skin_max 0) beyond the skin.
+TEST(NeighborSearch, SeparatedContactEndsWithinTheWidestSkin) {
+  const auto attempt = [](double x2, double skin_max) {
+    dem::PeriodicCell cell;
+    cell.h = Mat3::Identity();
+    dem::Spheres s;
+    s.add(Vec3(0.2, 0.5, 0.5), 0.1, 1.0);
+    s.add(Vec3(0.39, 0.5, 0.5), 0.1, 1.0);  // overlap 0.01
+    dem::Contacts c;
+    dem::VerletState vs;
+    vs.skin = 0.003;
+    vs.skin_max = skin_max;
+    dem::build_pairs(s, cell, c, vs);
+    EXPECT_EQ(c.size(), 1u);
+    c.active[0] = 1;  // touching at the last force pass
+    s.x[1] = Vec3(x2, 0.5, 0.5);
+    dem::build_pairs(s, cell, c, vs);
+    return c.size();
+  };
+  EXPECT_EQ(attempt(0.405, 0.01), 0u);  // gap 0.005: beyond the thin skin, within the widest
+  EXPECT_EQ(attempt(0.402, 0.0), 1u);   // gap 0.002: still listed, history carried
+  EXPECT_THROW((void)attempt(0.42, 0.01), common::NumericalError);  // gap 0.02 > skin_max
+  EXPECT_THROW((void)attempt(0.405, 0.0), common::NumericalError);  // the fixed skin's rule
+}
