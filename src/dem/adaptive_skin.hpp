@@ -25,7 +25,7 @@ struct SkinDecision {
 
 /// The list's state that the choice reads.
 struct SkinInputs {
-  double measure = 0.0;          ///< 2 max|a| + ||F - I|| (2 r_max + skin), as rebuild_due [m]
+  double measure = 0.0;          ///< 2 max|a| + ||F - I|| (2 r_max + skin), (rebuild_measure) [m]
   double skin = 0.0;             ///< the current list's skin [m]
   std::int64_t steps = 0;        ///< steps since the list was built
   std::int64_t shell_pairs = 0;  ///< pairs of the list not in contact when it was built

@@ -233,10 +233,6 @@ bool needs_rebuild(const Spheres& s, const PeriodicCell& cell, const VerletState
   return drift_measure(s, cell, vs) >= vs.skin;
 }
 
-bool rebuild_due(double amax2, const Mat3& f, double r_max, double skin) {
-  return rebuild_measure(amax2, f, r_max, skin) >= skin;
-}
-
 double rebuild_measure(double amax2, const Mat3& f, double r_max, double skin) {
   const double eps = (f - Mat3::Identity()).norm();  // Frobenius >= spectral norm
   return 2.0 * std::sqrt(amax2) + eps * (2.0 * r_max + skin);

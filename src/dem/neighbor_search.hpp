@@ -46,8 +46,8 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
 
 /// The parts of needs_rebuild, for a caller that runs the loop over spheres inside its own
 /// parallel region: F = H H_ref^-1 (rebuild_deformation), |x_i - F x_ref,i|^2 of each sphere
-/// (rebuild_drift2), then the test on their maximum (rebuild_due). Same result as needs_rebuild
-/// (a maximum is exact in any order); rebuild_due reads vs.r_max and vs.skin as r_max, skin.
+/// (rebuild_drift2), then the measure of their maximum (rebuild_measure), which needs_rebuild
+/// compares with vs.skin (a maximum is exact in any order).
 /// @pre vs.x_ref.size() == s.size()
 [[nodiscard]] inline common::Mat3 rebuild_deformation(const PeriodicCell& cell,
                                                       const VerletState& vs) {
@@ -67,8 +67,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   for (std::size_t i = 0; i < s.size(); ++i) amax2 = std::max(amax2, rebuild_drift2(s, f, vs, i));
   return amax2;
 }
-[[nodiscard]] bool rebuild_due(double amax2, const common::Mat3& f, double r_max, double skin);
-/// What rebuild_due compares with the skin: 2 max|a| + ||F - I||_F (2 r_max + skin) [m].
+/// What a rebuild test compares with the skin: 2 max|a| + ||F - I||_F (2 r_max + skin) [m].
 [[nodiscard]] double rebuild_measure(double amax2, const common::Mat3& f, double r_max,
                                      double skin);
 /// rebuild_measure of the spheres' current positions (+inf without a list of them).

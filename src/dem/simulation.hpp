@@ -119,7 +119,7 @@ class Simulation {
   /// The current list's inputs to the skin choice (measure 0: the caller's).
   [[nodiscard]] SkinInputs skin_inputs() const;
   /// Whether to rebuild the list with the drift `measure`, and with which skin: the fixed skin
-  /// when measure >= skin (rebuild_due), or decide_skin with dem.numerics.verlet_skin_min > 0.
+  /// when measure >= skin (as needs_rebuild), or decide_skin with dem.numerics.verlet_skin_min > 0.
   [[nodiscard]] SkinDecision neighbor_check(double measure, const SkinInputs& list) const;
   /// The pair loop over the stress blocks: forces, torques, block stresses.
   template <bool kTeam>
