@@ -97,6 +97,7 @@ MpmSetup mpm_setup(const Job& job) {
       job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
   cfg.strain_smoothing = mpm::strain_smoothing_from_string(job.text("mpm.strain_smoothing"));
   cfg.grid_positions = job.text("mpm.position_update") == "grid";
+  cfg.wall_impulse_on_points = job.text("mpm.wall_impulse") == "points";
   cfg.transfer = mpm::transfer_from_string(job.text("mpm.transfer"));
   const auto flip = job.entries().find("mpm.flip");
   if (cfg.transfer == mpm::Transfer::apic && flip != job.entries().end() &&

@@ -47,6 +47,14 @@ void add_mpm_sections(Schema& s) {
         "base (docs/mpm.md, Position update).")
       .one_of({"point", "grid"})
       .or_default(std::string("point"));
+  s.add("mpm.wall_impulse", Type::String,
+        "grid: a wall's correction of the projected start-of-step velocity (the momentum stage "
+        "of Bardenhagen's contact) is only the step's kinematics, and a pure-FLIP point keeps a "
+        "velocity into a rigid base that never moves it (as before); points: it is an impulse on "
+        "the points, seen by their FLIP velocity and the wall's reaction (docs/mpm.md, "
+        "Frictional boundaries). Only walls (friction, contact) have it.")
+      .one_of({"grid", "points"})
+      .or_default(std::string("grid"));
   s.add("mpm.transfer", Type::String,
         "flip: the FLIP/PIC velocity blend of mpm.flip (the paper's); apic: affine PIC (Jiang et "
         "al. 2015), each point also carries the grid's velocity gradient, so a homogeneous "

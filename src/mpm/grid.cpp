@@ -44,6 +44,7 @@ void GridFields::resize(const Grid& grid) {
   acceleration.assign(n, common::Vec3::Zero());
   is_active.assign(n, 0);
   fixed.assign(n, 0);
+  wall_dv.assign(n, common::Vec3::Zero());
   active.clear();
 }
 
@@ -57,6 +58,7 @@ void GridFields::clear_active() {
     acceleration[u].setZero();
     is_active[u] = 0;
     fixed[u] = 0;
+    wall_dv[u].setZero();
   });
   active.clear();
 }

@@ -52,6 +52,10 @@ struct GridFields {
   /// Bit d set: component d of the node's velocity is prescribed this step (set by
   /// apply_velocity_constraints; the damping of eq. 8 then ignores that component).
   std::vector<std::uint8_t> fixed;
+  /// The walls' momentum-stage correction of V_v at the start of the step, V_corrected -
+  /// V_projected [m/s] (apply_velocity_constraints; zero at other nodes): with
+  /// SolverConfig::wall_impulse_on_points the FLIP increments of the points see it.
+  std::vector<common::Vec3> wall_dv;
 
   /// Sizes every array for `grid`, all zero.
   void resize(const Grid& grid);

@@ -198,8 +198,15 @@ void Solver::prepare_grid(std::int64_t step, double t) {
   // Plane strain holds the thickness component before the constraints too: a frictional wall then
   // sees no slip through the thickness (it would resist it and report it as its reaction).
   hold_thickness_velocity();
-  apply_velocity_constraints(config_.grid, constraints_, t, fields_);
+  apply_velocity_constraints(config_.grid, constraints_, t, fields_, &wall_impulses_);
   hold_thickness_velocity();
+}
+
+void Solver::add_wall_impulses(double dt) {
+  // The impulse reaches the points (g2p_update): the wall's reaction is the force of both stages.
+  if (!config_.wall_impulse_on_points) return;
+  for (std::size_t c = 0; c < reactions_.size() && c < wall_impulses_.size(); ++c)
+    reactions_[c] += wall_impulses_[c] / dt;
 }
 
 void Solver::scale_inertia(bool with_mass) {
@@ -379,7 +386,7 @@ void Solver::update_points(double dt) {
   } else {
     // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
     g2p_update(config_.grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
-               config_.grid_positions);
+               config_.grid_positions, config_.wall_impulse_on_points);
   }
 }
 
@@ -399,6 +406,7 @@ void Solver::step() {
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
+    add_wall_impulses(dt);
     update_points(dt);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
@@ -409,6 +417,7 @@ void Solver::step() {
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
+    add_wall_impulses(dt);
     update_points(dt);
     p2g_momentum(grid, cache_, bins_, points_, fields_, config_.transfer == Transfer::apic);
     scale_inertia(false);

@@ -42,6 +42,12 @@ struct SolverConfig {
   /// true: the points move with the end-of-step grid velocity (x_p += dt sum_v S (V_v + dt a_v)),
   /// which walls constrain; false: with their own blended velocity v_p (eq. 10, the paper).
   bool grid_positions = false;
+  /// true: a wall's momentum-stage correction of the projected velocity V(t) (Bardenhagen's) is
+  /// an impulse on the points: their FLIP increments and the wall's reaction count it, so a
+  /// point's velocity into a wall is taken away. false (default, as before): it is only the
+  /// kinematics of the step (L, the PIC share), and a pure-FLIP point keeps a velocity into a
+  /// rigid base that the base never lets it move with (docs/mpm.md, Frictional boundaries).
+  bool wall_impulse_on_points = false;
   common::Vec3 gravity = common::Vec3::Zero();  ///< g of eq. 6 [m/s^2]; zero = no gravity
   double damping = 0.0;                         ///< D of eq. 8, in [0, 1) [-]
   DampingMode damping_mode = DampingMode::cundall_vector;
@@ -187,6 +193,8 @@ class Solver {
   /// Plane strain: holds the thickness component of the nodal velocity / acceleration.
   void hold_thickness_velocity();
   void hold_thickness_acceleration();
+  /// With wall_impulse_on_points: each wall's momentum-stage impulse / dt added to its reaction.
+  void add_wall_impulses(double dt);
   /// Mass scaling: multiplies the nodal momenta (and masses when `with_mass`) by s.
   void scale_inertia(bool with_mass);
 
@@ -195,6 +203,7 @@ class Solver {
   std::vector<MaterialModel*> materials_;
   std::vector<ResolvedConstraint> constraints_;
   std::vector<common::Vec3> reactions_;      ///< [N], per constraint, last step
+  std::vector<common::Vec3> wall_impulses_;  ///< [kg m/s], per constraint, this step's start
   std::vector<common::Vec3> displacements_;  ///< [m], per constraint
   std::vector<TractionLoad> tractions_;
   std::vector<std::vector<std::int64_t>> traction_points_;  ///< facet point slots per load

@@ -141,7 +141,8 @@ void check_shape_domains(ShapeKind kind, const Grid& grid, const MaterialPoints&
         const char axis = static_cast<char>('x' + d);
         throw common::InputError(
             who + ": its uGIMP domain [" + num(lo) + ", " + num(hi) + "] m along " + axis +
-            " reaches the grid's boundary at " + axis + " = " + num(lo <= g_lo + tol ? g_lo : g_hi) +
+            " reaches the grid's boundary at " + axis + " = " +
+            num(lo <= g_lo + tol ? g_lo : g_hi) +
             " m: uGIMP needs one empty cell beyond the material (mpm.grid), its 3-node stencil "
             "reaches past the point's own cell; hold that node plane with the wall");
       }
@@ -312,13 +313,20 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, bool move_points, double dt, MaterialPoints& points,
-                bool grid_positions) {
+                bool grid_positions, bool wall_impulse) {
   const auto n = static_cast<std::int64_t>(points.size());
   for_each_index(n, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
     common::Vec3 a_p = common::Vec3::Zero();
     common::Vec3 v_pic = common::Vec3::Zero();
-    if (pic_fraction == 0.0 && !grid_positions) {
+    if (wall_impulse) {
+      // The walls' momentum-stage correction, as an impulse over the step (zero elsewhere).
+      for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+        const auto i = static_cast<std::size_t>(node_i);
+        a_p += S * (fields.acceleration[i] + fields.wall_dv[i] / dt);
+        v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+      });
+    } else if (pic_fraction == 0.0 && !grid_positions) {
       for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
         a_p += S * fields.acceleration[static_cast<std::size_t>(node_i)];
       });

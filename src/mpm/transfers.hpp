@@ -97,9 +97,13 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 /// (only when `move_points`: otherwise the points keep their positions, see SolverConfig).
 /// `grid_positions`: x_p <- x_p + dt v_pic instead (the walls' held nodes then stop the points:
 /// a FLIP velocity does not see them and can carry a point through a rigid base).
+/// `wall_impulse`: a_v also counts the walls' momentum-stage correction, a_v + wall_dv_v / dt,
+/// in the FLIP increment (not in v_pic, whose V_v already has it): v_flip then changes by
+/// sum_v S (V_v(t + dt) - V_v projected), and a point's velocity into a wall is taken away
+/// (SolverConfig::wall_impulse_on_points).
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, bool move_points, double dt, MaterialPoints& points,
-                bool grid_positions = false);
+                bool grid_positions = false, bool wall_impulse = false);
 
 /// The APIC point update: v_p <- sum_v S V'_v and C_p <- sum_v (V'_v - v_p) (x) grad S_v(x_p)
 /// with V'_v = V_v + dt a_v the end-of-step grid velocity, over the nodes that count in
