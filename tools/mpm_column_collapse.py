@@ -113,7 +113,8 @@ def analyse(run):
                 Hf_over_L0=hback[-1] / L0, Hf_over_H0=hback[-1] / H0, t99_over_tstar=t99,
                 runout_connected_over_L0=runout_c, t99_connected_over_tstar=t99_c,
                 t_end_over_tstar=t[-1] / tstar, Ekpeak_over_MgH0=ek_norm.max(),
-                t_Ekpeak_over_tstar=t[np.argmax(ek_norm)] / tstar,
+                t_Ekpeak_over_tstar=t[np.argmax(ek_norm)] / tstar, Ekend_over_MgH0=ek_norm[-1],
+                volume_ratio_max=float((f["points/volume"][:] / vol0[None, :]).max()),
                 I_max=np.nanmax(inert), I_p95_max=np.nanmax(np.nanpercentile(inert[1:], 95, axis=1)),
                 flight_max=int(flight.max()), lowp_max=int(lowp.max()), mpm_steps=int(steps[-1]),
                 dem_steps=int(f["rve/dem_steps"][:].sum()))

@@ -337,7 +337,10 @@ void Solver::check_points(double t_end) const {
         std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
         " m: volume / initial volume = " + num_str(ratio) + ", outside [1/" +
         short_str(config_.max_volume_ratio) + ", " + short_str(config_.max_volume_ratio) +
-        "]: the run has blown up (time step too large, or a material that lost its strength)");
+        "] (its pressure " + num_str(-points_.stress[p].trace() / 3.0) +
+        " Pa, |v| = " + num_str(points_.v[p].norm()) +
+        " m/s): the run has blown up (time step too large), or a material without strength (a "
+        "stress-free point) was strained by its neighbours' nodes");
   }
   if (!points_.stress[p].allFinite() || !points_.v[p].allFinite()) {
     throw common::NumericalError(
