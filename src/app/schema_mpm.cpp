@@ -51,8 +51,9 @@ void add_mpm_sections(Schema& s) {
         "grid: a wall's correction of the projected start-of-step velocity (the momentum stage "
         "of Bardenhagen's contact) is only the step's kinematics, and a pure-FLIP point keeps a "
         "velocity into a rigid base that never moves it (as before); points: it is an impulse on "
-        "the points, seen by their FLIP velocity and the wall's reaction (docs/mpm.md, "
-        "Frictional boundaries). Only walls (friction, contact) have it.")
+        "the points, seen by their FLIP velocity and the wall's reaction, one contact impulse per "
+        "step (docs/mpm.md, Frictional boundaries; a frictional no_penetration wall then holds "
+        "a block less well). Only walls (friction, contact) have it.")
       .one_of({"grid", "points"})
       .or_default(std::string("grid"));
   s.add("mpm.transfer", Type::String,

@@ -115,10 +115,8 @@ common::Vec3 prescribed_velocity(const VelocityConstraint& c, double t) {
 }
 
 void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
-                                double t, GridFields& fields, std::vector<common::Vec3>* impulses) {
-  if (impulses != nullptr) impulses->assign(cs.size(), common::Vec3::Zero());
-  for (std::size_t ci = 0; ci < cs.size(); ++ci) {
-    const ResolvedConstraint& c = cs[ci];
+                                double t, GridFields& fields) {
+  for (const ResolvedConstraint& c : cs) {
     if (!c.spec.active_at(t)) continue;
     for (std::size_t k = 0; k < c.nodes.size(); ++k) {
       const std::int64_t i = c.nodes[k];
@@ -129,9 +127,7 @@ void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedCons
         // Momentum-stage correction of the projected velocity (enters L and the PIC share).
         const WallCorrection w = apply_wall_friction(fields.velocity[u], v, c.spec.wall);
         if (w.in_contact) {
-          const common::Vec3 dv = w.velocity - fields.velocity[u];
-          fields.wall_dv[u] += dv;
-          if (impulses != nullptr) (*impulses)[ci] += fields.mass[u] * dv;
+          fields.wall_dv[u] += w.velocity - fields.velocity[u];
           fields.velocity[u] = w.velocity;
           fields.fixed[u] = static_cast<std::uint8_t>(fields.fixed[u] | (1u << c.spec.wall.axis));
         }

@@ -76,12 +76,9 @@ ResolvedConstraint resolve(const Grid& grid, const VelocityConstraint& c);
 /// the constraints active at t. A wall applies its friction law to the projected velocity
 /// V(t) (Bardenhagen's momentum-stage correction) and flags its normal component as prescribed
 /// where the node is in contact; the correction V_corrected - V_projected is added to
-/// `fields.wall_dv`. When `impulses` is given it is resized to cs.size() and holds, per
-/// constraint, the momentum its wall correction took from the grid, sum_i m_i dv_i [kg m/s]
-/// (zero for the other constraints).
+/// `fields.wall_dv`.
 void apply_velocity_constraints(const Grid& grid, const std::vector<ResolvedConstraint>& cs,
-                                double t, GridFields& fields,
-                                std::vector<common::Vec3>* impulses = nullptr);
+                                double t, GridFields& fields);
 /// Sets the prescribed components of the active constrained nodes' acceleration:
 /// (V(t + dt) - V(t)) / dt [m/s^2], for the constraints active at t. A wall applies its friction
 /// law to the trial velocity V(t) + a dt and sets a = (v_corrected - V(t)) / dt.

@@ -198,15 +198,24 @@ void Solver::prepare_grid(std::int64_t step, double t) {
   // Plane strain holds the thickness component before the constraints too: a frictional wall then
   // sees no slip through the thickness (it would resist it and report it as its reaction).
   hold_thickness_velocity();
-  apply_velocity_constraints(config_.grid, constraints_, t, fields_, &wall_impulses_);
+  apply_velocity_constraints(config_.grid, constraints_, t, fields_);
   hold_thickness_velocity();
 }
 
-void Solver::add_wall_impulses(double dt) {
-  // The impulse reaches the points (g2p_update): the wall's reaction is the force of both stages.
+void Solver::project_wall_trial(double dt) {
+  // The walls' momentum-stage correction reaches the points (g2p_update adds wall_dv / dt to the
+  // FLIP increment), so the step's contact and friction are decided once, on the trial velocity
+  // from the projected one: V(t) + a dt - wall_dv = V_projected + a dt. A wall in contact then
+  // sets a = (v_corrected - V(t)) / dt, and its reaction m (a - a_before) is the whole impulse
+  // of the step, m (v_corrected - V_projected) / dt - m a_free; a node the wall leaves (no
+  // contact on the trial) keeps the shift: its end velocity and the points' increment are the
+  // free ones, as if the momentum stage had not corrected it.
   if (!config_.wall_impulse_on_points) return;
-  for (std::size_t c = 0; c < reactions_.size() && c < wall_impulses_.size(); ++c)
-    reactions_[c] += wall_impulses_[c] / dt;
+  const std::vector<std::int64_t>& active = fields_.active;
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
+    fields_.acceleration[u] -= fields_.wall_dv[u] / dt;
+  });
 }
 
 void Solver::scale_inertia(bool with_mass) {
@@ -407,9 +416,9 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
+    project_wall_trial(dt);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
-    add_wall_impulses(dt);
     update_points(dt);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
@@ -418,9 +427,9 @@ void Solver::step() {
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
+    project_wall_trial(dt);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
-    add_wall_impulses(dt);
     update_points(dt);
     p2g_momentum(grid, cache_, bins_, points_, fields_, config_.transfer == Transfer::apic);
     scale_inertia(false);

@@ -193,8 +193,9 @@ class Solver {
   /// Plane strain: holds the thickness component of the nodal velocity / acceleration.
   void hold_thickness_velocity();
   void hold_thickness_acceleration();
-  /// With wall_impulse_on_points: each wall's momentum-stage impulse / dt added to its reaction.
-  void add_wall_impulses(double dt);
+  /// With wall_impulse_on_points: a -= wall_dv / dt before the constraints on the acceleration
+  /// (the walls' trial velocity is then the projected one plus a dt).
+  void project_wall_trial(double dt);
   /// Mass scaling: multiplies the nodal momenta (and masses when `with_mass`) by s.
   void scale_inertia(bool with_mass);
 
@@ -203,7 +204,6 @@ class Solver {
   std::vector<MaterialModel*> materials_;
   std::vector<ResolvedConstraint> constraints_;
   std::vector<common::Vec3> reactions_;      ///< [N], per constraint, last step
-  std::vector<common::Vec3> wall_impulses_;  ///< [kg m/s], per constraint, this step's start
   std::vector<common::Vec3> displacements_;  ///< [m], per constraint
   std::vector<TractionLoad> tractions_;
   std::vector<std::vector<std::int64_t>> traction_points_;  ///< facet point slots per load
