@@ -91,9 +91,8 @@ inertial_number = 1e-2
 [dem.coupling]
 inertial_number = 4e-3         # I_n of eq. 11 (as the biaxial)
 pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the footing's edge)
-# dt_refresh = 20              # less work per RVE step: 1.74x with the two lines below, errors
-# end_forces = "carried"       # inside the footing's sensitivity (docs/benchmarks.md "Defaults";
-                               # also [dem.numerics] verlet_skin_min = 0.03, the adaptive skin)
+# dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.33x on this
+                               # footing, errors inside its sensitivity (docs/benchmarks.md)
 
 [mpm]
 shape_function = "ugimp"       # in the plane; linear through the thickness

@@ -69,14 +69,15 @@ void add_dem_sections(Schema& s) {
   s.add("dem.coupling", Type::Table, "The RVE step of MPM x DEM (paper eqs. 11-12).");
   add_params(s, dem::kRveParams);
   s.add("dem.coupling.end_forces", Type::String,
-        "The forces that end an RVE step (docs/dem.md \"RVE step\"): separate (the default: a "
-        "force evaluation of zero length gives the stress; the next RVE step computes the forces "
-        "of the same state again, with its own dt) or carried (the end state's forces are computed "
+        "The forces that end an RVE step (docs/dem.md \"RVE step\"): separate (before "
+        "2026-11-26: a force evaluation of zero length gives the stress; the next RVE step "
+        "computes the forces of the same state again, with its own dt) or carried (the default: "
+        "the end state's forces are computed "
         "with the step's dt and L, the shear, rolling and twisting increments of its last DEM "
         "step included; they give the stress and drive the next RVE step's first DEM step: one "
         "force evaluation fewer per RVE step, other bits).")
       .one_of({"separate", "carried"})
-      .or_default(std::string("separate"));
+      .or_default(std::string("carried"));
 
   s.add("dem.sparing", Type::Table,
         "Sparing of idle RVEs in `run` (docs/sparing.md): off unless `tolerance` > 0.");

@@ -32,7 +32,7 @@ struct Numerics {
   double damping = 0.2;           ///< Cundall non-viscous damping lambda [-], in [0, 1)
   double dt_safety = 0.8;         ///< safety factor on the global-stiffness critical step [-]
   double skin_factor = 0.1;       ///< Verlet skin as a fraction of the largest radius [-]
-  double skin_min_factor = 0.0;   ///< > 0: the skin adapts in [this, skin_factor] r_max [-]
+  double skin_min_factor = 0.03;  ///< > 0: the skin adapts in [this, skin_factor] r_max [-]
   std::int64_t dt_refresh = 100;  ///< steps between critical time step refreshes [-]
   double max_skew = 0.5;          ///< re-map the cell when |c_b . c_a| / |c_a|^2 exceeds this [-]
 
@@ -78,9 +78,9 @@ inline constexpr auto kNumerics = common::make_table<Numerics>(
       "physics)."},
      {"verlet_skin_min", &Numerics::skin_min_factor, Unit::Dimensionless, common::in_cc(0, 1),
       Source::job_default,
-      "0: the skin is verlet_skin. Above 0 (0.03 measured): each RVE adapts its skin between "
-      "this fraction of the largest radius and verlet_skin to how fast its spheres move (thin when "
-      "they barely "
+      "0: the skin is verlet_skin (before 2026-11-26). Above 0: each RVE adapts its skin between "
+      "this fraction of "
+      "the largest radius and verlet_skin to how fast its spheres move (thin when they barely "
       "move, fewer pairs; wide in a flow, fewer rebuilds), from its own state: restarts, ranks "
       "and threads keep their bits (docs/dem.md \"Neighbour search\")."},
      {"dt_refresh", &Numerics::dt_refresh, Unit::Dimensionless, common::ge(1), Source::cpp_only,

@@ -31,7 +31,7 @@ struct RveParams {
   /// "carried"): computed with the step's dt and L, they give its stress and drive the next
   /// step's first DEM step, one force evaluation fewer per step(). false ("separate"): a
   /// zero-length evaluation gives the stress, the next step() computes the forces again.
-  bool carry_end_forces = false;
+  bool carry_end_forces = true;
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
   /// kNumerics, kRveParams).
