@@ -5,7 +5,8 @@ Usage: check_column_collapse.py RUN_DIR END_TIME GATE_UNTIL. Exit 77 (skipped) w
 - Mass: the same points throughout (ids and count: none dropped), each point's volume equals
   det(F) times its initial volume (relative 1e-9: the same product in double precision, so its
   density m / V follows F and its mass is unchanged).
-- The front (the farthest point) moved forward by at least 5 mm (about 8 % of a cell; measured
+- The front (the farthest point) moved forward by at least 5 mm (2 mm with mpm.wall_impulse =
+  "points", which also checks the bottom row's FLIP velocities against its motion; measured
   15 mm at 0.15 s), and the kinetic energy is > 0 at the end.
 - No point left through the base (z >= 0), through the back wall (x >= 0) or out of the grid.
 - The gate's reaction is exactly 0 once it is removed (t >= GATE_UNTIL) and non-zero before.
@@ -47,12 +48,25 @@ check(rel <= 1e-9, "volume != det(F) V0")
 front = x[:, :, 0].max(axis=1)
 print(f"front {front[0]:.5f} m -> {front[-1]:.5f} m; lowest point z = {x[:, :, 2].min():.5f} m; "
       f"x in [{x[:, :, 0].min():.5f}, {x[:, :, 0].max():.5f}] m")
-check(front[-1] - front[0] >= 0.005, "the front did not move forward by 5 mm")
+job = tomllib.loads(open(run + "/job.toml").read())
+impulse = job["mpm"].get("wall_impulse", "grid") == "points"
+# With mpm.wall_impulse = "points" the rough base holds the bottom row's points too, and the
+# column starts more slowly: 2 mm (measured 4.5 mm at 0.15 s, docs/column_collapse.md section 12).
+front_min = 0.002 if impulse else 0.005
+check(front[-1] - front[0] >= front_min, f"the front did not move forward by {front_min * 1e3:g} mm")
+if impulse:
+    # The bottom cell row's FLIP velocities are their motion (between the last two output rows):
+    # the base took what it stopped (measured 0.001 m/s; 0.027 with "grid").
+    h = job["mpm"]["grid"]["spacing"][2]
+    low = x[-1, :, 2] < h
+    motion = (x[-1] - x[-2]) / (t[-1] - t[-2])
+    gap = np.linalg.norm(f["points/velocity"][-1][low] - motion[low], axis=1).max()
+    print(f"bottom row: largest |v_p - motion| = {gap:.4f} m/s")
+    check(gap < 0.005, "a bottom-row point keeps a velocity its motion does not have")
 ek = (vol[0] * (f["points/velocity"][-1] ** 2).sum(axis=1)).sum()
 check(ek > 0, "no kinetic energy at the end")
 check(x[:, :, 2] >= 0.0, "a point below the base")
 check(x[:, :, 0] >= 0.0, "a point behind the back wall")
-job = tomllib.loads(open(run + "/job.toml").read())
 grid = job["mpm"]["grid"]
 hi = [o + s * c for o, s, c in zip(grid["origin"], grid["spacing"], grid["cells"])]
 check(x[:, :, 0] <= hi[0], "a point beyond the grid in x")
