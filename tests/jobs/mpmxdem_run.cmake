@@ -22,3 +22,17 @@ function(mpmxdem_check script)
     message(FATAL_ERROR "${name} failed (${rc})")
   endif()
 endfunction()
+
+# mpmxdem_job_with(<job> <table> <lines> <out>): writes <out>, a copy of <job> with <lines>
+# (separated by '|') added at the start of its [<table>] table (the job must have that table and
+# must not name files relative to its own directory).
+function(mpmxdem_job_with job table lines out)
+  file(READ "${job}" text)
+  string(FIND "${text}" "\n[${table}]\n" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${job} has no [${table}] table to add '${lines}' to")
+  endif()
+  string(REPLACE "|" "\n" add "${lines}")
+  string(REPLACE "\n[${table}]\n" "\n[${table}]\n${add}\n" text "${text}")
+  file(WRITE "${out}" "${text}")
+endfunction()
