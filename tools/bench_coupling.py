@@ -41,24 +41,28 @@ def slug(variant):
 
 
 def split_variant(args, variant):
-    """([dem.coupling] lines, the sparing tolerance, [dem.numerics] lines): a part
+    """([dem.coupling] lines, the sparing tolerance, [dem.numerics] lines, [mpm] lines): a part
     'sparing.tolerance = x' of the variant sets dem.sparing.tolerance for it (else --tolerance),
-    a part 'numerics.KEY = x' sets dem.numerics.KEY (e.g. numerics.verlet_skin_min = 0.03)."""
-    lines, tol, numerics = [], args.tolerance, []
+    a part 'numerics.KEY = x' sets dem.numerics.KEY (e.g. numerics.verlet_skin_min = 0.03), a part
+    'mpm.KEY = x' sets mpm.KEY (e.g. mpm.wall_impulse = "points")."""
+    lines, tol, numerics, mpm = [], args.tolerance, [], []
     for x in variant.split("+"):
         m = re.match(r"\s*sparing\.tolerance\s*=\s*(\S+)\s*$", x)
         n = re.match(r"\s*numerics\.(.*)$", x)
+        g = re.match(r"\s*mpm\.(.*)$", x)
         if m:
             tol = float(m.group(1))
         elif n:
             numerics.append(n.group(1).strip())
+        elif g:
+            mpm.append(g.group(1).strip())
         else:
             lines.append(x.strip())
-    return lines, tol, numerics
+    return lines, tol, numerics, mpm
 
 
 def run(args, scene, variant, rep, perturbed):
-    lines, tol, numerics = split_variant(args, variant)
+    lines, tol, numerics, mpm = split_variant(args, variant)
     name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol, "" if not perturbed else
                                     "_perturbed" + ("_" + slug(perturbed) if isinstance(perturbed, str) else ""),
                                     rep)
@@ -68,6 +72,9 @@ def run(args, scene, variant, rep, perturbed):
     text = bs.job_text(scene, tol, args.max_spared, perturbed)
     assert "\n[dem.coupling]\n" in text, scene
     text = text.replace("\n[dem.coupling]\n", "\n[dem.coupling]\n" + "".join(x + "\n" for x in lines), 1)
+    if mpm:
+        assert "\n[mpm]\n" in text, scene
+        text = text.replace("\n[mpm]\n", "\n[mpm]\n" + "".join(x + "\n" for x in mpm), 1)
     if numerics:
         assert "[dem.numerics]" not in text, scene
         text += "\n[dem.numerics]\n" + "".join(x + "\n" for x in numerics)
@@ -82,6 +89,11 @@ def run(args, scene, variant, rep, perturbed):
            "--force"]
     log = subprocess.run(cmd, env=env, cwd=bs.ROOT, capture_output=True, text=True)
     if log.returncode != 0:
+        if getattr(args, "keep_going", False):  # tools/coupling_bias.py --keep-going
+            err = re.findall(r"error: (.*)", log.stdout + log.stderr)
+            print("run failed (exit %d): %s: %s" % (log.returncode, " ".join(cmd),
+                                                    err[0] if err else ""), flush=True)
+            return None
         sys.exit("run failed (exit %d): %s\n%s" % (log.returncode, " ".join(cmd),
                                                    log.stderr[-3000:]))
     return (out,) + bs.parse_log(log.stdout + log.stderr)

@@ -15,6 +15,14 @@ to the curve's largest).
 
   /usr/bin/python3 tools/coupling_bias.py --out OUT [--scene biaxial] \
       [--variants 'dt_refresh = 1;end_forces = "carried"'] [--offsets 0,3,-3,6,-4.5] [--reuse]
+      [--keep-going]
+
+A variant's parts joined by '+' are [dem.coupling] lines, or 'numerics.KEY = x' ([dem.numerics]),
+'mpm.KEY = x' ([mpm]), 'sparing.tolerance = x' (tools/bench_coupling.py). --keep-going reports a
+failed run (exit 3, say) and leaves it out: the collapse families of docs/column_collapse.md
+section 12, e.g. --scene collapse --keep-going --variants 'end_forces = "separate"+
+numerics.verlet_skin_min = 0;end_forces = "carried"+numerics.verlet_skin_min = 0.03' (add
+'+mpm.wall_impulse = "points"' to both for the "points" families).
 
 Runs go through tools/bench_coupling.py's run() (2 ranks x 1 thread, niced); the runs of a
 family alternate with the other's. Writes coupling_bias.csv (per strain: both means, both
@@ -62,6 +70,8 @@ def main():
     ap.add_argument("--offsets", default="0,3,-3,6,-4.5",
                     help="perturbations k: the speed times 1 + k 1e-6 (0: the job's own)")
     ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--keep-going", action="store_true",
+                    help="a failed run (e.g. exit 3) is reported and left out of the statistics")
     args = ap.parse_args()
     args.exe = os.path.abspath(args.exe)
     # what bench_coupling.run() reads of its arguments
@@ -78,23 +88,30 @@ def main():
         assert k == 0 or new != old, (old, speed)
         pert = False if k == 0 else "%s=>%s" % (old, new)
         for v in variants:
-            out, wall, rve, work = bc.run(args, args.scene, v, 0, pert)
+            r = bc.run(args, args.scene, v, 0, pert)
+            if r is None:
+                print("%s [%s] k %+g: FAILED" % (args.scene, v, k), flush=True)
+                continue
+            out, wall, rve, work = r
             m = bs.measures(out, kind, work)
             curves[v].append(m)
             print("%s [%s] k %+g: wall %.1f s, %d DEM steps, %s" % (
                 args.scene, v, k, wall, work["dem_steps"],
                 "runout %.4f (connected %.4f), H_f/H0 %.4f" % (m["runout_all"], m["runout"], m["height"])
                 if kind == "collapse" else "peak %.6g" % curve(kind, m)[1].max()), flush=True)
+    if min(len(curves[v]) for v in variants) < 2:
+        sys.exit("fewer than two runs of a variant completed: no statistics")
     if kind == "collapse":  # scalar measures: each family's mean and sd, Welch's t
-        print("reference: %s; option: %s; %d perturbations each (k = %s)" % (
-            variants[0], variants[1], len(offsets), args.offsets))
+        print("reference: %s (%d runs); option: %s (%d runs); perturbations k = %s" % (
+            variants[0], len(curves[variants[0]]), variants[1], len(curves[variants[1]]),
+            args.offsets))
         print("| measure | reference: mean, sd | option: mean, sd | difference | Welch's t |")
         print("|---|---|---|---|---|")
         for key, name in (("runout_all", "runout (L_f - L0) / L0, all points"),
                           ("runout", "runout, connected deposit"), ("height", "H_f / H0")):
             a = np.array([m[key] for m in curves[variants[0]]])
             b = np.array([m[key] for m in curves[variants[1]]])
-            se = np.sqrt((a.var(ddof=1) + b.var(ddof=1)) / len(offsets))
+            se = np.sqrt(a.var(ddof=1) / len(a) + b.var(ddof=1) / len(b))
             print("| %s | %.4f, %.4f | %.4f, %.4f | %+.4f | %.2f |" % (
                 name, a.mean(), a.std(ddof=1), b.mean(), b.std(ddof=1), b.mean() - a.mean(),
                 (b.mean() - a.mean()) / se if se > 0 else 0.0))
@@ -105,7 +122,7 @@ def main():
     sd = {v: fam[v].std(axis=0, ddof=1) for v in variants}
     n = len(offsets)
     diff = mean[variants[1]] - mean[variants[0]]
-    se = np.sqrt((sd[variants[0]] ** 2 + sd[variants[1]] ** 2) / n)
+    se = np.sqrt(sd[variants[0]] ** 2 / len(fam[variants[0]]) + sd[variants[1]] ** 2 / len(fam[variants[1]]))
     t = np.where(se > 0, diff / np.where(se > 0, se, 1.0), 0.0)
     kpk = split(kind, eps, mean[variants[0]])
     peak = mean[variants[0]].max()
