@@ -244,17 +244,18 @@ double drift_measure(const Spheres& s, const PeriodicCell& cell, const VerletSta
   // the list had |d0| >= R_i + R_j + skin; it cannot touch while
   // 2 max|a| + ||F - I|| (2 r_max + skin) < skin.
   const Mat3 f = rebuild_deformation(cell, vs);
-  double amax2 = 0.0;
+  return rebuild_measure(max_drift2_region(s, f, vs), f, vs.r_max, vs.skin);
+}
+
+double max_drift2_region(const Spheres& s, const Mat3& f, const VerletState& vs) {
   const auto n = static_cast<std::int64_t>(s.size());
-  if (one_thread(n)) {
-    amax2 = max_drift2(s, f, vs);
-  } else {
+  if (one_thread(n)) return max_drift2(s, f, vs);
+  double amax2 = 0.0;
 #pragma omp parallel for reduction(max : amax2) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-      amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
-    }
+  for (std::int64_t i = 0; i < n; ++i) {
+    amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
   }
-  return rebuild_measure(amax2, f, vs.r_max, vs.skin);
+  return amax2;
 }
 
 }  // namespace dem

@@ -67,6 +67,9 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   for (std::size_t i = 0; i < s.size(); ++i) amax2 = std::max(amax2, rebuild_drift2(s, f, vs, i));
   return amax2;
 }
+/// max_drift2 in a parallel region of its own (dem::one_thread: on the calling thread).
+[[nodiscard]] double max_drift2_region(const Spheres& s, const common::Mat3& f,
+                                       const VerletState& vs);
 /// What a rebuild test compares with the skin: 2 max|a| + ||F - I||_F (2 r_max + skin) [m].
 [[nodiscard]] double rebuild_measure(double amax2, const common::Mat3& f, double r_max,
                                      double skin);

@@ -6,9 +6,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <string>
+
+#include <omp.h>
 
 #include "common/errors.hpp"
 #include "dem/threads.hpp"
@@ -20,7 +23,33 @@ using common::Vec3;
 using common::Vec3i;
 
 namespace {
-constexpr std::int64_t kStressBlock = 512;  // fixed reduction blocks, independent of threads
+// Fixed reduction blocks of the stress, independent of threads; also the unit of the pair loop's
+// cut between threads (WorkSplit). Smaller blocks would balance finer (8 of them at 1000 spheres)
+// but change the stress's round-off, and cost 1.5-2 % on one thread (128 and 64 measured).
+constexpr std::int64_t kStressBlock = 512;
+// The unit of the sphere loops' cut: 8 spheres (192 bytes of a Vec3 array: fine enough to
+// balance, coarse enough that two threads' ranges share at most a cache line per array).
+constexpr std::int64_t kSphereUnit = 8;
+
+// The range of the calling thread of a team under `split` (units of `unit` indices, up to n),
+// or an even one if the team is not the size the split was prepared for.
+struct Range {
+  std::int64_t lo, hi;
+};
+inline Range team_range(const WorkSplit& split, std::int64_t unit, std::int64_t n) {
+  const int nt = omp_get_num_threads();
+  const int t = omp_get_thread_num();
+  std::int64_t lo = 0, hi = 0;
+  if (nt == split.threads()) {
+    lo = split.begin(t) * unit;
+    hi = split.end(t) * unit;
+  } else {
+    const std::int64_t units = (n + unit - 1) / unit;
+    lo = units * t / nt * unit;
+    hi = units * (t + 1) / nt * unit;
+  }
+  return {std::min(lo, n), std::min(hi, n)};
+}
 
 // The step's loops in two forms from one source: kTeam, a work-shared loop of the enclosing
 // region's team (with its implicit barrier); otherwise a plain loop of the calling thread, with no
@@ -93,6 +122,7 @@ void Simulation::update_neighbors(bool due) {
     build_pairs(spheres_, cell_, contacts_, verlet_);
     verlet_.built_at_step = steps_;
     force_rebuild_ = false;
+    drift_.valid = false;
   }
 }
 
@@ -136,7 +166,16 @@ void Simulation::pair_forces() {
   const auto np = static_cast<std::int64_t>(contacts_.size());
   const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
   CohFrictBatch batch;  // per thread: each thread has its own frame
-  team_for<kTeam>(nblocks, [this, &batch](std::int64_t b) { pair_block(b, batch); });
+  if constexpr (kTeam) {
+    // The thread's blocks under pair_split_, timed for its rebalance; then the barrier.
+    const double t0 = omp_get_wtime();
+    const Range r = team_range(pair_split_, 1, nblocks);
+    for (std::int64_t b = r.lo; b < r.hi; ++b) pair_block(b, batch);
+    pair_split_.record(omp_get_thread_num(), omp_get_wtime() - t0);
+#pragma omp barrier
+  } else {
+    for (std::int64_t b = 0; b < nblocks; ++b) pair_block(b, batch);
+  }
 }
 
 void Simulation::pair_block(std::int64_t b, CohFrictBatch& batch) {
@@ -231,7 +270,9 @@ void Simulation::prepare_pair_pass(bool rebuild_due) {
 void Simulation::size_stress_blocks() {
   // Every block's entry is written by the pair loop: only the size matters.
   const auto np = static_cast<std::int64_t>(contacts_.size());
-  block_stress_.resize(static_cast<std::size_t>((np + kStressBlock - 1) / kStressBlock));
+  const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
+  block_stress_.resize(static_cast<std::size_t>(nblocks));
+  pair_split_.prepare(omp_get_max_threads(), nblocks);
   // Whether the law may skip its twisting part: no pair twists, and no contact can (the material
   // gives them no twisting stiffness).
   contacts_.classify_twist();
@@ -335,6 +376,7 @@ void Simulation::compute_forces() {
 }
 
 void Simulation::integrate() {
+  drift_.valid = false;
   const double dt = dt_;
   const Mat3 l = cell_.l;
   const auto ns = static_cast<std::int64_t>(spheres_.size());
@@ -355,13 +397,28 @@ void Simulation::advance_cell_and_clock() {
 
 void Simulation::step() { step(StepHook{}); }
 
-// The forces, (the hook), the per-sphere sums and the integration of step(), called by every
-// thread of its region (kTeam) or by the calling thread alone.
+// The forces, (the hook), the per-sphere sums, the integration and the drift of the new
+// positions, called by every thread of its region (kTeam) or by the calling thread alone. Two
+// synchronisations (three with a hook): after the pair loop (every force is needed by the sums),
+// (after the hook: it sets dt and l,) and the region's end. The hook runs while the other
+// threads form their spheres' sums (it reads the stress and the contacts, not the sums).
 template <bool kTeam>
-void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error) {
+void Simulation::step_shared(const StepHook& between, std::int64_t ns, double& amax2, Mat3& h_next,
+                             std::exception_ptr& error) {
   pair_forces<kTeam>();
+  // This thread's spheres under sphere_split_ (all of them without a team), the same range for
+  // the sums, the integration and the drift: no barrier between them. Its time excludes the
+  // hook's.
+  Range r{0, ns};
+  double busy = 0.0;
+  double t0 = 0.0;
+  if constexpr (kTeam) {
+    r = team_range(sphere_split_, kSphereUnit, ns);
+    t0 = omp_get_wtime();
+  }
   if (between) {
-    team_for<kTeam>(ns, [this](std::int64_t q) { sum_sphere(q); });
+    for (std::int64_t q = r.lo; q < r.hi; ++q) sum_sphere(q);
+    if constexpr (kTeam) busy = omp_get_wtime() - t0;
     team_single<kTeam>([this, &between, &error] {
       finish_stress();
       try {
@@ -369,77 +426,81 @@ void Simulation::step_shared(const StepHook& between, std::int64_t ns, std::exce
       } catch (...) {
         error = std::current_exception();  // an exception must not leave the region
       }
-    });  // implicit barrier: every thread sees the hook's dt and cell().l
-    if (!error) {
-      const double dt = dt_;
-      const Mat3 l = cell_.l;
-      team_for<kTeam>(ns, [this, dt, &l](std::int64_t q) { integrate_sphere(q, dt, l); });
-    }
+    });  // implicit barrier: every sum is formed, every thread sees the hook's dt and cell().l
+    if (error) return;
+    if constexpr (kTeam) t0 = omp_get_wtime();
+  }
+  const double dt = dt_;
+  const Mat3 l = cell_.l;
+  // The cell this step ends with, as advance_cell_and_clock() will deform it (the same
+  // operations: the same bits), and the drift measure's F for it.
+  PeriodicCell next = cell_;
+  next.deform(dt);
+  const Mat3 f = rebuild_deformation(next, verlet_);
+  const bool sums = !between;
+  for (std::int64_t q = r.lo; q < r.hi; ++q) {
+    if (sums) sum_sphere(q);
+    integrate_sphere(q, dt, l);
+  }
+  // A second loop: one fused loop was 7 % slower on one thread.
+  double m = 0.0;
+  for (std::int64_t q = r.lo; q < r.hi; ++q) {
+    m = std::max(m, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
+  }
+  if constexpr (kTeam) {
+    sphere_split_.record(omp_get_thread_num(), busy + (omp_get_wtime() - t0));
+#pragma omp critical(dem_drift_max)
+    amax2 = std::max(amax2, m);  // exact in any order; read after the region
+#pragma omp master
+    h_next = next.h;
   } else {
-    const double dt = dt_;
-    const Mat3 l = cell_.l;
-    team_for<kTeam>(ns, [this, dt, &l](std::int64_t q) {
-      sum_sphere(q);
-      integrate_sphere(q, dt, l);
-    });
+    amax2 = m;
+    h_next = next.h;
   }
 }
 
-// The body of step()'s region, run by every thread of its team (kTeam) or by the calling thread
-// alone: amax2 and error are shared.
-template <bool kTeam>
-void Simulation::step_team(const StepHook& between, std::int64_t ns, bool check, const Mat3& f,
-                           double r_max, const SkinInputs& list, double& amax2,
-                           std::exception_ptr& error) {
+// The neighbour check: the drift the last step() measured if it still holds (the same steps,
+// cell matrix and list), else measured now (the same maximum of the same values: the same bits);
+// every thread count takes the same decision. A due rebuild runs here, before the step's region.
+void Simulation::step_neighbors() {
+  const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
+  SkinDecision d{true, verlet_.skin};  // a forced rebuild keeps the skin
   if (check) {
-    if constexpr (kTeam) {
-#pragma omp for reduction(max : amax2) schedule(static)
-      for (std::int64_t q = 0; q < ns; ++q) {
-        amax2 = std::max(amax2, rebuild_drift2(spheres_, f, verlet_, static_cast<std::size_t>(q)));
-      }
-    } else {
-      amax2 = max_drift2(spheres_, f, verlet_);
-    }
+    const Mat3 f = rebuild_deformation(cell_, verlet_);
+    const bool held = drift_.valid && drift_.step == steps_ &&
+                      drift_.built_at_step == verlet_.built_at_step &&
+                      std::memcmp(drift_.h.data(), cell_.h.data(), sizeof(Mat3)) == 0;
+    const double amax2 = held ? drift_.amax2 : max_drift2_region(spheres_, f, verlet_);
+    const SkinInputs list = skin_inputs();
+    d = neighbor_check(rebuild_measure(amax2, f, verlet_.r_max, list.skin), list);
+    if (d.rebuild) verlet_.skin = d.skin;
   }
-  // Every thread takes the same decision from the reduced maximum and the copied list inputs.
-  SkinDecision d{true, list.skin};
-  if (check) d = neighbor_check(rebuild_measure(amax2, f, r_max, list.skin), list);
-  if (d.rebuild) {
-    team_single<kTeam>([this, &error, check, &d] {
-      try {
-        if (check) verlet_.skin = d.skin;  // a forced rebuild keeps the skin
-        update_neighbors(true);
-        size_stress_blocks();
-      } catch (...) {
-        error = std::current_exception();
-      }
-    });  // implicit barrier: every thread sees the new pair list (or the error)
-  }
-  if (!error) step_shared<kTeam>(between, ns, error);
+  if (d.rebuild) update_neighbors(true);
 }
 
 void Simulation::step(const StepHook& between) {
   const auto ns = static_cast<std::int64_t>(spheres_.size());
-  // The neighbour check (needs_rebuild) runs its loop over spheres in the step's region instead
-  // of a region of its own: one fork per step. Every thread then takes the same decision from
-  // the reduced maximum (inputs copied here: a rebuild changes verlet_), and only a due rebuild
-  // costs a `single` and its barrier.
-  const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
-  const Mat3 f = check ? rebuild_deformation(cell_, verlet_) : Mat3::Identity();
-  const double r_max = verlet_.r_max;
-  const SkinInputs list = skin_inputs();
+  step_neighbors();
   size_stress_blocks();
   double amax2 = 0.0;
+  Mat3 h_next = Mat3::Zero();
   std::exception_ptr error;
   if (one_thread(ns)) {
-    step_team<false>(between, ns, check, f, r_max, list, amax2, error);
+    step_shared<false>(between, ns, amax2, h_next, error);
   } else {
+    sphere_split_.prepare(omp_get_max_threads(), (ns + kSphereUnit - 1) / kSphereUnit);
 #pragma omp parallel
-    step_team<true>(between, ns, check, f, r_max, list, amax2, error);
+    step_shared<true>(between, ns, amax2, h_next, error);
+    pair_split_.rebalance();
+    sphere_split_.rebalance();
   }
-  if (error) std::rethrow_exception(error);
+  if (error) {
+    drift_.valid = false;
+    std::rethrow_exception(error);
+  }
   if (!between) finish_stress();
   advance_cell_and_clock();
+  drift_ = Drift{true, steps_, verlet_.built_at_step, h_next, amax2};
 }
 
 double Simulation::critical_dt() const {

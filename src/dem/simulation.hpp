@@ -15,6 +15,7 @@
 #include "dem/params.hpp"
 #include "dem/periodic_cell.hpp"
 #include "dem/spheres.hpp"
+#include "dem/work_split.hpp"
 
 namespace dem {
 
@@ -25,10 +26,14 @@ class Simulation {
   Simulation(Spheres spheres, const PeriodicCell& cell, const Material& mat, const Numerics& num);
 
   /// Runs between the forces and the integration of a step (a stress servo): sees the new
-  /// stress() and forces, may set cell().l and dt. Called by one thread.
+  /// stress() and the contacts' forces, may set cell().l and dt. Called by one thread while the
+  /// others form the spheres' force sums: it must not read or write spheres().
   using StepHook = std::function<void(Simulation&)>;
   /// One step: neighbour update if needed, contact forces, integration, cell deformation with
   /// cell().l. Same results as compute_forces(); integrate(), in ONE OpenMP parallel region.
+  /// The integration also measures the drift of the new positions for the next step's
+  /// neighbour check (kept with the cell matrix it assumed; a change through spheres(),
+  /// verlet() or set_counters() discards it, and the check then measures again: the same bits).
   void step();
   /// The same with `between` run after the forces (compute_forces(); between(*this);
   /// integrate()). An exception from `between` propagates after the region; the step is then
@@ -52,13 +57,19 @@ class Simulation {
   /// Friction angle for new contacts and, if `existing`, for current contacts too [deg].
   void set_friction_deg(double phi_deg, bool existing);
 
-  Spheres& spheres() { return spheres_; }
+  Spheres& spheres() {
+    drift_.valid = false;  // the caller may move spheres
+    return spheres_;
+  }
   [[nodiscard]] const Spheres& spheres() const { return spheres_; }
   PeriodicCell& cell() { return cell_; }
   [[nodiscard]] const PeriodicCell& cell() const { return cell_; }
   Contacts& contacts() { return contacts_; }
   [[nodiscard]] const Contacts& contacts() const { return contacts_; }
-  VerletState& verlet() { return verlet_; }
+  VerletState& verlet() {
+    drift_.valid = false;
+    return verlet_;
+  }
   [[nodiscard]] const VerletState& verlet() const { return verlet_; }
   [[nodiscard]] const CohFrictLaw& law() const { return law_; }
   /// Normal force magnitude of pair p in the last force computation [N]: kn times the overlap of
@@ -81,6 +92,7 @@ class Simulation {
   void set_counters(double time, std::int64_t steps) {
     time_ = time;
     steps_ = steps;
+    drift_.valid = false;
   }
   /// Force a neighbour rebuild at the next compute_forces().
   void invalidate_neighbors() { force_rebuild_ = true; }
@@ -106,16 +118,17 @@ class Simulation {
   void prepare_pair_pass(bool rebuild_due);
   /// One stress block per kStressBlock pairs (each written by the pair loop).
   void size_stress_blocks();
-  /// The part of step() after the neighbour update, run by every thread of its region;
-  /// an exception of the hook is stored in `error`.
+  /// The part of step() after the neighbour update, run by every thread of its region: pair
+  /// loop, sums, (hook), integration and the drift of the new positions (their largest
+  /// rebuild_drift2 into amax2); an exception of the hook is stored in `error`.
   /// kTeam: called by every thread of a parallel region (work-shared loops); otherwise by the
   /// calling thread alone, without OpenMP constructs (dem::one_thread).
   template <bool kTeam>
-  void step_shared(const StepHook& between, std::int64_t ns, std::exception_ptr& error);
-  /// The neighbour check and update, then step_shared (the body of step()'s region).
-  template <bool kTeam>
-  void step_team(const StepHook& between, std::int64_t ns, bool check, const common::Mat3& f,
-                 double r_max, const SkinInputs& list, double& amax2, std::exception_ptr& error);
+  void step_shared(const StepHook& between, std::int64_t ns, double& amax2, common::Mat3& h_next,
+                   std::exception_ptr& error);
+  /// The neighbour check of step() (from the drift the last step measured, or measured now)
+  /// and the rebuild it asks for.
+  void step_neighbors();
   /// The current list's inputs to the skin choice (measure 0: the caller's).
   [[nodiscard]] SkinInputs skin_inputs() const;
   /// Whether to rebuild the list with the drift `measure`, and with which skin: the fixed skin
@@ -143,7 +156,21 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   bool force_rebuild_ = true;
+  /// The largest rebuild_drift2 of the positions a step() ended with, for the next step's check,
+  /// valid while the steps, the cell matrix (h, bit for bit) and the list are the ones it assumed.
+  struct Drift {
+    bool valid = false;
+    std::int64_t step = -1;
+    std::int64_t built_at_step = -1;
+    common::Mat3 h = common::Mat3::Zero();
+    double amax2 = 0.0;
+  };
+  Drift drift_;
   std::vector<common::Mat3> block_stress_;  ///< scratch of the pair pass (no state)
+  /// How the pair loop (in stress blocks) and the sphere loops are cut between a team's threads,
+  /// moved by their measured times (no state: results do not depend on it).
+  WorkSplit pair_split_;
+  WorkSplit sphere_split_;
 };
 
 /// For its lifetime `sim` runs with the fixed skin: the preparations (equilibrate, prepare,

@@ -315,6 +315,26 @@ TEST(Simulation, StepEqualsComputeForcesThenIntegrate_threads_2) {
   omp_set_num_threads(omp_get_num_procs());
 }
 
+// step() measures the drift of the positions it ends with for the next step's neighbour check;
+// a sphere moved through spheres() between steps must still be seen (the measure is taken
+// again): moved by the skin, the next step rebuilds the list, on 1 and 2 threads.
+TEST(Simulation, SphereMovedBetweenStepsIsSeenByTheNeighbourCheck) {
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
+                                               dem_test::reference_material(), dem::Numerics{});
+    const dem::Simulation& view = sim;  // reads only: the mutable accessors discard the measure
+    for (int k = 0; k < 3; ++k) sim.step();
+    const std::int64_t builds = view.verlet().builds;
+    sim.step();
+    ASSERT_EQ(view.verlet().builds, builds) << "no rebuild while the spheres barely move";
+    sim.spheres().x[17] += Vec3(0.0, 0.0, 0.6 * view.verlet().skin);
+    sim.step();
+    EXPECT_EQ(view.verlet().builds, builds + 1) << threads << " thread(s)";
+  }
+  omp_set_num_threads(omp_get_num_procs());
+}
+
 TEST(Simulation, CriticalTimeStepOfReferencePacking) {
   dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
                                              dem_test::reference_material(), dem::Numerics{});
