@@ -262,11 +262,6 @@ void Simulation::pair_block(std::int64_t b, CohFrictBatch& batch) {
   }
 }
 
-void Simulation::prepare_pair_pass(bool rebuild_due) {
-  update_neighbors(rebuild_due);
-  size_stress_blocks();
-}
-
 void Simulation::size_stress_blocks() {
   // Every block's entry is written by the pair loop: only the size matters.
   const auto np = static_cast<std::int64_t>(contacts_.size());
@@ -354,13 +349,9 @@ inline void Simulation::integrate_sphere(std::int64_t q, double dt, const Mat3& 
 }
 
 void Simulation::compute_forces() {
-  bool due = force_rebuild_;
-  if (!due) {
-    const SkinDecision d = neighbor_check(drift_measure(spheres_, cell_, verlet_), skin_inputs());
-    due = d.rebuild;
-    if (due && verlet_.x_ref.size() == spheres_.size()) verlet_.skin = d.skin;
-  }
-  prepare_pair_pass(due);
+  // The check of step(): after a step() (an RVE step's end forces) the drift it measured.
+  step_neighbors();
+  size_stress_blocks();
   const auto ns = static_cast<std::int64_t>(spheres_.size());
   if (one_thread(ns)) {
     pair_forces<false>();

@@ -114,8 +114,6 @@ class Simulation {
  private:
   /// Rebuild the pair list if `due`.
   void update_neighbors(bool due);
-  /// Neighbour update (if `rebuild_due`) and size_stress_blocks().
-  void prepare_pair_pass(bool rebuild_due);
   /// One stress block per kStressBlock pairs (each written by the pair loop).
   void size_stress_blocks();
   /// The part of step() after the neighbour update, run by every thread of its region: pair
@@ -126,8 +124,8 @@ class Simulation {
   template <bool kTeam>
   void step_shared(const StepHook& between, std::int64_t ns, double& amax2, common::Mat3& h_next,
                    std::exception_ptr& error);
-  /// The neighbour check of step() (from the drift the last step measured, or measured now)
-  /// and the rebuild it asks for.
+  /// The neighbour check of step() and compute_forces() (from the drift the last step()
+  /// measured, or measured now) and the rebuild it asks for.
   void step_neighbors();
   /// The current list's inputs to the skin choice (measure 0: the caller's).
   [[nodiscard]] SkinInputs skin_inputs() const;
