@@ -207,9 +207,37 @@ MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const Material& mat, const 
     apply_lanes<false>(b, mat, tan_phi, ha, l, dt);
   }
 }
+MPMXDEM_LANE_CLONES void run_stiffness_lanes(const Material& material, StiffnessLanes& b) {
+  const Material m = material;  // in registers: the stores below cannot alias it
+  const int nl = b.n;
+#pragma omp simd
+  for (int q = 0; q < nl; ++q) {
+    const double r1 = b.r1[q];
+    const double r2 = b.r2[q];
+    const CohFrictStiffness k = cohfrict_stiffness(m, r1, r2);
+    const double a0 = b.n0[q] * b.n0[q];
+    const double a1 = b.n1[q] * b.n1[q];
+    const double a2 = b.n2[q] * b.n2[q];
+    const double dn = k.kn - k.ks;
+    const double dt = k.kt - k.kr;
+    const double s1 = k.ks * r1 * r1;
+    const double s2 = k.ks * r2 * r2;
+    b.kt[0][q] = k.ks + dn * a0;
+    b.kt[1][q] = k.ks + dn * a1;
+    b.kt[2][q] = k.ks + dn * a2;
+    b.kr1[0][q] = s1 * (1.0 - a0) + dt * a0 + k.kr;
+    b.kr1[1][q] = s1 * (1.0 - a1) + dt * a1 + k.kr;
+    b.kr1[2][q] = s1 * (1.0 - a2) + dt * a2 + k.kr;
+    b.kr2[0][q] = s2 * (1.0 - a0) + dt * a0 + k.kr;
+    b.kr2[1][q] = s2 * (1.0 - a1) + dt * a1 + k.kr;
+    b.kr2[2][q] = s2 * (1.0 - a2) + dt * a2 + k.kr;
+  }
+}
 #undef MPMXDEM_LANE_CLONES
 
 }  // namespace
+
+void stiffness_lanes(const Material& m, StiffnessLanes& b) { run_stiffness_lanes(m, b); }
 
 void CohFrictLaw::apply_batch(CohFrictBatch& b, const std::vector<double>& tan_phi,
                               CohFrictHistoryArrays& hist, const common::Mat3& l, double dt,

@@ -126,6 +126,19 @@ class CohFrictLaw {
   double tan_phi_ = 0.0;
 };
 
+/// Lanes of the critical time step's stiffness sums (Simulation::critical_dt): up to kLanes pairs
+/// with radii r1, r2 and stored normal n (components n0, n1, n2); out, per lane, the translational
+/// terms kt_a = ks + (kn - ks) n_a^2 (the same for both spheres) and the rotational terms of each
+/// sphere, kr_a = ks r^2 (1 - n_a^2) + (kt - kr) n_a^2 + kr with its own radius r (r1: kr1, r2:
+/// kr2), the stiffnesses of cohfrict_stiffness: the operations of the scalar form, bit for bit.
+struct StiffnessLanes {
+  static constexpr int kLanes = 64;
+  int n = 0;
+  alignas(64) double r1[kLanes], r2[kLanes], n0[kLanes], n1[kLanes], n2[kLanes];
+  alignas(64) double kt[3][kLanes], kr1[3][kLanes], kr2[3][kLanes];
+};
+void stiffness_lanes(const Material& m, StiffnessLanes& b);
+
 // Defined inline: it is the body of the force loop.
 namespace detail {
 /// Radial return of a tangential vector onto the disc of radius cap.

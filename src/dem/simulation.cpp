@@ -500,42 +500,61 @@ double Simulation::critical_dt() const {
   const auto ns = static_cast<std::size_t>(s.size());
   const std::size_t np = c.size();
   double best = std::numeric_limits<double>::infinity();
-  // Per-sphere sums of the contacts' translational (kt) and rotational (kr) stiffnesses, one pass
-  // over the pairs in pair order: each pair's stiffnesses are computed once (they are not stored
-  // per pair) and added to both spheres, in the order of each sphere's pair list, as a loop over
-  // the spheres' lists would. In a buffer of the calling thread (the farm calls this for many
-  // RVEs at once, one per thread); one thread: it is called once per MPM step or dt_refresh
-  // steps, and a 1000-sphere cell takes about a third of a step.
+  // Per-sphere sums of the contacts' translational (kt) and rotational (kr) stiffnesses, in pair
+  // order, each contact adding to its two spheres, as a loop over the spheres' lists would. The
+  // contacts are taken kLanes at a time (their indices compacted without a branch on the pair's
+  // state), their terms computed in vector lanes (stiffness_lanes: the scalar operations, bit
+  // for bit), then added in order. In buffers of the calling thread (the farm calls this for
+  // many RVEs at once, one per thread); one thread: it is called once per MPM step or dt_refresh
+  // steps. 1000 spheres: 21 us a call, 32 us with the scalar terms (docs/dem.md "Speed").
   struct Sums {
     Vec3 kt = Vec3::Zero();
     Vec3 kr = Vec3::Zero();
     bool any = false;
   };
   static thread_local std::vector<Sums> sums;
+  static thread_local StiffnessLanes lanes;
   sums.assign(ns, Sums{});
   const Material& mat = law_.material();
-  for (std::size_t p = 0; p < np; ++p) {
-    if (c.active[p] == 0) continue;
-    const auto i = static_cast<std::size_t>(c.i[p]);
-    const auto j = static_cast<std::size_t>(c.j[p]);
-    const CohFrictStiffness k = cohfrict_stiffness(mat, s.r[i], s.r[j]);
-    const Vec3 n2 = Vec3(c.hist.normal[0][p], c.hist.normal[1][p], c.hist.normal[2][p]).cwiseAbs2();
-    for (const std::size_t q : {i, j}) {
-      Sums& m = sums[q];
-      m.any = true;
-      const double r = s.r[q];
-      for (int a = 0; a < 3; ++a) {
-        m.kt[a] += k.ks + (k.kn - k.ks) * n2[a];
-        m.kr[a] += k.ks * r * r * (1.0 - n2[a]) + (k.kt - k.kr) * n2[a] + k.kr;
-      }
+  std::array<std::size_t, StiffnessLanes::kLanes> idx{};
+  for (std::size_t p = 0; p < np;) {
+    int n = 0;
+    for (; p < np && n < StiffnessLanes::kLanes; ++p) {
+      idx[static_cast<std::size_t>(n)] = p;
+      n += c.active[p] != 0 ? 1 : 0;
+    }
+    lanes.n = n;
+    for (int q = 0; q < n; ++q) {
+      const std::size_t pq = idx[static_cast<std::size_t>(q)];
+      lanes.r1[q] = s.r[static_cast<std::size_t>(c.i[pq])];
+      lanes.r2[q] = s.r[static_cast<std::size_t>(c.j[pq])];
+      lanes.n0[q] = c.hist.normal[0][pq];
+      lanes.n1[q] = c.hist.normal[1][pq];
+      lanes.n2[q] = c.hist.normal[2][pq];
+    }
+    stiffness_lanes(mat, lanes);
+    for (int q = 0; q < n; ++q) {
+      const std::size_t pq = idx[static_cast<std::size_t>(q)];
+      Sums& a = sums[static_cast<std::size_t>(c.i[pq])];
+      Sums& b = sums[static_cast<std::size_t>(c.j[pq])];
+      a.any = true;
+      a.kt = Vec3(a.kt[0] + lanes.kt[0][q], a.kt[1] + lanes.kt[1][q], a.kt[2] + lanes.kt[2][q]);
+      a.kr = Vec3(a.kr[0] + lanes.kr1[0][q], a.kr[1] + lanes.kr1[1][q], a.kr[2] + lanes.kr1[2][q]);
+      b.any = true;
+      b.kt = Vec3(b.kt[0] + lanes.kt[0][q], b.kt[1] + lanes.kt[1][q], b.kt[2] + lanes.kt[2][q]);
+      b.kr = Vec3(b.kr[0] + lanes.kr2[0][q], b.kr[1] + lanes.kr2[1][q], b.kr[2] + lanes.kr2[2][q]);
     }
   }
+  // min sqrt(2 v) = sqrt(2 min v): 2 v is exact and the square root correctly rounded and
+  // monotone, so one root gives the same bits.
+  double vmin = std::numeric_limits<double>::infinity();
   for (std::size_t q = 0; q < ns; ++q) {
     const Sums& m = sums[q];
     if (!m.any) continue;
     const double v = std::min(s.m[q] / m.kt.maxCoeff(), s.inertia[q] / m.kr.maxCoeff());
-    best = std::min(best, std::sqrt(2.0 * v));
+    if (v >= 0.0) vmin = std::min(vmin, v);  // (a negative or NaN v, whose root is NaN: left out)
   }
+  best = std::sqrt(2.0 * vmin);
   if (std::isfinite(best)) return best;
   // No contact: P-wave estimate scaled as on the reference packing.
   const double rmin = s.size() > 0 ? *std::min_element(s.r.begin(), s.r.end()) : 1.0;

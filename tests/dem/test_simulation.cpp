@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "dem/loading.hpp"
@@ -333,6 +334,65 @@ TEST(Simulation, SphereMovedBetweenStepsIsSeenByTheNeighbourCheck) {
     EXPECT_EQ(view.verlet().builds, builds + 1) << threads << " thread(s)";
   }
   omp_set_num_threads(omp_get_num_procs());
+}
+
+// YADE's GlobalStiffnessTimeStepper as the scalar loop it was written as (per active contact,
+// both spheres, in pair order), against critical_dt(), which takes the contacts in vector lanes:
+// the same bits, with ended contacts among the pairs and with a twisting stiffness.
+double critical_dt_scalar(const dem::Simulation& sim) {
+  const dem::Spheres& s = sim.spheres();
+  const dem::Contacts& c = sim.contacts();
+  const dem::Material& mat = sim.law().material();
+  std::vector<Vec3> kt(s.size(), Vec3::Zero()), kr(s.size(), Vec3::Zero());
+  std::vector<bool> any(s.size(), false);
+  for (std::size_t p = 0; p < c.size(); ++p) {
+    if (c.active[p] == 0) continue;
+    const auto i = static_cast<std::size_t>(c.i[p]);
+    const auto j = static_cast<std::size_t>(c.j[p]);
+    const dem::CohFrictStiffness k = dem::cohfrict_stiffness(mat, s.r[i], s.r[j]);
+    const Vec3 n2 = Vec3(c.hist.normal[0][p], c.hist.normal[1][p], c.hist.normal[2][p]).cwiseAbs2();
+    for (const std::size_t q : {i, j}) {
+      any[q] = true;
+      const double r = s.r[q];
+      for (int a = 0; a < 3; ++a) {
+        kt[q][a] += k.ks + (k.kn - k.ks) * n2[a];
+        kr[q][a] += k.ks * r * r * (1.0 - n2[a]) + (k.kt - k.kr) * n2[a] + k.kr;
+      }
+    }
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t q = 0; q < s.size(); ++q) {
+    if (!any[q]) continue;
+    const double v = std::min(s.m[q] / kt[q].maxCoeff(), s.inertia[q] / kr[q].maxCoeff());
+    best = std::min(best, std::sqrt(2.0 * v));
+  }
+  return best;
+}
+
+TEST(Simulation, CriticalTimeStepLanesEqualTheScalarSums) {
+  for (const double alpha_t : {0.0, 1.5}) {
+    dem::Material mat = dem_test::reference_material();
+    mat.alpha_t = alpha_t;
+    dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(), mat, dem::Numerics{});
+    // Extension with fluctuating velocities: contacts open, their pairs stay listed.
+    Mat3 l = Mat3::Zero();
+    l(2, 2) = 200.0;
+    l(0, 1) = 50.0;
+    sim.cell().l = l;
+    std::vector<Vec3>& u = sim.spheres().u;
+    for (std::size_t q = 0; q < u.size(); ++q) {
+      const auto t = static_cast<double>(q);
+      u[q] = 0.1 * Vec3(std::sin(t), std::cos(1.3 * t), std::sin(0.7 * t));
+    }
+    for (int k = 0; k < 200; ++k) sim.step();
+    std::size_t active = 0;
+    for (const auto a : sim.contacts().active) active += a != 0 ? 1 : 0;
+    ASSERT_LT(active, sim.contacts().size() * 9 / 10) << "some listed pairs out of contact";
+    ASSERT_GT(active, 100u);
+    const double a = sim.critical_dt();
+    const double b = critical_dt_scalar(sim);
+    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << a << " vs " << b << ", alpha_t " << alpha_t;
+  }
 }
 
 TEST(Simulation, CriticalTimeStepOfReferencePacking) {
