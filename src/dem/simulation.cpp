@@ -499,7 +499,6 @@ double Simulation::critical_dt() const {
   const Contacts& c = contacts_;
   const auto ns = static_cast<std::size_t>(s.size());
   const std::size_t np = c.size();
-  double best = std::numeric_limits<double>::infinity();
   // Per-sphere sums of the contacts' translational (kt) and rotational (kr) stiffnesses, in pair
   // order, each contact adding to its two spheres, as a loop over the spheres' lists would. The
   // contacts are taken kLanes at a time (their indices compacted without a branch on the pair's
@@ -554,7 +553,7 @@ double Simulation::critical_dt() const {
     const double v = std::min(s.m[q] / m.kt.maxCoeff(), s.inertia[q] / m.kr.maxCoeff());
     if (v >= 0.0) vmin = std::min(vmin, v);  // (a negative or NaN v, whose root is NaN: left out)
   }
-  best = std::sqrt(2.0 * vmin);
+  const double best = std::sqrt(2.0 * vmin);
   if (std::isfinite(best)) return best;
   // No contact: P-wave estimate scaled as on the reference packing.
   const double rmin = s.size() > 0 ? *std::min_element(s.r.begin(), s.r.end()) : 1.0;
