@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""2-thread speed-up of the DEM step (issue 17, docs/dem.md "Speed"): interleaved runs of one
-bench_dem binary on 1 and 2 threads (`bench_dem "" tiles 1 steps`, then `... 2 steps`, REPS
-times: both see the same load), printing every run's us per particle-step, each pair's ratio and
-the medians. The VM is noisy: read the median ratio.
+"""2-thread speed-up of the DEM step (issue 17, docs/dem.md "Speed"): interleaved runs of one or
+more bench_dem binaries on 1 and 2 threads (per round, each binary `bench_dem "" tiles 1 steps`,
+then `... 2 steps`; REPS rounds: all see the same load), printing every run's us per
+particle-step, each pair's ratio and the medians. The VM is noisy, and often runs 2 threads in a
+slow mode (a 2-thread step as slow as a 1-thread one): the medians are also given separately for
+the pairs with a speed-up above --slow (fast spells) and below it.
 
   tools/bench_dem_speedup.py build/src/dem/bench_dem --tiles 1 --steps 4000 --reps 9
+  tools/bench_dem_speedup.py OLD/bench_dem NEW/bench_dem --tiles 1 --steps 6000 --reps 20
 """
 import argparse
 import os
@@ -22,21 +25,33 @@ def run(binary, tiles, threads, steps):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("binary")
+    ap.add_argument("binary", nargs="+")
     ap.add_argument("--tiles", type=int, default=1)
     ap.add_argument("--steps", type=int, default=4000)
     ap.add_argument("--reps", type=int, default=9)
+    ap.add_argument("--slow", type=float, default=1.5,
+                    help="speed-up below which a pair counts as the VM's slow mode (1.5)")
     a = ap.parse_args()
-    one, two = [], []
+    one = {b: [] for b in a.binary}
+    two = {b: [] for b in a.binary}
     for _ in range(a.reps):
-        one.append(run(a.binary, a.tiles, 1, a.steps))
-        two.append(run(a.binary, a.tiles, 2, a.steps))
-    ratios = [x / y for x, y in zip(one, two)]
-    print("tiles %d, %d steps: 1 thread %s us" % (a.tiles, a.steps, " ".join("%.4f" % x for x in one)))
-    print("2 threads %s us" % " ".join("%.4f" % x for x in two))
-    print("speed-ups %s" % " ".join("%.2f" % r for r in ratios))
-    print("medians: 1 thread %.4f us, 2 threads %.4f us, speed-up %.2f (%d pairs)"
-          % (statistics.median(one), statistics.median(two), statistics.median(ratios), a.reps))
+        for b in a.binary:
+            one[b].append(run(b, a.tiles, 1, a.steps))
+            two[b].append(run(b, a.tiles, 2, a.steps))
+    for b in a.binary:
+        ratios = [x / y for x, y in zip(one[b], two[b])]
+        fast = [r for r in ratios if r >= a.slow]
+        slow = [r for r in ratios if r < a.slow]
+        print("%s, tiles %d, %d steps: 1 thread %s us"
+              % (b, a.tiles, a.steps, " ".join("%.4f" % x for x in one[b])))
+        print("2 threads %s us" % " ".join("%.4f" % x for x in two[b]))
+        print("speed-ups %s" % " ".join("%.2f" % r for r in ratios))
+        print("medians: 1 thread %.4f us, 2 threads %.4f us, speed-up %.2f (%d pairs)"
+              % (statistics.median(one[b]), statistics.median(two[b]), statistics.median(ratios),
+                 a.reps))
+        print("  pairs at or above %.2f: %d, median %s; below: %d, median %s"
+              % (a.slow, len(fast), "%.2f" % statistics.median(fast) if fast else "-", len(slow),
+                 "%.2f" % statistics.median(slow) if slow else "-"))
 
 
 if __name__ == "__main__":
