@@ -450,17 +450,17 @@ void Simulation::step_shared(const StepHook& between, std::int64_t ns, double& a
   }
 }
 
-// The neighbour check: the drift the last step() measured if it still holds (the same steps,
-// cell matrix and list), else measured now (the same maximum of the same values: the same bits);
-// every thread count takes the same decision. A due rebuild runs here, before the step's region.
+// The neighbour check: the drift the last step() measured if it still holds (kept with the cell
+// matrix it assumed; whatever else moves spheres or changes the list discards it), else measured
+// now (the same maximum of the same values: the same bits); every thread count takes the same
+// decision. A due rebuild runs here, before the step's region.
 void Simulation::step_neighbors() {
   const bool check = !force_rebuild_ && verlet_.x_ref.size() == spheres_.size();
   SkinDecision d{true, verlet_.skin};  // a forced rebuild keeps the skin
   if (check) {
     const Mat3 f = rebuild_deformation(cell_, verlet_);
-    const bool held = drift_.valid && drift_.step == steps_ &&
-                      drift_.built_at_step == verlet_.built_at_step &&
-                      std::memcmp(drift_.h.data(), cell_.h.data(), sizeof(Mat3)) == 0;
+    const bool held =
+        drift_.valid && std::memcmp(drift_.h.data(), cell_.h.data(), sizeof(Mat3)) == 0;
     const double amax2 = held ? drift_.amax2 : max_drift2_region(spheres_, f, verlet_);
     const SkinInputs list = skin_inputs();
     d = neighbor_check(rebuild_measure(amax2, f, verlet_.r_max, list.skin), list);
@@ -491,7 +491,7 @@ void Simulation::step(const StepHook& between) {
   }
   if (!between) finish_stress();
   advance_cell_and_clock();
-  drift_ = Drift{true, steps_, verlet_.built_at_step, h_next, amax2};
+  drift_ = Drift{true, h_next, amax2};
 }
 
 double Simulation::critical_dt() const {

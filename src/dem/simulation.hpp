@@ -119,8 +119,9 @@ class Simulation {
   /// The part of step() after the neighbour update, run by every thread of its region: pair
   /// loop, sums, (hook), integration and the drift of the new positions (their largest
   /// rebuild_drift2 into amax2); an exception of the hook is stored in `error`.
-  /// kTeam: called by every thread of a parallel region (work-shared loops); otherwise by the
-  /// calling thread alone, without OpenMP constructs (dem::one_thread).
+  /// kTeam: called by every thread of a parallel region (each on its ranges of pair_split_ and
+  /// sphere_split_); otherwise by the calling thread alone, without OpenMP constructs
+  /// (dem::one_thread).
   template <bool kTeam>
   void step_shared(const StepHook& between, std::int64_t ns, double& amax2, common::Mat3& h_next,
                    std::exception_ptr& error);
@@ -155,11 +156,11 @@ class Simulation {
   std::int64_t steps_ = 0;
   bool force_rebuild_ = true;
   /// The largest rebuild_drift2 of the positions a step() ended with, for the next step's check,
-  /// valid while the steps, the cell matrix (h, bit for bit) and the list are the ones it assumed.
+  /// while the cell matrix is the one it assumed (h, bit for bit: cell() may change it). Discarded
+  /// by whatever else moves the spheres or changes the list: integrate(), a rebuild, a failed
+  /// step, the mutable spheres() and verlet(), set_counters().
   struct Drift {
     bool valid = false;
-    std::int64_t step = -1;
-    std::int64_t built_at_step = -1;
     common::Mat3 h = common::Mat3::Zero();
     double amax2 = 0.0;
   };
