@@ -140,7 +140,7 @@ int command_run(const Options& given, const Comm& comm) {
     const double busy =
         s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
     spdlog::info(
-        "done: {} MPM steps, t = {:.6g} s, wall {:.1f} s; RVE time {:.1f} s of the critical rank, "
+        "done: {} MPM steps, t = {:.6g} s, wall {:.2f} s; RVE time {:.2f} s of the critical rank, "
         "balance (mean/max busy) {:.3f}, {} migration(s) moving {} RVE(s) in {:.2f} s; {} "
         "checkpoint(s) written{}",
         s.steps, s.time, s.wall_s, s.times.critical_busy, busy, s.migrations, s.rves_moved,
