@@ -6,11 +6,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "app/dem_setup.hpp"
 #include "app/insitu.hpp"
@@ -88,7 +92,11 @@ struct DemPool {
     auto it = rves.find(key);
     if (it != rves.end()) return *it->second;
     dem::Simulation sim = sample(k);
-    if (g >= 0) prepare_group(sim, g, k);
+    if (g >= 0) spdlog::info("{}", prepare_group(sim, g, k));
+    return add_rve(key, std::move(sim));
+  }
+
+  const dem::Rve& add_rve(const std::pair<std::int32_t, std::int64_t>& key, dem::Simulation sim) {
     const auto& rve =
         *rves.emplace(key,
                       std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params)))
@@ -100,8 +108,69 @@ struct DemPool {
     return rve;
   }
 
-  /// Brings a copy of sample k to the target of group g (tensor servo) and logs the cost.
-  void prepare_group(dem::Simulation& sim, std::int32_t g, std::int64_t k) const {
+  /// Makes ahead, on this rank's threads, the samples and the (group, sample) RVEs that the
+  /// points `ids` need and that are not made yet: each preparation on one thread (the DEM is
+  /// the same bits on any number of threads, so the RVEs are those get() would make one by
+  /// one), their log lines in (sample, group) order afterwards, the first failure in that
+  /// order rethrown.
+  void prepare(const std::vector<std::int64_t>& ids) {
+    std::set<std::int64_t> new_samples;
+    std::set<std::pair<std::int32_t, std::int64_t>> new_rves;
+    for (const std::int64_t id : ids) {
+      const std::int32_t g = plan.group_of(id);
+      const std::int64_t k = sample_of(id, plan.options.samples);
+      if (samples.count(k) == 0) new_samples.insert(k);
+      if (g >= 0 && rves.count({g, k}) == 0) new_rves.insert({g, k});
+    }
+    const std::vector<std::int64_t> ks(new_samples.begin(), new_samples.end());
+    std::vector<std::optional<dem::Simulation>> made(ks.size());
+    in_parallel(ks.size(), [&](std::size_t i, std::vector<std::string>& lines) {
+      made[i] = prepared_sample(job, ks[i], &lines);
+    });
+    for (std::size_t i = 0; i < ks.size(); ++i) {
+      if (samples.empty()) {
+        const dem::Packing pk{made[i]->cell(), made[i]->spheres().x, made[i]->spheres().r};
+        params.d50 = dem_d50(job, pk);
+      }
+      samples.emplace(ks[i], std::move(*made[i]));
+    }
+    const std::vector<std::pair<std::int32_t, std::int64_t>> keys(new_rves.begin(), new_rves.end());
+    std::vector<std::optional<dem::Simulation>> grouped(keys.size());
+    in_parallel(keys.size(), [&](std::size_t i, std::vector<std::string>& lines) {
+      dem::Simulation sim = samples.at(keys[i].second);
+      lines.push_back(prepare_group(sim, keys[i].first, keys[i].second));
+      grouped[i] = std::move(sim);
+    });
+    for (std::size_t i = 0; i < keys.size(); ++i) add_rve(keys[i], std::move(*grouped[i]));
+  }
+
+  /// Runs job(i, lines) for i < n on the rank's threads (dynamic, one at a time: preparations
+  /// differ in cost), then logs each job's lines in the order of i and rethrows the first
+  /// failure in that order.
+  static void in_parallel(std::size_t n,
+                          const std::function<void(std::size_t, std::vector<std::string>&)>& job) {
+    std::vector<std::vector<std::string>> lines(n);
+    std::vector<std::exception_ptr> failed(n);
+    const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
+    for (std::int64_t i = 0; i < count; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      try {
+        job(u, lines[u]);
+      } catch (...) {
+        failed[u] = std::current_exception();
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (failed[i]) std::rethrow_exception(failed[i]);
+      for (const std::string& line : lines[i]) spdlog::info("{}", line);
+    }
+  }
+
+  /// Brings a copy of sample k to the target of group g (tensor servo); returns the log line
+  /// with its cost.
+  [[nodiscard]] std::string prepare_group(dem::Simulation& sim, std::int32_t g,
+                                          std::int64_t k) const {
     dem::StressTarget t;
     t.stress = plan.groups.target[static_cast<std::size_t>(g)];
     t.stress_tol = plan.options.stress_tolerance;
@@ -120,7 +189,7 @@ struct DemPool {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const dem::Measures m = dem::measure(sim);
-    spdlog::info(
+    return fmt::format(
         "in-situ preparation: group {} ({} points), sample {}: {} DEM steps, {:.2f} s; target {}, "
         "reached {}, e = {:.4f}, unbalanced {:.3g}",
         g, plan.groups.count[static_cast<std::size_t>(g)], k, steps, wall, stress_text(t.stress),
@@ -171,6 +240,14 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
     if (r.has("elastic/id")) return farm::ElasticMicro::load(r);
     return farm::DemMicro::load(r);
   };
+  if (proto) {
+    k.prepare = [proto, dem_ids](const std::vector<std::int64_t>& ids) {
+      std::vector<std::int64_t> dem;
+      for (const std::int64_t id : ids)
+        if (dem_ids.count(id) != 0) dem.push_back(id);
+      proto->prepare(dem);
+    };
+  }
   return k;
 }
 

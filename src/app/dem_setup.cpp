@@ -87,7 +87,15 @@ double dem_d50(const Job& job, const dem::Packing& packing) {
   return rm.empty() ? 0.0 : 2.0 * rm.back().first;
 }
 
-dem::Simulation prepared_sample(const Job& job, std::int64_t sample) {
+dem::Simulation prepared_sample(const Job& job, std::int64_t sample,
+                                std::vector<std::string>* lines) {
+  auto say = [lines](std::string line) {
+    if (lines != nullptr) {
+      lines->push_back(std::move(line));
+    } else {
+      spdlog::info("{}", line);
+    }
+  };
   bool generated = false;
   const dem::Packing packing = dem_packing(job, generated, sample);
   // prepare / equilibrate run with the fixed skin (dem::FixedSkinScope): the prepared sample does
@@ -109,29 +117,29 @@ dem::Simulation prepared_sample(const Job& job, std::int64_t sample) {
     if (now - last < std::chrono::seconds(10)) return;
     last = now;
     spdlog::info(
-        "preparation: {} DEM steps, p = {:.4g} of {:.4g} Pa, e = {:.4f}, Z = {:.3f}, unbalanced "
-        "{:.3g}, "
-        "elapsed {}",
-        s.steps(), m.p, prep.target.pressure, m.void_ratio, m.z, m.unbalanced,
+        "preparation{}: {} DEM steps, p = {:.4g} of {:.4g} Pa, e = {:.4f}, Z = {:.3f}, "
+        "unbalanced {:.3g}, elapsed {}",
+        lines != nullptr ? fmt::format(" of sample {}", sample) : "", s.steps(), m.p,
+        prep.target.pressure, m.void_ratio, m.z, m.unbalanced,
         Progress::clock(std::chrono::duration<double>(now - start).count()));
   };
   if (generated) {
-    spdlog::info(
+    say(fmt::format(
         "sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
         packing.r.size(), job.integer("dem.sample.seed") + sample, prep.target.pressure,
-        prep.friction_comp_deg);
+        prep.friction_comp_deg));
     steps = dem::prepare(sim, prep, observe);
   } else {
-    spdlog::info("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa",
-                 packing.r.size(), job.text("dem.sample.packing"), prep.target.pressure);
+    say(fmt::format("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa",
+                    packing.r.size(), job.text("dem.sample.packing"), prep.target.pressure));
     steps = dem::equilibrate(sim, prep.target, observe);
   }
   const dem::Measures m = dem::measure(sim);
-  spdlog::info(
+  say(fmt::format(
       "prepared in {} DEM steps: p = {:.5g} Pa, q = {:.4g} Pa, e = {:.4f}, Z = {:.3f} (without "
       "rattlers {:.3f}), "
       "unbalanced {:.3g}, dt = {:.4g} s",
-      steps, m.p, m.q, m.void_ratio, m.z, m.z_mech, m.unbalanced, sim.dt());
+      steps, m.p, m.q, m.void_ratio, m.z, m.z_mech, m.unbalanced, sim.dt()));
   return sim;
 }
 

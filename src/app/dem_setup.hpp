@@ -2,6 +2,9 @@
 // prepared sample (a loaded packing re-equilibrated, or a generated cloud compacted).
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "app/job.hpp"
 #include "dem/loading.hpp"
 #include "dem/params.hpp"
@@ -20,8 +23,11 @@ namespace app {
 [[nodiscard]] double dem_d50(const Job& job, const dem::Packing& packing);
 /// A prepared simulation: generated clouds are compacted (lowered friction, restored, then
 /// re-equilibrated); loaded packings are re-equilibrated at the preparation pressure (their
-/// tangential forces are not stored). Logs what it did. `sample`: see dem_packing. Prepared
-/// with the fixed skin (dem::FixedSkinScope); the job's adaptive skin applies to what follows.
-[[nodiscard]] dem::Simulation prepared_sample(const Job& job, std::int64_t sample = 0);
+/// tangential forces are not stored). Logs what it did, or appends its two lines to `lines`
+/// when given (preparations on several threads log in order afterwards; the progress lines of
+/// a long preparation are logged as they come). `sample`: see dem_packing. Prepared with the
+/// fixed skin (dem::FixedSkinScope); the job's adaptive skin applies to what follows.
+[[nodiscard]] dem::Simulation prepared_sample(const Job& job, std::int64_t sample = 0,
+                                              std::vector<std::string>* lines = nullptr);
 
 }  // namespace app

@@ -95,6 +95,10 @@ struct MicroKind {
   std::function<std::unique_ptr<MicroModel>(std::int64_t id)> create;
   /// Rebuilds an RVE from what MicroModel::save wrote (restart, migration).
   std::function<std::unique_ptr<MicroModel>(const common::StateReader& reader)> load;
+  /// Optional: called once on each rank of a fresh start, with the ids it will create, before
+  /// the first create(); makes ahead, on the rank's threads, what several RVEs share (the DEM
+  /// preparations of app::DemPool). create() must give the same RVEs with or without it.
+  std::function<void(const std::vector<std::int64_t>& ids)> prepare;
 };
 
 }  // namespace farm

@@ -75,7 +75,18 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
     : RveFarm(Setup{}, comm, std::move(kind), std::move(ids), grid, options) {
   ErrorKind kind_err = ErrorKind::none;
   std::string msg;
+  if (kind_.prepare) {
+    std::vector<std::int64_t> local_ids;
+    for (const std::size_t k : placement_.local()) local_ids.push_back(placement_.ids()[k]);
+    try {
+      kind_.prepare(local_ids);
+    } catch (const std::exception& e) {
+      kind_err = current_error_kind();
+      msg = std::string("farm: preparing the RVEs failed: ") + e.what();
+    }
+  }
   for (const std::size_t k : placement_.local()) {
+    if (kind_err != ErrorKind::none) break;
     try {
       models_[k] = kind_.create(placement_.ids()[k]);
     } catch (const std::exception& e) {

@@ -261,6 +261,7 @@ MicroKind spared_kind(MicroKind inner, const SparingOptions& options, SparePredi
       return std::make_unique<SparedMicro>(std::move(m), options, tangent);
     return m;
   };
+  k.prepare = inner.prepare;
   return k;
 }
 

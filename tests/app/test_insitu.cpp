@@ -1,14 +1,18 @@
 // Tests of app/insitu.*: geostatic targets against rho g depth and K0, the pressure floor, the
 // grouping of the targets (M distinct targets -> M preparations, a tolerance that merges them ->
 // fewer, independent of the input order), the plan of a job, and the RVEs the coupled set-up
-// makes from it (targets reached, pool of samples, independence of the creation order).
+// makes from it (targets reached, pool of samples, independence of the creation order, the
+// preparations made ahead on threads).
 #include "app/insitu.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "app/coupled_setup.hpp"
 #include "app/job.hpp"
@@ -256,6 +260,43 @@ samples = 2
   ASSERT_NE(d2, nullptr);
   EXPECT_NE(d2->rve().simulation().spheres().r, d3->rve().simulation().spheres().r);
   EXPECT_NEAR(m2->stress()(2, 2), -60e3, 0.01 * 60e3);
+}
+
+// The farm calls micro.prepare with a rank's ids before it creates their RVEs: the samples and
+// the (group, sample) preparations are then made on the rank's threads, several at once. Each
+// RVE must be the same bits as the one created alone, lazily (2 samples x 3 groups and the
+// prepared body: 4 preparations for the 4 points; with 3 threads, 2 samples at once, then 3
+// groups at once). Compared: the stress, every sphere's position, velocity and spin, the step.
+TEST(Insitu, PreparationsMadeAheadOnThreadsGiveTheSameRves) {
+  const app::Job job = app::Job::parse(insitu_job(R"(
+[dem.initial_state]
+pressure_floor = "10 kPa"
+group_tolerance = 0.01
+samples = 2
+)"),
+                                       "insitu.toml");
+  const farm::CoupledConfig lazy = app::coupled_setup(job, app::RunLimits{"unused", -1});
+  const farm::CoupledConfig ahead = app::coupled_setup(job, app::RunLimits{"unused", -1});
+  ASSERT_TRUE(ahead.micro.prepare);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(3);
+  ahead.micro.prepare({3, 2, 1, 0});
+  omp_set_num_threads(threads);
+  for (std::int64_t id = 0; id < 4; ++id) {
+    const std::unique_ptr<farm::MicroModel> a = lazy.micro.create(id);
+    const std::unique_ptr<farm::MicroModel> b = ahead.micro.create(id);
+    const auto* da = dynamic_cast<const farm::DemMicro*>(a.get());
+    const auto* db = dynamic_cast<const farm::DemMicro*>(b.get());
+    ASSERT_NE(da, nullptr);
+    ASSERT_NE(db, nullptr);
+    const dem::Simulation& sa = da->rve().simulation();
+    const dem::Simulation& sb = db->rve().simulation();
+    EXPECT_EQ(a->stress(), b->stress()) << id;
+    EXPECT_EQ(sa.steps(), sb.steps()) << id;
+    EXPECT_EQ(sa.spheres().x, sb.spheres().x) << id;
+    EXPECT_EQ(sa.spheres().u, sb.spheres().u) << id;
+    EXPECT_EQ(sa.spheres().w, sb.spheres().w) << id;
+  }
 }
 
 }  // namespace
