@@ -5,25 +5,18 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
-#include <exception>
-#include <functional>
 #include <limits>
-#include <map>
 #include <memory>
-#include <optional>
 #include <set>
 #include <utility>
 #include <vector>
 
+#include "app/dem_pool.hpp"
 #include "app/dem_setup.hpp"
 #include "app/insitu.hpp"
 #include "app/mpm_setup.hpp"
 #include "app/schema_params.hpp"
 #include "common/errors.hpp"
-#include "dem/element_test.hpp"
-#include "dem/measures.hpp"
-#include "dem/stress_target.hpp"
 #include "farm/dem_micro.hpp"
 #include "farm/elastic_micro.hpp"
 #include "farm/spared_micro.hpp"
@@ -60,143 +53,6 @@ dem::RveParams rve_params(const Job& job) {
   return p;
 }
 
-/// The DEM RVEs of a rank, made on first use: the prepared sample of each sample of the pool
-/// (the preparation of [dem.sample]), and one RVE per (group, sample) that the rank's points
-/// need, brought by the tensor servo to the group's target (app/insitu.hpp). Every RVE of a
-/// point is a copy of its (group, sample) RVE. With the defaults (prepared bodies, one sample)
-/// this is the one prepared sample of before, unchanged.
-struct DemPool {
-  Job job;
-  dem::RveParams params;
-  InsituPlan plan;
-  std::map<std::int64_t, dem::Simulation> samples;
-  std::map<std::pair<std::int32_t, std::int64_t>, std::unique_ptr<dem::Rve>> rves;
-
-  const dem::Simulation& sample(std::int64_t k) {
-    auto it = samples.find(k);
-    if (it == samples.end()) {
-      dem::Simulation sim = prepared_sample(job, k);
-      if (samples.empty()) {
-        const dem::Packing pk{sim.cell(), sim.spheres().x, sim.spheres().r};
-        params.d50 = dem_d50(job, pk);  // of the PSD for a pool (the same for every sample)
-      }
-      it = samples.emplace(k, std::move(sim)).first;
-    }
-    return it->second;
-  }
-
-  const dem::Rve& get(std::int64_t id) {
-    const std::int32_t g = plan.group_of(id);
-    const std::int64_t k = sample_of(id, plan.options.samples);
-    const auto key = std::make_pair(g, k);
-    auto it = rves.find(key);
-    if (it != rves.end()) return *it->second;
-    dem::Simulation sim = sample(k);
-    if (g >= 0) spdlog::info("{}", prepare_group(sim, g, k));
-    return add_rve(key, std::move(sim));
-  }
-
-  const dem::Rve& add_rve(const std::pair<std::int32_t, std::int64_t>& key, dem::Simulation sim) {
-    const auto& rve =
-        *rves.emplace(key,
-                      std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params)))
-             .first->second;
-    if (rves.size() == 1) {
-      spdlog::info("RVE prototype: {} spheres, d50 = {:.4g} m, I = {:.3g}, p_floor = {:.4g} Pa",
-                   rve.num_spheres(), params.d50, params.inertial_number, params.p_floor);
-    }
-    return rve;
-  }
-
-  /// Makes ahead, on this rank's threads, the samples and the (group, sample) RVEs that the
-  /// points `ids` need and that are not made yet: each preparation on one thread (the DEM is
-  /// the same bits on any number of threads, so the RVEs are those get() would make one by
-  /// one), their log lines in (sample, group) order afterwards, the first failure in that
-  /// order rethrown.
-  void prepare(const std::vector<std::int64_t>& ids) {
-    std::set<std::int64_t> new_samples;
-    std::set<std::pair<std::int32_t, std::int64_t>> new_rves;
-    for (const std::int64_t id : ids) {
-      const std::int32_t g = plan.group_of(id);
-      const std::int64_t k = sample_of(id, plan.options.samples);
-      if (samples.count(k) == 0) new_samples.insert(k);
-      if (g >= 0 && rves.count({g, k}) == 0) new_rves.insert({g, k});
-    }
-    const std::vector<std::int64_t> ks(new_samples.begin(), new_samples.end());
-    std::vector<std::optional<dem::Simulation>> made(ks.size());
-    in_parallel(ks.size(), [&](std::size_t i, std::vector<std::string>& lines) {
-      made[i] = prepared_sample(job, ks[i], &lines);
-    });
-    for (std::size_t i = 0; i < ks.size(); ++i) {
-      if (samples.empty()) {
-        const dem::Packing pk{made[i]->cell(), made[i]->spheres().x, made[i]->spheres().r};
-        params.d50 = dem_d50(job, pk);
-      }
-      samples.emplace(ks[i], std::move(*made[i]));
-    }
-    const std::vector<std::pair<std::int32_t, std::int64_t>> keys(new_rves.begin(), new_rves.end());
-    std::vector<std::optional<dem::Simulation>> grouped(keys.size());
-    in_parallel(keys.size(), [&](std::size_t i, std::vector<std::string>& lines) {
-      dem::Simulation sim = samples.at(keys[i].second);
-      lines.push_back(prepare_group(sim, keys[i].first, keys[i].second));
-      grouped[i] = std::move(sim);
-    });
-    for (std::size_t i = 0; i < keys.size(); ++i) add_rve(keys[i], std::move(*grouped[i]));
-  }
-
-  /// Runs job(i, lines) for i < n on the rank's threads (dynamic, one at a time: preparations
-  /// differ in cost), then logs each job's lines in the order of i and rethrows the first
-  /// failure in that order.
-  static void in_parallel(std::size_t n,
-                          const std::function<void(std::size_t, std::vector<std::string>&)>& job) {
-    std::vector<std::vector<std::string>> lines(n);
-    std::vector<std::exception_ptr> failed(n);
-    const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
-    for (std::int64_t i = 0; i < count; ++i) {
-      const auto u = static_cast<std::size_t>(i);
-      try {
-        job(u, lines[u]);
-      } catch (...) {
-        failed[u] = std::current_exception();
-      }
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (failed[i]) std::rethrow_exception(failed[i]);
-      for (const std::string& line : lines[i]) spdlog::info("{}", line);
-    }
-  }
-
-  /// Brings a copy of sample k to the target of group g (tensor servo); returns the log line
-  /// with its cost.
-  [[nodiscard]] std::string prepare_group(dem::Simulation& sim, std::int32_t g,
-                                          std::int64_t k) const {
-    dem::StressTarget t;
-    t.stress = plan.groups.target[static_cast<std::size_t>(g)];
-    t.stress_tol = plan.options.stress_tolerance;
-    t.unbalanced_tol = job.number("dem.preparation.unbalanced_force");
-    // The quasi-static rate bound of the preparation, at the target's pressure.
-    t.max_rate = dem::strain_rate(job.number("dem.preparation.inertial_number"), params.d50,
-                                  job.number("dem.material.density"), -t.stress.trace() / 3.0);
-    const auto start = std::chrono::steady_clock::now();
-    std::int64_t steps = 0;
-    try {
-      steps = dem::reach_stress(sim, t);
-    } catch (const common::NumericalError& e) {
-      throw common::NumericalError(
-          fmt::format("in-situ preparation of group {} (sample {}): {}", g, k, e.what()));
-    }
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const dem::Measures m = dem::measure(sim);
-    return fmt::format(
-        "in-situ preparation: group {} ({} points), sample {}: {} DEM steps, {:.2f} s; target {}, "
-        "reached {}, e = {:.4f}, unbalanced {:.3g}",
-        g, plan.groups.count[static_cast<std::size_t>(g)], k, steps, wall, stress_text(t.stress),
-        stress_text(m.stress), m.void_ratio, m.unbalanced);
-  }
-};
-
 /// The plan in the log (every rank computes it; rank 0 writes it).
 void log_plan(const InsituPlan& plan) {
   const std::size_t n = plan.ids.size();
@@ -222,7 +78,7 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
   std::shared_ptr<DemPool> proto;
   if (setup.has_dem) {
     log_plan(plan);
-    proto = std::make_shared<DemPool>(DemPool{job, rve_params(job), std::move(plan), {}, {}});
+    proto = std::make_shared<DemPool>(job, rve_params(job), std::move(plan));
   }
   std::shared_ptr<farm::ElasticMicroParams> elastic;
   if (setup.has_elastic)
@@ -241,11 +97,11 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
     return farm::DemMicro::load(r);
   };
   if (proto) {
-    k.prepare = [proto, dem_ids](const std::vector<std::int64_t>& ids) {
+    k.prepare = [proto, dem_ids](const std::vector<std::int64_t>& ids, MPI_Comm comm) {
       std::vector<std::int64_t> dem;
       for (const std::int64_t id : ids)
         if (dem_ids.count(id) != 0) dem.push_back(id);
-      proto->prepare(dem);
+      proto->prepare(dem, comm);
     };
   }
   return k;

@@ -3,6 +3,8 @@
 // report the Cauchy stress, save/restore as named fields (checkpoints and migration alike).
 #pragma once
 
+#include <mpi.h>
+
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -95,10 +97,12 @@ struct MicroKind {
   std::function<std::unique_ptr<MicroModel>(std::int64_t id)> create;
   /// Rebuilds an RVE from what MicroModel::save wrote (restart, migration).
   std::function<std::unique_ptr<MicroModel>(const common::StateReader& reader)> load;
-  /// Optional: called once on each rank of a fresh start, with the ids it will create, before
-  /// the first create(); makes ahead, on the rank's threads, what several RVEs share (the DEM
-  /// preparations of app::DemPool). create() must give the same RVEs with or without it.
-  std::function<void(const std::vector<std::int64_t>& ids)> prepare;
+  /// Optional, collective over the farm's communicator: called once on every rank of a fresh
+  /// start, with the ids the rank will create, before the first create(); makes ahead, spread
+  /// over the ranks and their threads, what several RVEs share (the DEM preparations of
+  /// app::DemPool). create() must give the same RVEs with or without it. An error must be
+  /// thrown on every rank alike (farm::agree_on_errors), never on some ranks only.
+  std::function<void(const std::vector<std::int64_t>& ids, MPI_Comm comm)> prepare;
 };
 
 }  // namespace farm

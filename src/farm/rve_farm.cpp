@@ -79,7 +79,7 @@ RveFarm::RveFarm(MPI_Comm comm, MicroKind kind, std::vector<std::int64_t> ids,
     std::vector<std::int64_t> local_ids;
     for (const std::size_t k : placement_.local()) local_ids.push_back(placement_.ids()[k]);
     try {
-      kind_.prepare(local_ids);
+      kind_.prepare(local_ids, comm_);
     } catch (const std::exception& e) {
       kind_err = current_error_kind();
       msg = std::string("farm: preparing the RVEs failed: ") + e.what();

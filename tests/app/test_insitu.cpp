@@ -6,6 +6,7 @@
 #include "app/insitu.hpp"
 
 #include <gtest/gtest.h>
+#include <mpi.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -267,7 +268,23 @@ samples = 2
 // RVE must be the same bits as the one created alone, lazily (2 samples x 3 groups and the
 // prepared body: 4 preparations for the 4 points; with 3 threads, 2 samples at once, then 3
 // groups at once). Compared: the stress, every sphere's position, velocity and spin, the step.
+// MPI for DemPool::prepare on MPI_COMM_SELF (initialised by the test that needs it, finalised
+// once at the end of the program).
+struct FinalizeMpi : ::testing::Environment {
+  void TearDown() override {
+    int init = 0;
+    int done = 0;
+    MPI_Initialized(&init);
+    MPI_Finalized(&done);
+    if (init != 0 && done == 0) MPI_Finalize();
+  }
+};
+::testing::Environment* const kFinalizeMpi = ::testing::AddGlobalTestEnvironment(new FinalizeMpi);
+
 TEST(Insitu, PreparationsMadeAheadOnThreadsGiveTheSameRves) {
+  int init = 0;
+  MPI_Initialized(&init);
+  if (init == 0) MPI_Init(nullptr, nullptr);
   const app::Job job = app::Job::parse(insitu_job(R"(
 [dem.initial_state]
 pressure_floor = "10 kPa"
@@ -280,7 +297,7 @@ samples = 2
   ASSERT_TRUE(ahead.micro.prepare);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(3);
-  ahead.micro.prepare({3, 2, 1, 0});
+  ahead.micro.prepare({3, 2, 1, 0}, MPI_COMM_SELF);
   omp_set_num_threads(threads);
   for (std::int64_t id = 0; id < 4; ++id) {
     const std::unique_ptr<farm::MicroModel> a = lazy.micro.create(id);
