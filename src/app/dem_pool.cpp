@@ -158,7 +158,6 @@ const dem::Simulation& DemPool::sample(std::int64_t k) {
   auto it = samples_.find(k);
   if (it == samples_.end()) {
     add_sample(k, prepared_sample(job_, k));
-    ++runs_;
     it = samples_.find(k);
   }
   return it->second;
@@ -179,10 +178,7 @@ const dem::Rve& DemPool::get(std::int64_t id) {
   auto it = rves_.find(key);
   if (it != rves_.end()) return *it->second;
   dem::Simulation sim = sample(key.second);
-  if (key.first >= 0) {
-    spdlog::info("{}", prepare_group(sim, key));
-    ++runs_;
-  }
+  if (key.first >= 0) spdlog::info("{}", prepare_group(sim, key));
   return add_rve(key, std::move(sim));
 }
 
@@ -275,7 +271,6 @@ void DemPool::prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm) {
       lines);
   farm::agree_on_errors(comm, f.kind, f.message);
   log_in_order(comm, ks.size(), lines);
-  for (const auto& m : made) runs_ += m ? 1 : 0;
   std::vector<std::vector<char>> got = share(
       comm, ks.size(),
       [&](std::size_t i, int r) {
@@ -311,7 +306,6 @@ void DemPool::prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm) {
       lines);
   farm::agree_on_errors(comm, f.kind, f.message);
   log_in_order(comm, groups.size(), lines);
-  runs_ += static_cast<std::int64_t>(my_items.size());
   got = share(
       comm, groups.size(),
       [&](std::size_t j, int r) {

@@ -45,9 +45,6 @@ class DemPool {
   /// rank (farm::agree_on_errors: the lowest failing rank's, the first in order there).
   void prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm);
 
-  /// Preparations this rank has run itself (samples and groups; tests).
-  [[nodiscard]] std::int64_t preparations_run() const { return runs_; }
-
  private:
   const dem::Simulation& sample(std::int64_t k);
   void add_sample(std::int64_t k, dem::Simulation sim);
@@ -60,7 +57,6 @@ class DemPool {
   std::map<std::int64_t, dem::Simulation> samples_;
   std::map<Key, std::unique_ptr<dem::Rve>> rves_;
   bool d50_set_ = false;  ///< params_.d50 is set with the first sample
-  std::int64_t runs_ = 0;
 };
 
 }  // namespace app
