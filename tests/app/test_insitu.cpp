@@ -1,13 +1,11 @@
 // Tests of app/insitu.*: geostatic targets against rho g depth and K0, the pressure floor, the
 // grouping of the targets (M distinct targets -> M preparations, a tolerance that merges them ->
 // fewer, independent of the input order), the plan of a job, and the RVEs the coupled set-up
-// makes from it (targets reached, pool of samples, independence of the creation order, the
-// preparations made ahead on threads).
+// makes from it (targets reached, pool of samples, independence of the creation order; the
+// preparations made ahead over ranks and threads: test_dem_pool_mpi.cpp).
 #include "app/insitu.hpp"
 
 #include <gtest/gtest.h>
-#include <mpi.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,9 +17,11 @@
 #include "app/job.hpp"
 #include "app/mpm_setup.hpp"
 #include "farm/dem_micro.hpp"
+#include "insitu_test_job.hpp"
 
 namespace {
 
+using app_test::insitu_job;
 using common::Mat3;
 using common::Vec3;
 
@@ -120,70 +120,6 @@ TEST(Insitu, SampleOfPointIdIsIdModK) {
   EXPECT_EQ(app::sample_of(9, 3), 0);
 }
 
-// Three bodies: a geostatic column (2 points, K0 = 0.5, surface at the top z = 2 m; the upper point
-// is floored at 10 kPa), a uniform anisotropic one and a prepared one.
-std::string insitu_job(const std::string& initial_state_table) {
-  return R"([dem.material]
-density = "2650 kg/m^3"
-young_modulus = "300 MPa"
-stiffness_ratio = 0.5
-friction_angle = "30 deg"
-rolling_stiffness = 2.0
-rolling_strength = 0.3
-
-[dem.sample]
-spheres = 60
-psd_diameters = ["130 um", "270 um"]
-psd_passing = [0.0, 1.0]
-seed = 5
-
-[dem.preparation]
-pressure = "50 kPa"
-friction_angle = "10 deg"
-inertial_number = 1e-2
-unbalanced_force = 0.05
-stress_tolerance = 0.02
-
-[dem.coupling]
-inertial_number = 1e-2
-)" + initial_state_table +
-         R"(
-[mpm]
-end_time = 1.0
-gravity = [0.0, 0.0, -9.81]
-
-[mpm.grid]
-origin = [0.0, 0.0, 0.0]
-spacing = [1.0, 1.0, 1.0]
-cells = [3, 1, 2]
-
-[[mpm.body]]
-min = [0.0, 0.0, 0.0]
-max = [1.0, 1.0, 2.0]
-points_per_cell = 1
-density = 1700.0
-material = "dem"
-initial_state = "geostatic"
-k0 = 0.5
-
-[[mpm.body]]
-min = [1.0, 0.0, 0.0]
-max = [2.0, 1.0, 1.0]
-points_per_cell = 1
-density = 1700.0
-material = "dem"
-initial_state = "uniform"
-initial_stress = ["-30 kPa", "-30 kPa", "-60 kPa", 0.0, "5 kPa", 0.0]
-
-[[mpm.body]]
-min = [2.0, 0.0, 0.0]
-max = [3.0, 1.0, 1.0]
-points_per_cell = 1
-density = 1700.0
-material = "dem"
-)";
-}
-
 const char* kFloor = R"(
 [dem.initial_state]
 pressure_floor = "10 kPa"
@@ -268,52 +204,4 @@ samples = 2
 // RVE must be the same bits as the one created alone, lazily (2 samples x 3 groups and the
 // prepared body: 4 preparations for the 4 points; with 3 threads, 2 samples at once, then 3
 // groups at once). Compared: the stress, every sphere's position, velocity and spin, the step.
-// MPI for DemPool::prepare on MPI_COMM_SELF (initialised by the test that needs it, finalised
-// once at the end of the program).
-struct FinalizeMpi : ::testing::Environment {
-  void TearDown() override {
-    int init = 0;
-    int done = 0;
-    MPI_Initialized(&init);
-    MPI_Finalized(&done);
-    if (init != 0 && done == 0) MPI_Finalize();
-  }
-};
-::testing::Environment* const kFinalizeMpi = ::testing::AddGlobalTestEnvironment(new FinalizeMpi);
-
-TEST(Insitu, PreparationsMadeAheadOnThreadsGiveTheSameRves) {
-  int init = 0;
-  MPI_Initialized(&init);
-  if (init == 0) MPI_Init(nullptr, nullptr);
-  const app::Job job = app::Job::parse(insitu_job(R"(
-[dem.initial_state]
-pressure_floor = "10 kPa"
-group_tolerance = 0.01
-samples = 2
-)"),
-                                       "insitu.toml");
-  const farm::CoupledConfig lazy = app::coupled_setup(job, app::RunLimits{"unused", -1});
-  const farm::CoupledConfig ahead = app::coupled_setup(job, app::RunLimits{"unused", -1});
-  ASSERT_TRUE(ahead.micro.prepare);
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(3);
-  ahead.micro.prepare({3, 2, 1, 0}, MPI_COMM_SELF);
-  omp_set_num_threads(threads);
-  for (std::int64_t id = 0; id < 4; ++id) {
-    const std::unique_ptr<farm::MicroModel> a = lazy.micro.create(id);
-    const std::unique_ptr<farm::MicroModel> b = ahead.micro.create(id);
-    const auto* da = dynamic_cast<const farm::DemMicro*>(a.get());
-    const auto* db = dynamic_cast<const farm::DemMicro*>(b.get());
-    ASSERT_NE(da, nullptr);
-    ASSERT_NE(db, nullptr);
-    const dem::Simulation& sa = da->rve().simulation();
-    const dem::Simulation& sb = db->rve().simulation();
-    EXPECT_EQ(a->stress(), b->stress()) << id;
-    EXPECT_EQ(sa.steps(), sb.steps()) << id;
-    EXPECT_EQ(sa.spheres().x, sb.spheres().x) << id;
-    EXPECT_EQ(sa.spheres().u, sb.spheres().u) << id;
-    EXPECT_EQ(sa.spheres().w, sb.spheres().w) << id;
-  }
-}
-
 }  // namespace
