@@ -68,23 +68,38 @@ int command_run(const Options& given, const Comm& comm) {
     });
   }
   if (o.restart.empty()) {
-    // One micro model of each material is built now, on every rank, not on the farm's first use:
-    // a DEM sample that cannot be prepared fails before anything is written, and a fixed dt is
-    // checked against the materials' wave speed. The farm's RVEs are copies of the prepared
-    // sample (the micro kind keeps it), so nothing is prepared twice.
-    double wave_speed = 0.0;
+    // The micro models are prepared now, not on the farm's first use: a DEM sample that cannot
+    // be prepared fails before anything is written, and a fixed dt is checked against the
+    // materials' wave speed. Every preparation the job needs is made here, once, spread over
+    // the ranks and their threads (MicroKind::prepare with the points dealt round robin, and one
+    // point of each material on every rank for the checks below); the farm's RVEs are copies of
+    // them (the micro kind keeps them), and its own prepare call only moves what its placement
+    // needs, so nothing is prepared twice.
+    std::vector<std::int64_t> first;  // one point of each material, in point order
+    std::vector<std::int64_t> dealt;  // this rank's share of the points, and `first`
     agree(comm, [&] {
       const MpmSetup setup = mpm_setup(job);
-      std::set<std::int32_t> built;
+      std::set<std::int32_t> materials;
       for (std::size_t i = 0; i < setup.points.size(); ++i) {
-        if (!built.insert(setup.points.material[i]).second) continue;
-        const auto micro = cfg.micro.create(setup.points.id[i]);
+        const std::int64_t id = setup.points.id[i];
+        if (materials.insert(setup.points.material[i]).second) first.push_back(id);
+        if (i % static_cast<std::size_t>(comm.size) == static_cast<std::size_t>(comm.rank) &&
+            std::find(first.begin(), first.end(), id) == first.end())
+          dealt.push_back(id);
+      }
+      dealt.insert(dealt.end(), first.begin(), first.end());
+    });
+    if (cfg.micro.prepare) agree(comm, [&] { cfg.micro.prepare(dealt, comm.comm); });
+    double wave_speed = 0.0;
+    agree(comm, [&] {
+      for (const std::int64_t id : first) {
+        const auto micro = cfg.micro.create(id);
         const common::Mat3 stress = micro->stress();
         if (!stress.allFinite() || !std::isfinite(micro->wave_speed())) {
           throw common::NumericalError(fmt::format(
               "the micro model of point id {} starts with a non-finite stress (trace {}) or wave "
               "speed ({} m/s): its sample cannot be prepared (a degenerate packing?)",
-              setup.points.id[i], stress.trace(), micro->wave_speed()));
+              id, stress.trace(), micro->wave_speed()));
         }
         wave_speed = std::max(wave_speed, micro->wave_speed());
       }

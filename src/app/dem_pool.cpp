@@ -84,9 +84,28 @@ std::vector<std::set<Key>> allgather_keys(MPI_Comm comm, const std::set<Key>& mi
   return out;
 }
 
-/// Collective: item i of n is made by rank i mod size; `lines` holds this rank's items' log
-/// lines in the order of i. Rank 0 logs every item's lines in the order of i.
-void log_in_order(MPI_Comm comm, std::size_t n,
+/// Where each of `keys` comes from: the lowest rank that holds it (holds[r]: rank r's keys),
+/// else a rank that makes it, round robin over the keys nobody holds. made[i]: made, not held.
+struct Sources {
+  std::vector<int> rank;
+  std::vector<bool> made;
+};
+Sources sources(const std::vector<Key>& keys, const std::vector<std::set<Key>>& holds) {
+  Sources s;
+  std::size_t unheld = 0;
+  for (const Key& k : keys) {
+    int holder = -1;
+    for (std::size_t r = 0; r < holds.size() && holder < 0; ++r)
+      if (holds[r].count(k) != 0) holder = static_cast<int>(r);
+    s.made.push_back(holder < 0);
+    s.rank.push_back(holder >= 0 ? holder : static_cast<int>(unheld++ % holds.size()));
+  }
+  return s;
+}
+
+/// Collective: rank 0 logs the lines of every item made (src.made), in the order of the items;
+/// `lines` holds this rank's, in that order.
+void log_in_order(MPI_Comm comm, const Sources& src,
                   const std::vector<std::vector<std::string>>& lines) {
   int rank = 0;
   int size = 1;
@@ -100,28 +119,31 @@ void log_in_order(MPI_Comm comm, std::size_t n,
   }
   const std::vector<std::string> all = farm::allgather_strings(comm, joined);
   if (rank != 0) return;
-  const auto p = static_cast<std::size_t>(size);
-  std::vector<std::size_t> start(p + 1, 0);  // where rank r's items begin in `all`
-  for (std::size_t r = 0; r < p; ++r) start[r + 1] = start[r] + (n > r ? (n - r + p - 1) / p : 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::istringstream in(all.at(start[i % p] + i / p));
+  std::vector<std::size_t> start(static_cast<std::size_t>(size) + 1, 0);  // rank r's in `all`
+  for (std::size_t i = 0; i < src.rank.size(); ++i)
+    if (src.made[i]) ++start[static_cast<std::size_t>(src.rank[i]) + 1];
+  for (std::size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
+  for (std::size_t i = 0; i < src.rank.size(); ++i) {
+    if (!src.made[i]) continue;
+    std::istringstream in(all.at(start[static_cast<std::size_t>(src.rank[i])]++));
     for (std::string l; std::getline(in, l);) spdlog::info("{}", l);
   }
 }
 
-/// Collective: item i of n is made by rank i mod size; sends bytes_of(i) of the items made here
-/// to every other rank r with needs(i, r) and returns, for the items made elsewhere that this
-/// rank needs, their bytes (empty for the others).
+/// Collective: rank src.rank[i] sends bytes_of(i) to every other rank r with needs(i, r);
+/// returns, for the items this rank needs from another, their bytes (empty for the others).
 std::vector<std::vector<char>> share(
-    MPI_Comm comm, std::size_t n, const std::function<bool(std::size_t, int)>& needs,
+    MPI_Comm comm, const Sources& src, const std::function<bool(std::size_t, int)>& needs,
     const std::function<std::vector<char>(std::size_t)>& bytes_of) {
   int rank = 0;
   int size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   const auto p = static_cast<std::size_t>(size);
+  const std::size_t n = src.rank.size();
   std::vector<std::vector<std::vector<char>>> to(p);
-  for (std::size_t i = static_cast<std::size_t>(rank); i < n; i += p) {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (src.rank[i] != rank) continue;
     std::vector<char> bytes;
     for (int r = 0; r < size; ++r) {
       if (r == rank || !needs(i, r)) continue;
@@ -133,8 +155,8 @@ std::vector<std::vector<char>> share(
   std::vector<std::size_t> next(p, 0);
   std::vector<std::vector<char>> out(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t m = i % p;
-    if (static_cast<int>(m) != rank && needs(i, rank)) out[i] = std::move(from[m].at(next[m]++));
+    const auto m = static_cast<std::size_t>(src.rank[i]);
+    if (src.rank[i] != rank && needs(i, rank)) out[i] = std::move(from[m].at(next[m]++));
   }
   return out;
 }
@@ -147,6 +169,12 @@ std::vector<char> saved(const dem::Simulation& sim) {
 
 dem::Simulation loaded(const std::vector<char>& bytes) {
   return dem::load_simulation(common::StateStore::deserialize(bytes));
+}
+
+std::vector<char> saved(const dem::Rve& rve) {
+  common::StateStore s;
+  rve.save(s);
+  return s.serialize();
 }
 
 }  // namespace
@@ -183,14 +211,15 @@ const dem::Rve& DemPool::get(std::int64_t id) {
 }
 
 const dem::Rve& DemPool::add_rve(const Key& key, dem::Simulation sim) {
-  const auto& rve =
-      *rves_
-           .emplace(key,
-                    std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params_)))
-           .first->second;
+  return insert_rve(key,
+                    std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params_)));
+}
+
+const dem::Rve& DemPool::insert_rve(const Key& key, std::unique_ptr<dem::Rve> made) {
+  const auto& rve = *rves_.emplace(key, std::move(made)).first->second;
   if (rves_.size() == 1) {
     spdlog::info("RVE prototype: {} spheres, d50 = {:.4g} m, I = {:.3g}, p_floor = {:.4g} Pa",
-                 rve.num_spheres(), params_.d50, params_.inertial_number, params_.p_floor);
+                 rve.num_spheres(), rve.d50(), rve.params().inertial_number, rve.params().p_floor);
   }
   return rve;
 }
@@ -224,63 +253,70 @@ std::string DemPool::prepare_group(dem::Simulation& sim, const Key& key) const {
 
 void DemPool::prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm) {
   int rank = 0;
-  int size = 1;
   MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  const auto p = static_cast<std::size_t>(size);
-  const auto mine = [&](std::size_t i) { return i % p == static_cast<std::size_t>(rank); };
 
-  // What each rank lacks: the RVEs of its points; the groups, in order, made round robin.
+  // What each rank lacks (the RVEs of its points) and holds (its RVEs and samples).
   std::set<Key> lack;
   for (const std::int64_t id : ids) {
     const Key key{plan_.group_of(id), sample_of(id, plan_.options.samples)};
     if (rves_.count(key) == 0) lack.insert(key);
   }
+  std::set<Key> held;
+  for (const auto& [key, rve] : rves_)
+    if (key.first >= 0) held.insert(key);
+  std::set<Key> held_samples;  // (-1, k)
+  for (const auto& [k, sim] : samples_) held_samples.insert({-1, k});
   const std::vector<std::set<Key>> lacks = allgather_keys(comm, lack);
+  const std::vector<std::set<Key>> holds = allgather_keys(comm, held);
+  const std::vector<std::set<Key>> sample_holds = allgather_keys(comm, held_samples);
+
+  // The group RVEs some rank lacks, each from its lowest holder or made round robin.
   std::set<Key> group_set;
   for (const auto& l : lacks)
     for (const Key& k : l)
       if (k.first >= 0) group_set.insert(k);
   const std::vector<Key> groups(group_set.begin(), group_set.end());
+  const Sources group_src = sources(groups, holds);
 
   // The samples each rank lacks: for its points without a target and for the groups it makes.
-  std::set<Key> sample_lack;  // (-1, k)
+  std::set<Key> sample_lack;
   for (const Key& k : lack)
     if (k.first < 0 && samples_.count(k.second) == 0) sample_lack.insert(k);
-  for (std::size_t j = 0; j < groups.size(); ++j)
-    if (mine(j) && samples_.count(groups[j].second) == 0)
+  for (std::size_t j = 0; j < groups.size(); ++j) {
+    if (group_src.made[j] && group_src.rank[j] == rank && samples_.count(groups[j].second) == 0)
       sample_lack.insert({-1, groups[j].second});
+  }
   const std::vector<std::set<Key>> sample_lacks = allgather_keys(comm, sample_lack);
-  std::set<std::int64_t> sample_set;
-  for (const auto& l : sample_lacks)
-    for (const Key& k : l) sample_set.insert(k.second);
-  const std::vector<std::int64_t> ks(sample_set.begin(), sample_set.end());
+  std::set<Key> sample_set;
+  for (const auto& l : sample_lacks) sample_set.insert(l.begin(), l.end());
+  const std::vector<Key> ks(sample_set.begin(), sample_set.end());
+  const Sources sample_src = sources(ks, sample_holds);
 
-  // 1. The samples: made by rank i mod size (unless it has it), sent to the ranks that lack it.
+  // 1. The samples: made (on the maker's threads) or held, sent to the ranks that lack them.
   std::vector<std::size_t> my_items;
   for (std::size_t i = 0; i < ks.size(); ++i)
-    if (mine(i)) my_items.push_back(i);
+    if (sample_src.made[i] && sample_src.rank[i] == rank) my_items.push_back(i);
   std::vector<std::optional<dem::Simulation>> made(ks.size());
   std::vector<std::vector<std::string>> lines;
   Failure f = in_parallel(
       my_items.size(),
       [&](std::size_t j, std::vector<std::string>& out) {
         const std::size_t i = my_items[j];
-        if (samples_.count(ks[i]) == 0) made[i] = prepared_sample(job_, ks[i], &out);
+        made[i] = prepared_sample(job_, ks[i].second, &out);
       },
       lines);
   farm::agree_on_errors(comm, f.kind, f.message);
-  log_in_order(comm, ks.size(), lines);
+  log_in_order(comm, sample_src, lines);
   std::vector<std::vector<char>> got = share(
-      comm, ks.size(),
+      comm, sample_src,
       [&](std::size_t i, int r) {
-        return sample_lacks[static_cast<std::size_t>(r)].count({-1, ks[i]}) != 0;
+        return sample_lacks[static_cast<std::size_t>(r)].count(ks[i]) != 0;
       },
-      [&](std::size_t i) { return saved(made[i] ? *made[i] : samples_.at(ks[i])); });
+      [&](std::size_t i) { return saved(made[i] ? *made[i] : samples_.at(ks[i].second)); });
   try {
     for (std::size_t i = 0; i < ks.size(); ++i) {
-      if (sample_lack.count({-1, ks[i]}) == 0) continue;
-      add_sample(ks[i], mine(i) ? std::move(*made[i]) : loaded(got[i]));
+      if (sample_lack.count(ks[i]) == 0) continue;
+      add_sample(ks[i].second, made[i] ? std::move(*made[i]) : loaded(got[i]));
     }
   } catch (const std::exception& e) {
     f = Failure{farm::current_error_kind(),
@@ -290,38 +326,35 @@ void DemPool::prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm) {
   made.clear();
   got.clear();
 
-  // 2. The (group, sample) RVEs: made by rank j mod size, sent to the ranks whose points need them.
+  // 2. The (group, sample) RVEs: made or held, sent (Rve::save) to the ranks whose points need
+  // them.
   my_items.clear();
   for (std::size_t j = 0; j < groups.size(); ++j)
-    if (mine(j)) my_items.push_back(j);
-  std::vector<std::optional<dem::Simulation>> grouped(groups.size());
+    if (group_src.made[j] && group_src.rank[j] == rank) my_items.push_back(j);
+  std::vector<std::unique_ptr<dem::Rve>> built(groups.size());
   f = in_parallel(
       my_items.size(),
       [&](std::size_t n, std::vector<std::string>& out) {
         const std::size_t j = my_items[n];
         dem::Simulation sim = samples_.at(groups[j].second);
         out.push_back(prepare_group(sim, groups[j]));
-        grouped[j] = std::move(sim);
+        built[j] = std::make_unique<dem::Rve>(dem::Rve::from_simulation(std::move(sim), params_));
       },
       lines);
   farm::agree_on_errors(comm, f.kind, f.message);
-  log_in_order(comm, groups.size(), lines);
+  log_in_order(comm, group_src, lines);
   got = share(
-      comm, groups.size(),
+      comm, group_src,
       [&](std::size_t j, int r) {
         return lacks[static_cast<std::size_t>(r)].count(groups[j]) != 0;
       },
-      [&](std::size_t j) { return saved(*grouped[j]); });
+      [&](std::size_t j) { return saved(built[j] ? *built[j] : *rves_.at(groups[j])); });
   try {
     for (std::size_t j = 0; j < groups.size(); ++j) {
       if (lack.count(groups[j]) == 0) continue;
-      if (!d50_set_) {  // a rank that holds no sample: d50 of the unprepared sample 0 (the same)
-        bool generated = false;
-        const dem::Packing pk = dem_packing(job_, generated, 0);
-        params_.d50 = dem_d50(job_, pk);
-        d50_set_ = true;
-      }
-      add_rve(groups[j], mine(j) ? std::move(*grouped[j]) : loaded(got[j]));
+      insert_rve(groups[j], built[j] ? std::move(built[j])
+                                     : std::make_unique<dem::Rve>(dem::Rve::load(
+                                           common::StateStore::deserialize(got[j]))));
     }
   } catch (const std::exception& e) {
     f = Failure{farm::current_error_kind(), std::string("receiving a prepared RVE: ") + e.what()};

@@ -36,19 +36,22 @@ class DemPool {
   const dem::Rve& get(std::int64_t id);
 
   /// Collective over `comm`, every rank with the DEM point ids it will create (the farm's
-  /// MicroKind::prepare). Makes what the ranks lack, each preparation once, spread over the
-  /// ranks (round robin over the sorted union of what they lack) and run on their threads, and
-  /// sends each result (save_simulation: the same bits) to the ranks that need it: first the
-  /// samples (to the ranks whose points use them and to those that prepare a group from them),
-  /// then the (group, sample) RVEs. The RVEs are those get() would make alone. Rank 0 logs
-  /// every preparation's lines in (sample, group) order; a failure anywhere is thrown on every
-  /// rank (farm::agree_on_errors: the lowest failing rank's, the first in order there).
+  /// MicroKind::prepare; `mpmxdem run` also calls it before the farm, with the points spread
+  /// over the ranks). What some rank lacks comes from the lowest rank that holds it, else it is
+  /// made once, spread over the ranks (round robin over the sorted union of what nobody holds)
+  /// and run on their threads; each result is sent to the ranks that need it, first the samples
+  /// (save_simulation; to the ranks whose points use them and to those that prepare a group
+  /// from them), then the (group, sample) RVEs (Rve::save): both continue bit for bit, so the
+  /// RVEs are those get() would make alone. Rank 0 logs every preparation's lines in (sample,
+  /// group) order; a failure anywhere is thrown on every rank (farm::agree_on_errors: the
+  /// lowest failing rank's, the first in order there).
   void prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm);
 
  private:
   const dem::Simulation& sample(std::int64_t k);
   void add_sample(std::int64_t k, dem::Simulation sim);
   const dem::Rve& add_rve(const Key& key, dem::Simulation sim);
+  const dem::Rve& insert_rve(const Key& key, std::unique_ptr<dem::Rve> rve);
   [[nodiscard]] std::string prepare_group(dem::Simulation& sim, const Key& key) const;
 
   Job job_;
