@@ -20,6 +20,7 @@
 #include "common/errors.hpp"
 #include "farm/driver.hpp"
 #include "farm/mpi_util.hpp"
+#include "farm/partition.hpp"
 
 namespace app {
 
@@ -71,25 +72,27 @@ int command_run(const Options& given, const Comm& comm) {
     // The micro models are prepared now, not on the farm's first use: a DEM sample that cannot
     // be prepared fails before anything is written, and a fixed dt is checked against the
     // materials' wave speed. Every preparation the job needs is made here, once, spread over
-    // the ranks and their threads (MicroKind::prepare with the points dealt round robin, and one
-    // point of each material on every rank for the checks below); the farm's RVEs are copies of
-    // them (the micro kind keeps them), and its own prepare call only moves what its placement
-    // needs, so nothing is prepared twice.
+    // the ranks and their threads (MicroKind::prepare), each rank asking for the points the
+    // farm will create on it first (its start-up blocks of the ascending ids) and for one point
+    // of each material (the checks below). The farm's RVEs are copies of what this made (the
+    // micro kind keeps it) and its own prepare call finds it there, so nothing is prepared twice.
     std::vector<std::int64_t> first;  // one point of each material, in point order
-    std::vector<std::int64_t> dealt;  // this rank's share of the points, and `first`
+    std::vector<std::int64_t> mine;   // this rank's start-up block, and `first`
     agree(comm, [&] {
       const MpmSetup setup = mpm_setup(job);
       std::set<std::int32_t> materials;
-      for (std::size_t i = 0; i < setup.points.size(); ++i) {
-        const std::int64_t id = setup.points.id[i];
-        if (materials.insert(setup.points.material[i]).second) first.push_back(id);
-        if (i % static_cast<std::size_t>(comm.size) == static_cast<std::size_t>(comm.rank) &&
-            std::find(first.begin(), first.end(), id) == first.end())
-          dealt.push_back(id);
-      }
-      dealt.insert(dealt.end(), first.begin(), first.end());
+      for (std::size_t i = 0; i < setup.points.size(); ++i)
+        if (materials.insert(setup.points.material[i]).second) first.push_back(setup.points.id[i]);
+      std::vector<std::int64_t> ids(setup.points.id.begin(), setup.points.id.end());
+      std::sort(ids.begin(), ids.end());
+      // As farm::Placement starts: contiguous blocks over the ranks that own RVEs.
+      const int first_worker = !cfg.farm.rank0_rves && comm.size > 1 ? 1 : 0;
+      const std::vector<int> part = farm::partition_blocks(ids.size(), comm.size - first_worker);
+      for (std::size_t k = 0; k < ids.size(); ++k)
+        if (part[k] + first_worker == comm.rank) mine.push_back(ids[k]);
+      mine.insert(mine.end(), first.begin(), first.end());
     });
-    if (cfg.micro.prepare) agree(comm, [&] { cfg.micro.prepare(dealt, comm.comm); });
+    if (cfg.micro.prepare) agree(comm, [&] { cfg.micro.prepare(mine, comm.comm); });
     double wave_speed = 0.0;
     agree(comm, [&] {
       for (const std::int64_t id : first) {
