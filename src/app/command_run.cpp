@@ -17,6 +17,7 @@
 #include "app/mpm_setup.hpp"
 #include "app/restart_check.hpp"
 #include "app/restart_latest.hpp"
+#include "app/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "farm/driver.hpp"
 #include "farm/mpi_util.hpp"
@@ -152,6 +153,10 @@ int command_run(const Options& given, const Comm& comm) {
   spdlog::info(
       "coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,
       cfg.max_steps > 0 ? fmt::format(", at most {} MPM steps in total", cfg.max_steps) : "");
+  // From here a signal (a batch system's warning or time limit, Ctrl-C) ends the run after the
+  // current MPM step with a checkpoint, instead of killing it (docs/errors.md).
+  const StopSignals signals;
+  config->stop_requested = &StopSignals::received;
   const farm::RunSummary s = o.restart.empty() ? farm::run_coupled(cfg, comm.comm)
                                                : farm::restart_coupled(cfg, o.restart, comm.comm);
   if (comm.rank == 0) {
@@ -175,8 +180,16 @@ int command_run(const Options& given, const Comm& comm) {
             : 0.0);
     spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv",
                  out.string());
+    if (s.stopped_by != 0) {
+      spdlog::warn(
+          "stopped by {} at step {}, t = {:.6g} s, before the end{}; continue with `mpmxdem run "
+          "{} --out {} --restart latest` (exit {} = 128 + {})",
+          signal_name(s.stopped_by), s.steps, s.time,
+          s.checkpoints.empty() ? "" : ": checkpoint " + s.checkpoints.back(), given.job,
+          out.string(), 128 + s.stopped_by, s.stopped_by);
+    }
   }
-  return 0;
+  return s.stopped_by != 0 ? 128 + s.stopped_by : 0;
 }
 
 }  // namespace app

@@ -78,6 +78,11 @@ class Master {
   void checkpoint(RunSummary& sum);
   void balance(std::int64_t step);
   void progress(std::int64_t step, double per_step);
+  /// Whether the app asks the run to end now (a signal): kept in the summary.
+  bool stop_requested(RunSummary& sum) const {
+    if (cfg_.stop_requested) sum.stopped_by = cfg_.stop_requested();
+    return sum.stopped_by != 0;
+  }
   [[nodiscard]] bool more() const {
     const bool by_steps = cfg_.max_steps <= 0 || solver_.step_count() < cfg_.max_steps;
     const bool by_time = cfg_.end_time <= 0.0 || solver_.time() < cfg_.end_time * (1.0 - 1e-12);
@@ -155,6 +160,13 @@ void Master::run(RunSummary& sum) {
         scaling, scaling, std::sqrt(scaling), cfg_.solver.quasi_static_ratio);
   }
   while (more()) {
+    if (stop_requested(sum)) {
+      spdlog::warn(
+          "stop requested (signal {}) after step {}, t = {:.6g} s: the run ends here, with "
+          "a checkpoint",
+          sum.stopped_by, solver_.step_count(), solver_.time());
+      break;
+    }
     solver_.step();
     const std::int64_t s = solver_.step_count();
     count_work(sum);
@@ -186,7 +198,7 @@ void Master::run(RunSummary& sum) {
     grains_.write(farm_, solver_.step_count(), solver_.time());
   }
   results_.flush();
-  if (checkpoints_.due_at_end(solver_.step_count())) checkpoint(sum);
+  if (checkpoints_.due_at_end(solver_.step_count(), sum.stopped_by != 0)) checkpoint(sum);
   sum.steps = solver_.step_count();
   sum.time = solver_.time();
   sum.times = farm_.times();
@@ -307,6 +319,7 @@ RunSummary CoupledRun::run() {
   }
   MPI_Bcast(&sum.steps, 1, MPI_INT64_T, 0, comm_);
   MPI_Bcast(&sum.time, 1, MPI_DOUBLE, 0, comm_);
+  MPI_Bcast(&sum.stopped_by, 1, MPI_INT, 0, comm_);
   return sum;
 }
 

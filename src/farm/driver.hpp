@@ -42,6 +42,10 @@ struct CoupledConfig {
   /// included) with the step count and the farm's cumulative times; benchmarks take per-step
   /// figures from it.
   std::function<void(std::int64_t step, const FarmTimes& times)> on_step;
+  /// Optional, rank 0: asked before every MPM step; a nonzero answer (the app's: the signal
+  /// received, app/stop_signals.hpp) ends the run there as if at its end, with a checkpoint
+  /// (docs/errors.md, "Stopping a run").
+  std::function<int()> stop_requested;
   /// Throws common::InputError naming the field, value and rule.
   void validate() const;
 };
@@ -59,6 +63,8 @@ struct RunSummary {
   std::int64_t rve_steps = 0;           ///< RVE steps (RVEs x MPM steps) of this run (rank 0)
   std::int64_t spared_steps = 0;        ///< of which spared (kGuardSpared: no DEM step) (rank 0)
   WaitMode wait = WaitMode::automatic;  ///< the wait mode the farm used (resolved)
+  int stopped_by =
+      0;  ///< stop_requested()'s nonzero answer that ended the run, else 0 (every rank)
 };
 
 /// Collective over `comm`: a fresh coupled run. Errors: common::InputError (config, exit 2),

@@ -32,9 +32,9 @@ class CheckpointSchedule {
   CheckpointSchedule(const CheckpointOptions& options, std::int64_t fault_abort_at,
                      std::int64_t last_step, double now);
   [[nodiscard]] bool due(std::int64_t step, double now) const;
-  /// After the loop: at_end and no checkpoint of this step yet.
-  [[nodiscard]] bool due_at_end(std::int64_t step) const {
-    return options_.at_end && last_step_ != step;
+  /// After the loop: at_end (or a run stopped on request) and no checkpoint of this step yet.
+  [[nodiscard]] bool due_at_end(std::int64_t step, bool stopped = false) const {
+    return (options_.at_end || stopped) && last_step_ != step;
   }
   /// Counts a write about to start; true if it is the one fault injection aborts.
   bool begin_write() { return ++writes_ == fault_abort_at_; }

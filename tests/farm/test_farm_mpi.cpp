@@ -252,6 +252,36 @@ TEST(Farm, RestartContinuesBitForBit) {
   }
 }
 
+// A stop asked for on rank 0 (a signal, app/stop_signals.hpp) ends the run before the next step
+// with a checkpoint, even where the run writes none at its end; every rank learns what stopped it;
+// the restart from that checkpoint continues bit for bit. Fails if the stop is not seen, is seen
+// a step late, writes no checkpoint or reaches only rank 0.
+TEST(Farm, StopRequestEndsTheRunWithACheckpoint) {
+  const std::string base = scratch("stop");
+  run_on(world_size(), triaxial_job(base + "/straight", 9, mixed_elastic_kind()));
+  farm::CoupledConfig cfg = triaxial_job(base + "/split", 9, mixed_elastic_kind());
+  ASSERT_FALSE(cfg.checkpoint.at_end);
+  std::int64_t done = 0;
+  cfg.on_step = [&](std::int64_t step, const farm::FarmTimes&) { done = step; };
+  cfg.stop_requested = [&] { return done >= 5 ? 10 : 0; };  // asked during step 5
+  const farm::RunSummary s = run_on(world_size(), cfg);
+  EXPECT_EQ(s.steps, 5);
+  EXPECT_EQ(s.stopped_by, 10);  // on every rank
+  const std::string ckpt = farm::checkpoint_path(base + "/split", 5);
+  if (world_rank() == 0) {
+    ASSERT_EQ(s.checkpoints.size(), 1u);
+    EXPECT_EQ(s.checkpoints.back(), ckpt);
+    EXPECT_EQ(farm::inspect_checkpoint(ckpt).step, 5);
+  }
+  const farm::RunSummary r =
+      run_on(world_size(), triaxial_job(base + "/split", 9, mixed_elastic_kind()), &ckpt);
+  EXPECT_EQ(r.stopped_by, 0);
+  if (world_rank() == 0) {
+    EXPECT_EQ(r.steps, 9);
+    EXPECT_EQ(compare_results(base + "/straight/results.h5", base + "/split/results.h5"), "");
+  }
+}
+
 // Migration: results do not depend on the partition, whatever moves when.
 TEST(Farm, MigrationKeepsResults) {
   const std::int64_t n_rve = 10;

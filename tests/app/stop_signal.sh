@@ -1,0 +1,75 @@
+#!/bin/bash
+# A signal ends a running `mpmxdem run` after its current MPM step with a checkpoint (docs/errors.md
+# "Stopping a run"), and `--restart latest` continues bit for bit:
+#  1. SIGUSR1 to mpiexec (Open MPI forwards it to every rank; what `mpirun` users and Slurm's
+#     `--signal=USR1@T` before a time limit send): exit 138, the log names the signal and the
+#     checkpoint of the step it stopped at;
+#  2. SIGTERM to every rank itself (what Slurm sends at a time limit, through srun): exit 143;
+#  3. a restart with --max-steps S from each stopped run gives the results.h5 of a straight run of
+#     S steps, compared with h5diff (no tolerance).
+# The job never ends by itself (end time 1e5 s of an elastic triaxial): only the signal stops it.
+# Usage: stop_signal.sh EXE MPIEXEC H5DIFF WORKDIR (from the source root)
+set -uo pipefail
+exe=$1 mpiexec=$2 h5diff=$3 dir=$4
+rm -rf "$dir" && mkdir -p "$dir"
+sed 's/end_time = "2 s"/end_time = "1e5 s"/' jobs/elastic_triaxial.toml > "$dir/job.toml"
+fail() { echo "FAIL: $*"; exit 1; }
+
+# Starts a 2-rank run into $dir/$1 in the background; returns when its stepping loop has begun
+# (the farm's first log line comes after the handlers are installed), then lets it step a while.
+start() {
+  "$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/$1" > "$dir/$1.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 600); do
+    grep -q "farm: 8 RVEs" "$dir/$1/log.txt" 2> /dev/null && break
+    kill -0 "$pid" 2> /dev/null || fail "$1: the run ended before the signal: $(cat "$dir/$1.out")"
+    sleep 0.5
+  done
+  grep -q "farm: 8 RVEs" "$dir/$1/log.txt" || fail "$1: the run did not start in 300 s"
+  sleep 1
+}
+
+# Waits for the run of start() (300 s at most) and checks its exit code and its stop.
+finish() {  # name code signal
+  for _ in $(seq 600); do kill -0 "$pid" 2> /dev/null || break; sleep 0.5; done
+  if kill -0 "$pid" 2> /dev/null; then
+    kill -9 "$pid"
+    fail "$1: still running 300 s after the signal"
+  fi
+  wait "$pid"
+  local rc=$?
+  [ "$rc" -eq "$2" ] || fail "$1: exit $rc, expected $2: $(tail -20 "$dir/$1.out")"
+  local line
+  line=$(grep "stopped by $3 at step" "$dir/$1/log.txt") || fail "$1: no 'stopped by $3' line: $(tail -5 "$dir/$1/log.txt")"
+  step=$(sed -E 's/.*at step ([0-9]+),.*/\1/' <<< "$line")
+  [ -f "$dir/$1/checkpoint_$(printf %010d "$step").h5" ] || fail "$1: no checkpoint of step $step: $(ls "$dir/$1")"
+  grep -q "checkpoint_$(printf %010d "$step").h5; continue with" <<< "$line" || fail "$1: $line"
+  echo "$1: stopped by $3 at step $step, exit $rc"
+}
+
+start usr1
+kill -USR1 "$pid"
+finish usr1 138 SIGUSR1
+usr1_step=$step
+
+start term
+ranks=$(pgrep -f "^$exe run $dir/job.toml --out $dir/term") || fail "term: no rank processes"
+[ "$(wc -w <<< "$ranks")" -eq 2 ] || fail "term: expected 2 rank processes: $ranks"
+kill -TERM $ranks
+finish term 143 SIGTERM
+term_step=$step
+
+# Each stopped run continued a few steps past where it stopped, against a straight run that far.
+for run in usr1 term; do
+  step=${run}_step
+  end=$((${!step} + 7))
+  "$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/$run" --restart latest --max-steps "$end" \
+    > "$dir/$run.restart.out" 2>&1 || fail "$run: restart: $(tail -20 "$dir/$run.restart.out")"
+  grep -q "continuing from $dir/$run/checkpoint_" "$dir/$run.restart.out" || fail "$run: restart did not continue"
+  "$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/$run.straight" --max-steps "$end" \
+    > "$dir/$run.straight.out" 2>&1 || fail "$run: straight run: $(tail -20 "$dir/$run.straight.out")"
+  "$h5diff" "$dir/$run.straight/results.h5" "$dir/$run/results.h5" > "$dir/$run.h5diff" 2>&1 ||
+    fail "$run: stopped and continued differs from straight to step $end: $(head -20 "$dir/$run.h5diff")"
+  echo "$run: continued to step $end: results.h5 identical to a straight run"
+done
+echo "stop signal: ok"
