@@ -12,6 +12,7 @@
 #include "app/dem_setup.hpp"
 #include "app/progress.hpp"
 #include "app/series_output.hpp"
+#include "app/stop_signals.hpp"
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
 #include "dem/element_test.hpp"
@@ -146,6 +147,13 @@ int command_dem(const Options& o, const Comm& comm) {
   ref.v0 = sim.cell().volume();
   series.add(row(sim, dem::measure(sim), ref));
 
+  // From here a signal ends the loading at its next series row, with the series and the final
+  // packing written (docs/errors.md, "Stopping a run"); a pure DEM test has no checkpoint.
+  // (Not during an isotropic equilibration: it has no rows to stop at.)
+  std::optional<StopSignals> signals;
+  if (type != "isotropic") signals.emplace();
+  struct Stopped {};  // thrown by the triaxial observer, caught below
+  bool cut = false;   // the loading was stopped by a signal
   std::int64_t done = 0;
   if (type == "triaxial" || type == "biaxial") {
     const bool plane = type == "biaxial";
@@ -170,17 +178,26 @@ int command_dem(const Options& o, const Comm& comm) {
     check_step_count(job, o, test.eps_end / test.axial_rate / sim.dt(),
                      "dem.loading.inertial_number");
     Progress progress(type, test.eps_end);
-    done = dem::run_drained_triaxial(
-        sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
-          const dem::Measures m = dem::measure(s);
-          check_finite(m, s);
-          series.add(row(s, m, ref, plane));
-          check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s, plane ? 1 : 2);
-          progress.update(
-              now.eps_a, s.steps(),
-              fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v, m.void_ratio),
-              now.eps_a >= test.eps_end);
-        });
+    try {
+      done = dem::run_drained_triaxial(
+          sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
+            const dem::Measures m = dem::measure(s);
+            check_finite(m, s);
+            series.add(row(s, m, ref, plane));
+            check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s,
+                                  plane ? 1 : 2);
+            progress.update(now.eps_a, s.steps(),
+                            fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v,
+                                        m.void_ratio),
+                            now.eps_a >= test.eps_end);
+            if (!now.last && StopSignals::received() != 0) {
+              done = now.steps;
+              throw Stopped{};
+            }
+          });
+    } catch (const Stopped&) {
+      cut = true;  // done: the steps up to the last row
+    }
   } else if (type == "isotropic") {
     dem::EquilibriumTarget t;
     t.pressure = job.number("dem.loading.confining_pressure");
@@ -196,7 +213,7 @@ int command_dem(const Options& o, const Comm& comm) {
     const double t_end = sim.time() + duration;
     Progress progress("strain path", duration);
     const double t0 = sim.time();
-    while (sim.time() < t_end && done < max_steps) {
+    while (sim.time() < t_end && done < max_steps && StopSignals::received() == 0) {
       sim.cell().l = L;
       // The steps left, compared in double precision before the conversion.
       const double left = std::max(1.0, std::floor((t_end - sim.time()) / sim.dt()));
@@ -211,6 +228,7 @@ int command_dem(const Options& o, const Comm& comm) {
       progress.update(sim.time() - t0, sim.steps(),
                       fmt::format("p {:.4g} Pa, q {:.4g} Pa", m.p, m.q), sim.time() >= t_end);
     }
+    cut = sim.time() < t_end && done < max_steps;  // only a signal ends the loop early
   }
   if (done >= max_steps) spdlog::warn("stopped after --max-steps {} DEM steps", max_steps);
   series.finish(job.has("title") ? job.text("title") : o.job);
@@ -220,6 +238,14 @@ int command_dem(const Options& o, const Comm& comm) {
                      "final state of mpmxdem dem " + o.job);
   spdlog::info("done: {} loading steps; series in {} ({} rows)", done,
                (out / "dem_series.csv").string(), series.rows());
+  if (cut) {
+    const int stopped = StopSignals::received();
+    spdlog::warn(
+        "stopped by {} after {} loading steps, before the end of the loading: the series and {} "
+        "hold the state there (a pure DEM test has no checkpoint; exit {} = 128 + {})",
+        signal_name(stopped), done, (out / "final_packing.txt").string(), 128 + stopped, stopped);
+    return 128 + stopped;
+  }
   return 0;
 }
 

@@ -6,7 +6,8 @@
 #     checkpoint of the step it stopped at;
 #  2. SIGTERM to every rank itself (what Slurm sends at a time limit, through srun): exit 143;
 #  3. a restart with --max-steps S from each stopped run gives the results.h5 of a straight run of
-#     S steps, compared with h5diff (no tolerance).
+#     S steps, compared with h5diff (no tolerance);
+#  4. `mpmxdem dem`: SIGUSR2 ends the loading at its next row, with its series and final packing.
 # The job never ends by itself (end time 1e5 s of an elastic triaxial): only the signal stops it.
 # Usage: stop_signal.sh EXE MPIEXEC H5DIFF WORKDIR (from the source root)
 set -uo pipefail
@@ -72,4 +73,25 @@ for run in usr1 term; do
     fail "$run: stopped and continued differs from straight to step $end: $(head -20 "$dir/$run.h5diff")"
   echo "$run: continued to step $end: results.h5 identical to a straight run"
 done
+# `dem` (one process, no mpiexec): SIGUSR2 ends the loading at its next series row; the series
+# (CSV and HDF5, readable) and the final packing are written, exit 140.
+sed 's/^axial_strain = 0.02/axial_strain = 0.5/' jobs/triaxial_dem_small.toml > "$dir/dem.toml"
+"$exe" dem "$dir/dem.toml" --out "$dir/dem" > "$dir/dem.out" 2>&1 &
+pid=$!
+for _ in $(seq 600); do
+  grep -q "DEM steps$" "$dir/dem/log.txt" 2> /dev/null && break  # the loading has begun
+  kill -0 "$pid" 2> /dev/null || fail "dem: ended before the signal: $(cat "$dir/dem.out")"
+  sleep 0.5
+done
+sleep 1
+kill -USR2 "$pid"
+for _ in $(seq 600); do kill -0 "$pid" 2> /dev/null || break; sleep 0.5; done
+kill -0 "$pid" 2> /dev/null && { kill -9 "$pid"; fail "dem: still running 300 s after the signal"; }
+wait "$pid"
+rc=$?
+[ "$rc" -eq 140 ] || fail "dem: exit $rc, expected 140: $(tail -20 "$dir/dem.out")"
+grep -q "stopped by SIGUSR2 after [0-9]* loading steps" "$dir/dem/log.txt" || fail "dem: no stop line"
+[ -s "$dir/dem/final_packing.txt" ] || fail "dem: no final packing"
+"$h5diff" "$dir/dem/dem_series.h5" "$dir/dem/dem_series.h5" > /dev/null || fail "dem: dem_series.h5 unreadable"
+echo "dem: $(grep -o "stopped by SIGUSR2 after [0-9]* loading steps" "$dir/dem/log.txt"), exit $rc"
 echo "stop signal: ok"
