@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "app/coupled_setup.hpp"
+#include "app/memory_check.hpp"
 #include "app/mpm_setup.hpp"
 #include "app/restart_check.hpp"
 #include "app/restart_latest.hpp"
@@ -54,12 +55,41 @@ int command_run(const Options& given, const Comm& comm) {
   // Everything the job implies is checked before the output directory is touched: the directory
   // itself (cheap, first), the packing, the mapping onto the grid, the checkpoint.
   check_output(o, comm);
-  check_job_packing(job, comm);
+  const std::int64_t spheres = check_job_packing(job, comm);
   std::optional<farm::CoupledConfig> config;
+  std::optional<MpmSetup> setup;
   agree(comm, [&] {
     config.emplace(coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps}));
+    setup.emplace(mpm_setup(job));
   });
   const farm::CoupledConfig& cfg = *config;
+  // The points by ascending id, and the ranks that own RVEs: as farm::Placement starts, each of
+  // them a contiguous block (farm.rank0_rves = false leaves rank 0 to the MPM).
+  std::vector<std::size_t> by_id(setup->points.size());
+  for (std::size_t i = 0; i < by_id.size(); ++i) by_id[i] = i;
+  std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) {
+    return setup->points.id[a] < setup->points.id[b];
+  });
+  const int first_worker = !cfg.farm.rank0_rves && comm.size > 1 ? 1 : 0;
+  const std::vector<int> part = farm::partition_blocks(by_id.size(), comm.size - first_worker);
+  auto mine = [&](std::size_t k) { return part[k] + first_worker == comm.rank; };
+  // The DEM RVEs against the memory of the nodes, before any preparation (docs/errors.md).
+  agree(comm, [&] {
+    RveMemory m;
+    m.spheres = spheres;
+    std::vector<std::int64_t> per_body(job.count("mpm.body"), 0);
+    for (std::size_t k = 0; k < by_id.size(); ++k) {
+      const std::size_t i = by_id[k];
+      if (setup->points.material[i] != kDemMaterial) continue;
+      ++m.rves;
+      ++per_body[static_cast<std::size_t>(setup->body[i])];
+      if (mine(k)) ++m.held;
+    }
+    if (m.rves == 0) return;
+    const auto biggest = std::max_element(per_body.begin(), per_body.end()) - per_body.begin();
+    m.key = fmt::format("mpm.body[{}].points_per_cell", biggest);
+    check_rve_memory(job, m, comm);
+  });
   std::size_t rves = cfg.points.size();
   if (!o.restart.empty()) {
     // A damaged checkpoint, or one of another job, is refused before anything is written.
@@ -78,22 +108,14 @@ int command_run(const Options& given, const Comm& comm) {
     // of each material (the checks below). The farm's RVEs are copies of what this made (the
     // micro kind keeps it) and its own prepare call finds it there, so nothing is prepared twice.
     std::vector<std::int64_t> first;  // one point of each material, in point order
-    std::vector<std::int64_t> mine;   // this rank's start-up block, and `first`
-    agree(comm, [&] {
-      const MpmSetup setup = mpm_setup(job);
-      std::set<std::int32_t> materials;
-      for (std::size_t i = 0; i < setup.points.size(); ++i)
-        if (materials.insert(setup.points.material[i]).second) first.push_back(setup.points.id[i]);
-      std::vector<std::int64_t> ids(setup.points.id.begin(), setup.points.id.end());
-      std::sort(ids.begin(), ids.end());
-      // As farm::Placement starts: contiguous blocks over the ranks that own RVEs.
-      const int first_worker = !cfg.farm.rank0_rves && comm.size > 1 ? 1 : 0;
-      const std::vector<int> part = farm::partition_blocks(ids.size(), comm.size - first_worker);
-      for (std::size_t k = 0; k < ids.size(); ++k)
-        if (part[k] + first_worker == comm.rank) mine.push_back(ids[k]);
-      mine.insert(mine.end(), first.begin(), first.end());
-    });
-    if (cfg.micro.prepare) agree(comm, [&] { cfg.micro.prepare(mine, comm.comm); });
+    std::vector<std::int64_t> ask;    // this rank's start-up block, and `first`
+    std::set<std::int32_t> materials;
+    for (std::size_t i = 0; i < setup->points.size(); ++i)
+      if (materials.insert(setup->points.material[i]).second) first.push_back(setup->points.id[i]);
+    for (std::size_t k = 0; k < by_id.size(); ++k)
+      if (mine(k)) ask.push_back(setup->points.id[by_id[k]]);
+    ask.insert(ask.end(), first.begin(), first.end());
+    if (cfg.micro.prepare) agree(comm, [&] { cfg.micro.prepare(ask, comm.comm); });
     double wave_speed = 0.0;
     agree(comm, [&] {
       for (const std::int64_t id : first) {

@@ -14,6 +14,8 @@
 #include "app/coupled_setup.hpp"
 #include "app/dem_setup.hpp"
 #include "app/logging.hpp"
+#include "app/memory_check.hpp"
+#include "app/mpm_setup.hpp"
 #include "app/output_dir.hpp"
 #include "app/version.hpp"
 #include "common/errors.hpp"
@@ -62,12 +64,14 @@ Job load_job_collective(const std::string& path, const Comm& comm) {
   return std::move(*job);
 }
 
-void check_job_packing(const Job& job, const Comm& comm) {
-  if (!job.has_section("dem.sample")) return;
+std::int64_t check_job_packing(const Job& job, const Comm& comm) {
+  if (!job.has_section("dem.sample")) return 0;
+  std::int64_t spheres = job.has("dem.sample.spheres") ? job.integer("dem.sample.spheres") : 0;
   on_root(comm, [&] {
     if (job.has("dem.sample.packing")) {
       bool generated = false;
       const dem::Packing pk = dem_packing(job, generated);  // read_packing checks it
+      spheres = static_cast<std::int64_t>(pk.r.size());
       // The neighbour search needs every cell width >= 2 r_max + skin.
       const double r_max = *std::max_element(pk.r.begin(), pk.r.end());
       const double skin = job.number("dem.numerics.verlet_skin") * r_max;
@@ -84,14 +88,32 @@ void check_job_packing(const Job& job, const Comm& comm) {
       }
     }
   });
+  MPI_Bcast(&spheres, 1, MPI_INT64_T, 0, comm.comm);
+  return spheres;
 }
 
 int command_check(const Options& o, const Comm& comm) {
   const Job job = load_job_collective(o.job, comm);
-  check_job_packing(job, comm);
+  const std::int64_t spheres = check_job_packing(job, comm);
+  std::int64_t dem_points = 0;
   if (job.has_section("mpm")) {
     // The mapping onto the grid and the run set-up: the errors `run` would give before writing.
-    agree(comm, [&] { (void)coupled_setup(job, RunLimits{"(check)", -1}); });
+    agree(comm, [&] {
+      (void)coupled_setup(job, RunLimits{"(check)", -1});
+      const MpmSetup setup = mpm_setup(job);
+      dem_points =
+          std::count(setup.points.material.begin(), setup.points.material.end(), kDemMaterial);
+    });
+  }
+  if (comm.rank == 0 && dem_points > 0) {
+    // What a run will need: `run` refuses a start where the RVEs of a node exceed its memory.
+    spdlog::info(
+        "{} DEM RVEs of {} spheres: at least {} of memory in all ({:.0f} bytes per sphere; a run's "
+        "peak is about twice that), spread over the nodes of the run",
+        dem_points, spheres,
+        format_bytes(static_cast<double>(dem_points) * static_cast<double>(spheres) *
+                     kRveBytesPerSphere),
+        kRveBytesPerSphere);
   }
   if (comm.rank == 0) {
     std::fputs(job.resolved_toml().c_str(), stdout);

@@ -45,8 +45,9 @@ std::filesystem::path open_output(const Options& o, const Job& job, const Comm& 
 
 /// Collective: the packing of the job's [dem.sample] (when it has one), read and checked on rank 0
 /// (read_packing, check_packing; a generated sample: its memory bound). Throws the InputError
-/// naming the packing file and line on every rank.
-void check_job_packing(const Job& job, const Comm& comm);
+/// naming the packing file and line on every rank. Returns, on every rank, the spheres of one
+/// sample (the packing's, or dem.sample.spheres of a generated one); 0 without [dem.sample].
+std::int64_t check_job_packing(const Job& job, const Comm& comm);
 
 int command_check(const Options& o, const Comm& comm);
 int command_run(const Options& o, const Comm& comm);

@@ -9,18 +9,13 @@
 
 #include "app/insitu.hpp"
 #include "app/job.hpp"
+#include "app/memory_check.hpp"
 #include "common/errors.hpp"
 #include "dem/params.hpp"
 
 namespace app {
 
 namespace {
-
-double physical_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
-}
 
 // A path short enough to print (a 100 kB path is not echoed whole).
 std::string short_path(const std::string& p) {
@@ -83,12 +78,13 @@ void sample_rules(const Job& job, Rules& r) {
     // An upper bound from the memory a sample needs (spheres, contacts, neighbour lists: about
     // kBytesPerSphere each, measured order of magnitude) against this machine's memory.
     constexpr double kBytesPerSphere = 2048.0;
-    const double mem = physical_memory_bytes();
+    const double mem = usable_memory_bytes();
     const auto n = static_cast<double>(job.integer("dem.sample.spheres"));
     if (mem > 0.0 && n * kBytesPerSphere > mem) {
       r.fail("dem.sample.spheres",
              fmt::format("a sample of {:.3g} spheres needs about {:.3g} GB of memory ({} bytes per "
-                         "sphere), more than this machine's {:.3g} GB: at most {:.0f} spheres",
+                         "sphere), more than the {:.3g} GB this machine lets the job use: at most "
+                         "{:.0f} spheres",
                          n, n * kBytesPerSphere / 1e9, kBytesPerSphere, mem / 1e9,
                          std::floor(mem / kBytesPerSphere)));
     }
@@ -205,11 +201,11 @@ void mpm_rules(const Job& job, Rules& r) {
                 static_cast<double>(ppc[2]);
     }
     const double need = nodes * kBytesPerNode + points * kBytesPerPoint;
-    const double mem = physical_memory_bytes();
+    const double mem = usable_memory_bytes();
     if (mem > 0.0 && need > mem) {
       r.fail("mpm.grid.cells",
              fmt::format("{:.3g} grid nodes and {:.3g} material points need about {:.3g} GB of "
-                         "memory on rank 0, more than this machine's {:.3g} GB",
+                         "memory on rank 0, more than the {:.3g} GB this machine lets the job use",
                          nodes, points, need / 1e9, mem / 1e9));
     }
   }
