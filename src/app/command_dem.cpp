@@ -99,18 +99,6 @@ void check_lateral_control(const common::Mat3& stress, double confining, double 
   }
 }
 
-/// A loading that implies more DEM steps than any machine runs (a duration of 1e308 s, an
-/// inertial number of 1e-30) is refused naming its key, unless --max-steps bounds the run: it
-/// would run for ever, writing a series row every output.every steps.
-void check_step_count(const Job& job, const Options& o, double steps, const std::string& key) {
-  constexpr double kMaxSteps = 1e12;
-  if (o.max_steps >= 0 || steps <= kMaxSteps) return;
-  throw common::InputError(job.message(
-      key, fmt::format("implies about {:.3g} DEM steps, more than {:.0e} (years of computing): "
-                       "shorten the loading, or bound the run with --max-steps",
-                       steps, kMaxSteps)));
-}
-
 }  // namespace
 
 int command_dem(const Options& o, const Comm& comm) {
@@ -175,7 +163,7 @@ int command_dem(const Options& o, const Comm& comm) {
         type, d50, dem::inertial_time(d50, rho, test.confining), test.axial_rate, test.eps_end,
         test.confining, plane ? " on x, zero strain on y (plane strain)" : "",
         test.eps_end / test.axial_rate / sim.dt());
-    check_step_count(job, o, test.eps_end / test.axial_rate / sim.dt(),
+    check_step_count(job, o, test.eps_end / test.axial_rate / sim.dt(), "DEM",
                      "dem.loading.inertial_number");
     Progress progress(type, test.eps_end);
     try {
@@ -209,7 +197,7 @@ int command_dem(const Options& o, const Comm& comm) {
     const auto& l = job.numbers("dem.loading.velocity_gradient");
     const common::Mat3 L = common::row_major(l.data());
     const double duration = job.number("dem.loading.duration");
-    check_step_count(job, o, duration / sim.dt(), "dem.loading.duration");
+    check_step_count(job, o, duration / sim.dt(), "DEM", "dem.loading.duration");
     const double t_end = sim.time() + duration;
     Progress progress("strain path", duration);
     const double t0 = sim.time();

@@ -92,11 +92,17 @@ int command_run(const Options& given, const Comm& comm) {
   });
   std::size_t rves = cfg.points.size();
   if (!o.restart.empty()) {
-    // A damaged checkpoint, or one of another job, is refused before anything is written.
+    // A damaged checkpoint, or one of another job, is refused before anything is written; so is
+    // an end time beyond reach (it may change at a restart), from the mean dt so far.
     on_root(comm, [&] {
       const farm::CheckpointInfo info = farm::inspect_checkpoint(o.restart, true);
       check_restart(job, o.restart, info.job_text, output_path(o));
       rves = info.ids.size();
+      if (info.step > 0 && info.time > 0.0 && cfg.end_time > info.time) {
+        check_step_count(job, o,
+                         (cfg.end_time - info.time) / (info.time / static_cast<double>(info.step)),
+                         "MPM", "mpm.end_time");
+      }
     });
   }
   if (o.restart.empty()) {
@@ -149,6 +155,11 @@ int command_run(const Options& given, const Comm& comm) {
                              s != 1.0 ? fmt::format(" (with mpm.mass_scaling = {:.6g})", s)
                                       : std::string())));
       }
+    }
+    // At least end_time / dt steps: the CFL step only shrinks as the points move.
+    if (c > 0.0) {
+      const double dt = job.has("mpm.dt") ? job.number("mpm.dt") : cfg.solver.cfl * h / c;
+      check_step_count(job, o, cfg.end_time / dt, "MPM", "mpm.end_time");
     }
     if (job.has("mpm.dt") && c > 0.0 && job.number("mpm.dt") > h / c) {
       throw common::InputError(job.message(

@@ -92,6 +92,16 @@ std::int64_t check_job_packing(const Job& job, const Comm& comm) {
   return spheres;
 }
 
+void check_step_count(const Job& job, const Options& o, double steps, const std::string& what,
+                      const std::string& key) {
+  constexpr double kMaxSteps = 1e12;
+  if (o.max_steps >= 0 || steps <= kMaxSteps) return;
+  throw common::InputError(job.message(
+      key, fmt::format("implies about {:.3g} {} steps, more than {:.0e} (years of computing): "
+                       "shorten the run, or bound it with --max-steps",
+                       steps, what, kMaxSteps)));
+}
+
 int command_check(const Options& o, const Comm& comm) {
   const Job job = load_job_collective(o.job, comm);
   const std::int64_t spheres = check_job_packing(job, comm);

@@ -49,6 +49,12 @@ std::filesystem::path open_output(const Options& o, const Job& job, const Comm& 
 /// sample (the packing's, or dem.sample.spheres of a generated one); 0 without [dem.sample].
 std::int64_t check_job_packing(const Job& job, const Comm& comm);
 
+/// A run that implies more than 1e12 steps (years of computing: an end time of 1e300 s, an
+/// inertial number of 1e-30, a unit slip) is refused naming `key` (`what`: "DEM" or "MPM" steps),
+/// unless --max-steps bounds it: it would run for ever, writing its outputs.
+void check_step_count(const Job& job, const Options& o, double steps, const std::string& what,
+                      const std::string& key);
+
 int command_check(const Options& o, const Comm& comm);
 int command_run(const Options& o, const Comm& comm);
 int command_schema(const Options& o, const Comm& comm);

@@ -18,6 +18,7 @@ Progress::Progress(std::string what, double total, double interval_seconds)
 
 std::string Progress::clock(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
+  if (seconds >= 3.6e9) return fmt::format("{:.3g} years", seconds / 3.15576e7);
   const auto s = static_cast<long long>(seconds + 0.5);
   return fmt::format("{:02d}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
 }

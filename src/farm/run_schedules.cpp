@@ -1,6 +1,8 @@
 // Schedules of a coupled run (see header).
 #include "farm/run_schedules.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -52,6 +54,8 @@ double eta_s(std::int64_t step, double time, std::int64_t max_steps, double end_
 
 std::string format_duration(double s) {
   if (!std::isfinite(s) || s < 0) return "?";
+  // Beyond a million hours the count of hours would overflow nothing useful: years.
+  if (s >= 3.6e9) return fmt::format("{:.3g} years", s / 3.15576e7);
   const auto t = static_cast<long long>(s);
   return std::to_string(t / 3600) + "h" + std::to_string((t / 60) % 60) + "m" +
          std::to_string(t % 60) + "s";

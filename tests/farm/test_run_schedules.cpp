@@ -78,6 +78,9 @@ TEST(RunSchedules, EtaAndDurations) {
   EXPECT_DOUBLE_EQ(farm::eta_s(10, 1.0, 1000, 10.0, 1.0), 90.0);
   EXPECT_EQ(farm::format_duration(3723.0), "1h2m3s");
   EXPECT_EQ(farm::format_duration(-1.0), "?");
+  // Beyond a million hours, years (a count of hours would overflow the integer it is made of).
+  EXPECT_EQ(farm::format_duration(3.6e9 - 1.0), "999999h59m59s");
+  EXPECT_EQ(farm::format_duration(1e300), "3.17e+292 years");
 }
 
 // Finding 3 of docs/scaling.md: a check whose METIS proposal took 0.25 s with steps of 15 ms
