@@ -33,7 +33,12 @@ StopSignals::StopSignals() {
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;  // interrupted reads and writes (HDF5, MPI) resume
-  for (std::size_t k = 0; k < std::size(kSignals); ++k) sigaction(kSignals[k], &action, &old_[k]);
+  for (std::size_t k = 0; k < std::size(kSignals); ++k) {
+    sigaction(kSignals[k], nullptr, &old_[k]);
+    // A signal ignored when the process started stays ignored (`nohup`, SIGINT of a background
+    // job of a script): whoever ignored it did not mean it to stop the run.
+    if (old_[k].sa_handler != SIG_IGN) sigaction(kSignals[k], &action, nullptr);
+  }
 }
 
 StopSignals::~StopSignals() {

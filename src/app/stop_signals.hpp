@@ -10,8 +10,9 @@
 namespace app {
 
 /// While alive: SIGTERM, SIGINT, SIGUSR1, SIGUSR2 and SIGXCPU are recorded (the first one;
-/// a second SIGINT ends the process at once, as without the handler), not acted on. Restores the
-/// previous actions when destroyed. One at a time per process.
+/// a second SIGINT ends the process at once, as without the handler), not acted on; one that was
+/// ignored (SIG_IGN: `nohup`, a script's background job) stays ignored. Restores the previous
+/// actions when destroyed. One at a time per process.
 class StopSignals {
  public:
   StopSignals();

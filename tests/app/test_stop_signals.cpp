@@ -36,6 +36,19 @@ TEST(StopSignals, TheFirstSignalIsRecordedAndTheProcessGoesOn) {
   EXPECT_EQ(app::StopSignals::received(), SIGXCPU);
 }
 
+TEST(StopSignals, AnIgnoredSignalStaysIgnored) {
+  std::signal(SIGUSR2, SIG_IGN);
+  {
+    const app::StopSignals guard;
+    EXPECT_EQ(current_action(SIGUSR2), SIG_IGN);
+    ASSERT_EQ(std::raise(SIGUSR2), 0);
+    EXPECT_EQ(app::StopSignals::received(), 0);
+    EXPECT_NE(current_action(SIGUSR1), SIG_IGN);  // the others are taken
+  }
+  EXPECT_EQ(current_action(SIGUSR2), SIG_IGN);
+  std::signal(SIGUSR2, SIG_DFL);
+}
+
 TEST(StopSignals, Names) {
   EXPECT_EQ(app::signal_name(SIGUSR1), "SIGUSR1");
   EXPECT_EQ(app::signal_name(SIGTERM), "SIGTERM");
