@@ -18,9 +18,9 @@ int main(int argc, char** argv) {
     cfg.steps = argc > 4 ? std::atoll(argv[4]) : 3000;
     const auto r = dem::run_benchmark(dem::read_packing(path), dem::reference_material(),
                                       dem::benchmark_numerics(), cfg);
-    std::printf("spheres %lld threads %d steps %lld wall %.3f s cpu %.3f s\n",
-                static_cast<long long>(r.spheres), r.threads, static_cast<long long>(r.steps),
-                r.wall_s, r.cpu_s);
+    std::printf("spheres %lld threads %d team %d steps %lld wall %.3f s cpu %.3f s\n",
+                static_cast<long long>(r.spheres), r.threads, r.team,
+                static_cast<long long>(r.steps), r.wall_s, r.cpu_s);
     std::printf("ms/step %.4f  us/particle-step %.4f  contacts/sphere %.3f  pairs/sphere %.3f\n",
                 r.ms_per_step, r.us_per_particle_step, r.contacts_per_sphere, r.pairs_per_sphere);
     std::printf("dt %.4g s  bytes/sphere %.0f  rebuilds %lld  hash %016llx\n", r.dt,

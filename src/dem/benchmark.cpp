@@ -11,6 +11,7 @@
 #include "dem/element_test.hpp"
 #include "dem/loading.hpp"
 #include "dem/rve.hpp"
+#include "dem/threads.hpp"
 
 namespace dem {
 
@@ -79,11 +80,11 @@ std::string reference_packing_path() { return MPMXDEM_REFERENCE_PACKING; }
 std::string to_string(const BenchmarkResult& r) {
   char buf[320];
   std::snprintf(buf, sizeof buf,
-                "spheres=%lld threads=%d steps=%lld ms/step=%.4f us/particle-step=%.4f "
+                "spheres=%lld threads=%d team=%d steps=%lld ms/step=%.4f us/particle-step=%.4f "
                 "contacts/sphere=%.3f pairs/sphere=%.3f dt=%.4g rebuilds=%lld hash=%016llx",
-                static_cast<long long>(r.spheres), r.threads, static_cast<long long>(r.steps),
-                r.ms_per_step, r.us_per_particle_step, r.contacts_per_sphere, r.pairs_per_sphere,
-                r.dt, static_cast<long long>(r.rebuilds),
+                static_cast<long long>(r.spheres), r.threads, r.team,
+                static_cast<long long>(r.steps), r.ms_per_step, r.us_per_particle_step,
+                r.contacts_per_sphere, r.pairs_per_sphere, r.dt, static_cast<long long>(r.rebuilds),
                 static_cast<unsigned long long>(r.state_hash));
   return buf;
 }
@@ -106,12 +107,15 @@ BenchmarkResult run_benchmark(const Packing& base, const Material& mat, const Nu
   advance(sim, &ctl, cfg.steps);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  const auto spheres = static_cast<std::int64_t>(pk.r.size());
+  const int team = one_thread(spheres) ? 1 : team_size(spheres);
   omp_set_num_threads(old_threads);
 
   BenchmarkResult r;
   const auto n = static_cast<double>(pk.r.size());
   r.spheres = static_cast<std::int64_t>(pk.r.size());
   r.threads = cfg.threads;
+  r.team = team;
   r.steps = cfg.steps;
   r.wall_s = wall;
   r.cpu_s = cpu;

@@ -22,6 +22,7 @@ struct BenchmarkConfig {
 struct BenchmarkResult {
   std::int64_t spheres = 0;
   int threads = 0;
+  int team = 0;            ///< threads the step ran on: at most spheres / kSpheresPerThread
   std::int64_t steps = 0;  ///< timed steps
   double wall_s = 0.0;     ///< timed wall seconds [s]
   double cpu_s = 0.0;      ///< process CPU seconds of the timed steps, all threads (std::clock) [s]

@@ -124,7 +124,8 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
     bool shell;  // not touching: within the skin only
   };
   std::vector<std::vector<Cand>> per_sphere(n);
-#pragma omp parallel for schedule(dynamic, 64) if (!one_thread(static_cast <std::int64_t>(n)))
+#pragma omp parallel for schedule(dynamic, 64) if (!one_thread(static_cast <std::int64_t>(n))) \
+    num_threads(team_size(static_cast <std::int64_t>(n)))
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     auto& out = per_sphere[i];
@@ -251,7 +252,7 @@ double max_drift2_region(const Spheres& s, const Mat3& f, const VerletState& vs)
   const auto n = static_cast<std::int64_t>(s.size());
   if (one_thread(n)) return max_drift2(s, f, vs);
   double amax2 = 0.0;
-#pragma omp parallel for reduction(max : amax2) schedule(static)
+#pragma omp parallel for reduction(max : amax2) schedule(static) num_threads(team_size(n))
   for (std::int64_t i = 0; i < n; ++i) {
     amax2 = std::max(amax2, rebuild_drift2(s, f, vs, static_cast<std::size_t>(i)));
   }

@@ -267,7 +267,7 @@ void Simulation::size_stress_blocks() {
   const auto np = static_cast<std::int64_t>(contacts_.size());
   const std::int64_t nblocks = (np + kStressBlock - 1) / kStressBlock;
   block_stress_.resize(static_cast<std::size_t>(nblocks));
-  pair_split_.prepare(omp_get_max_threads(), nblocks);
+  pair_split_.prepare(team_size(static_cast<std::int64_t>(spheres_.size())), nblocks);
   // Whether the law may skip its twisting part: no pair twists, and no contact can (the material
   // gives them no twisting stiffness).
   contacts_.classify_twist();
@@ -357,7 +357,7 @@ void Simulation::compute_forces() {
     pair_forces<false>();
     for (std::int64_t q = 0; q < ns; ++q) sum_sphere(q);
   } else {
-#pragma omp parallel
+#pragma omp parallel num_threads(team_size(ns))
     {
       pair_forces<true>();
       team_for<true>(ns, [this](std::int64_t q) { sum_sphere(q); });
@@ -374,7 +374,7 @@ void Simulation::integrate() {
   if (one_thread(ns)) {
     for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
   } else {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(team_size(ns))
     for (std::int64_t q = 0; q < ns; ++q) integrate_sphere(q, dt, l);
   }
   advance_cell_and_clock();
@@ -479,8 +479,9 @@ void Simulation::step(const StepHook& between) {
   if (one_thread(ns)) {
     step_shared<false>(between, ns, amax2, h_next, error);
   } else {
-    sphere_split_.prepare(omp_get_max_threads(), (ns + kSphereUnit - 1) / kSphereUnit);
-#pragma omp parallel
+    const int team = team_size(ns);
+    sphere_split_.prepare(team, (ns + kSphereUnit - 1) / kSphereUnit);
+#pragma omp parallel num_threads(team)
     step_shared<true>(between, ns, amax2, h_next, error);
     pair_split_.rebalance();
     sphere_split_.rebalance();

@@ -15,6 +15,7 @@
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
 #include "dem/simulation.hpp"
+#include "dem/threads.hpp"
 #include "dem_test_util.hpp"
 
 namespace {
@@ -238,6 +239,18 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 TEST(Simulation, BitForBitAcrossThreadCounts_threads_1_2) {
   const Snapshot a = run_threads(1);
   const Snapshot b = run_threads(2);
+  EXPECT_TRUE(same_bits(a.x, b.x));
+  EXPECT_TRUE(same_bits(a.u, b.u));
+  EXPECT_TRUE(same_bits(a.w, b.w));
+  EXPECT_EQ(std::memcmp(a.stress.data(), b.stress.data(), sizeof(Mat3)), 0);
+}
+
+// 16 threads allowed: the 1000 spheres run on a team of 8 (dem::team_size), the same bits.
+TEST(Simulation, BitForBitWithACappedTeam) {
+  omp_set_num_threads(16);
+  EXPECT_EQ(dem::team_size(1000), 8);
+  const Snapshot a = run_threads(1);
+  const Snapshot b = run_threads(16);
   EXPECT_TRUE(same_bits(a.x, b.x));
   EXPECT_TRUE(same_bits(a.u, b.u));
   EXPECT_TRUE(same_bits(a.w, b.w));
