@@ -63,11 +63,10 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
       "Run a coupled MPM x DEM job: validate it, then simulate, writing results.h5 (time series),\n"
       "points.xmf (ParaView), means.csv, log.txt and checkpoint_<step>.h5 files into --out");
   run->footer(
-      "A signal (SIGUSR1 to mpirun, which forwards it; SIGTERM, SIGUSR1 or SIGUSR2 to every rank, "
-      "as\n"
-      "a batch system sends before or at a time limit) ends the run after its current MPM step "
-      "with a\n"
-      "checkpoint; it exits 128 + the signal, and --restart latest continues it (docs/errors.md).");
+      "A signal (SIGUSR1 to mpirun, which forwards it; SIGTERM, SIGUSR1 or SIGUSR2 to every\n"
+      "rank, as a batch system sends before or at a time limit) ends the run after its current\n"
+      "MPM step with a checkpoint; it exits 128 + the signal, and --restart latest continues it\n"
+      "(docs/errors.md, \"Stopping a run\").");
   run->add_option("job", o.job, "Job file (TOML)")->required();
   run->add_option("-o,--out", o.out, "Output directory (default: results/<job file name>)");
   run->add_option(

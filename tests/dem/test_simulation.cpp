@@ -236,25 +236,22 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
-TEST(Simulation, BitForBitAcrossThreadCounts_threads_1_2) {
-  const Snapshot a = run_threads(1);
-  const Snapshot b = run_threads(2);
+void expect_same_snapshot(const Snapshot& a, const Snapshot& b) {
   EXPECT_TRUE(same_bits(a.x, b.x));
   EXPECT_TRUE(same_bits(a.u, b.u));
   EXPECT_TRUE(same_bits(a.w, b.w));
   EXPECT_EQ(std::memcmp(a.stress.data(), b.stress.data(), sizeof(Mat3)), 0);
 }
 
+TEST(Simulation, BitForBitAcrossThreadCounts_threads_1_2) {
+  expect_same_snapshot(run_threads(1), run_threads(2));
+}
+
 // 16 threads allowed: the 1000 spheres run on a team of 8 (dem::team_size), the same bits.
 TEST(Simulation, BitForBitWithACappedTeam) {
   omp_set_num_threads(16);
   EXPECT_EQ(dem::team_size(1000), 8);
-  const Snapshot a = run_threads(1);
-  const Snapshot b = run_threads(16);
-  EXPECT_TRUE(same_bits(a.x, b.x));
-  EXPECT_TRUE(same_bits(a.u, b.u));
-  EXPECT_TRUE(same_bits(a.w, b.w));
-  EXPECT_EQ(std::memcmp(a.stress.data(), b.stress.data(), sizeof(Mat3)), 0);
+  expect_same_snapshot(run_threads(1), run_threads(16));
 }
 
 // Everything a step writes: spheres, contacts (with their history), stress, cell, clock.
