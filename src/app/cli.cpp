@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "app/job.hpp"
+#include "app/units.hpp"
 #include "app/version.hpp"
 
 namespace app {
@@ -80,6 +82,30 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
                   "checkpoint\n"
                   "is written at the end")
       ->check(integer_at_least(1));
+  run->add_option_function<std::string>(
+         "--max-wall",
+         [&o](const std::string& text) {
+           std::string why;
+           // A bare number is seconds (a job's time keys read "<number> <unit>" strings).
+           double seconds = 0.0;
+           const char* end = text.data() + text.size();
+           const auto bare = std::from_chars(text.data(), end, seconds);
+           const auto v = bare.ec == std::errc() && bare.ptr == end
+                              ? std::optional<double>(seconds)
+                              : parse_quantity(text, Quantity::Time, why);
+           if (!v || !(*v > 0.0) || !std::isfinite(*v)) {
+             throw CLI::ValidationError("--max-wall",
+                                        "must be a duration > 0 (\"23.5 h\", \"90 min\", "
+                                        "or seconds), not '" +
+                                            clip(text) + "'" + (why.empty() ? "" : ": " + why));
+           }
+           o.max_wall_s = *v;
+         },
+         "Stop with a checkpoint before this much wall time has passed since the start (\"23.5 "
+         "h\",\n"
+         "\"90 min\", or seconds): for a batch job's time limit; exit 75, --restart latest "
+         "continues")
+      ->type_name("DURATION");
   run->add_flag("--force", o.force,
                 "Write into a non-empty output directory (files of the same name are replaced)");
 

@@ -19,14 +19,17 @@
 #include "app/restart_check.hpp"
 #include "app/restart_latest.hpp"
 #include "app/stop_signals.hpp"
+#include "app/wall_budget.hpp"
 #include "common/errors.hpp"
 #include "farm/driver.hpp"
 #include "farm/mpi_util.hpp"
 #include "farm/partition.hpp"
+#include "farm/run_schedules.hpp"
 
 namespace app {
 
 int command_run(const Options& given, const Comm& comm) {
+  const auto started = WallBudget::Clock::now();  // --max-wall counts from here
   const Job job = load_job_collective(given.job, comm);
   Options o = given;
   if (o.restart == kRestartLatest) {
@@ -189,7 +192,21 @@ int command_run(const Options& given, const Comm& comm) {
   // From here a signal (a batch system's warning or time limit, Ctrl-C) ends the run after the
   // current MPM step with a checkpoint, instead of killing it (docs/errors.md).
   const StopSignals signals;
-  config->stop_requested = &StopSignals::received;
+  std::optional<WallBudget> budget;
+  if (o.max_wall_s > 0.0) budget.emplace(o.max_wall_s, started);
+  config->stop_requested = [&budget, said = false]() mutable {
+    int why = StopSignals::received();
+    if (why == 0 && budget && budget->spent(WallBudget::Clock::now())) why = kStopWallBudget;
+    if (why != 0 && !said) {
+      said = true;
+      spdlog::warn("{}: the run ends after this MPM step, with a checkpoint",
+                   why == kStopWallBudget
+                       ? fmt::format("--max-wall {}: too little wall time left for another step",
+                                     farm::format_duration(budget->seconds()))
+                       : signal_name(why) + " received");
+    }
+    return why;
+  };
   const farm::RunSummary s = o.restart.empty() ? farm::run_coupled(cfg, comm.comm)
                                                : farm::restart_coupled(cfg, o.restart, comm.comm);
   if (comm.rank == 0) {
@@ -214,14 +231,19 @@ int command_run(const Options& given, const Comm& comm) {
     spdlog::info("results: {0}/results.h5 (time series), {0}/points.xmf (ParaView), {0}/means.csv",
                  out.string());
     if (s.stopped_by != 0) {
+      const bool wall = s.stopped_by == kStopWallBudget;
       spdlog::warn(
           "stopped by {} at step {}, t = {:.6g} s, before the end{}; continue with `mpmxdem run "
-          "{} --out {} --restart latest` (exit {} = 128 + {})",
-          signal_name(s.stopped_by), s.steps, s.time,
-          s.checkpoints.empty() ? "" : ": checkpoint " + s.checkpoints.back(), given.job,
-          out.string(), 128 + s.stopped_by, s.stopped_by);
+          "{} --out {} --restart latest` (exit {})",
+          wall ? "--max-wall " + farm::format_duration(budget->seconds())
+               : signal_name(s.stopped_by),
+          s.steps, s.time, s.checkpoints.empty() ? "" : ": checkpoint " + s.checkpoints.back(),
+          given.job, out.string(),
+          wall ? std::to_string(kExitWallBudget)
+               : fmt::format("{} = 128 + {}", 128 + s.stopped_by, s.stopped_by));
     }
   }
+  if (s.stopped_by == kStopWallBudget) return kExitWallBudget;
   return s.stopped_by != 0 ? 128 + s.stopped_by : 0;
 }
 

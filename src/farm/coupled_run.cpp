@@ -160,13 +160,7 @@ void Master::run(RunSummary& sum) {
         scaling, scaling, std::sqrt(scaling), cfg_.solver.quasi_static_ratio);
   }
   while (more()) {
-    if (stop_requested(sum)) {
-      spdlog::warn(
-          "stop requested (signal {}) after step {}, t = {:.6g} s: the run ends here, with "
-          "a checkpoint",
-          sum.stopped_by, solver_.step_count(), solver_.time());
-      break;
-    }
+    if (stop_requested(sum)) break;  // the app logs why
     solver_.step();
     const std::int64_t s = solver_.step_count();
     count_work(sum);

@@ -7,14 +7,17 @@
 #  2. SIGTERM to every rank itself (what Slurm sends at a time limit, through srun): exit 143;
 #  3. a restart with --max-steps S from each stopped run gives the results.h5 of a straight run of
 #     S steps, compared with h5diff (no tolerance);
-#  4. `mpmxdem dem`: SIGUSR2 ends the loading at its next row, with its series and final packing.
-# The job never ends by itself (end time 1e5 s of an elastic triaxial): only the signal stops it.
+#  4. `run --max-wall 4`: the run ends by itself before 4 s, with a checkpoint, exit 75 (and 3.);
+#  5. `mpmxdem dem`: SIGUSR2 ends the loading at its next row, with its series and final packing.
+# The job never ends by itself (end time 1e5 s of a slow elastic triaxial): only the signal stops it.
 # Usage: stop_signal.sh EXE MPIEXEC H5DIFF WORKDIR (from the source root)
 set -uo pipefail
 exe=$1 mpiexec=$2 h5diff=$3 dir=$4
 rm -rf "$dir" && mkdir -p "$dir"
-sed 's/end_time = "2 s"/end_time = "1e5 s"/' jobs/elastic_triaxial.toml > "$dir/job.toml"
 fail() { echo "FAIL: $*"; exit 1; }
+# The platen at 1 um/s instead of 1 mm/s: a million steps (2500 s) move it 2.5 mm of the 1 m cell.
+sed 's/end_time = "2 s"/end_time = "1e5 s"/; s/z = "-1 mm\/s"/z = -1e-6/' jobs/elastic_triaxial.toml > "$dir/job.toml"
+grep -q "z = -1e-6" "$dir/job.toml" || fail "the platen of jobs/elastic_triaxial.toml is not the one this test slows"
 
 # Starts a 2-rank run into $dir/$1 in the background; returns when its stepping loop has begun
 # (the farm's first log line comes after the handlers are installed), then lets it step a while.
@@ -41,7 +44,7 @@ finish() {  # name code signal
   local rc=$?
   [ "$rc" -eq "$2" ] || fail "$1: exit $rc, expected $2: $(tail -20 "$dir/$1.out")"
   local line
-  line=$(grep "stopped by $3 at step" "$dir/$1/log.txt") || fail "$1: no 'stopped by $3' line: $(tail -5 "$dir/$1/log.txt")"
+  line=$(grep -- "stopped by $3 at step" "$dir/$1/log.txt") || fail "$1: no 'stopped by $3' line: $(tail -5 "$dir/$1/log.txt")"
   step=$(sed -E 's/.*at step ([0-9]+),.*/\1/' <<< "$line")
   [ -f "$dir/$1/checkpoint_$(printf %010d "$step").h5" ] || fail "$1: no checkpoint of step $step: $(ls "$dir/$1")"
   grep -q "checkpoint_$(printf %010d "$step").h5; continue with" <<< "$line" || fail "$1: $line"
@@ -60,8 +63,14 @@ kill -TERM $ranks
 finish term 143 SIGTERM
 term_step=$step
 
+# --max-wall: the run ends by itself before 4 s of wall time, with a checkpoint, exit 75.
+"$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/wall" --max-wall 4 > "$dir/wall.out" 2>&1 &
+pid=$!
+finish wall 75 "--max-wall 0h0m4s"
+wall_step=$step
+
 # Each stopped run continued a few steps past where it stopped, against a straight run that far.
-for run in usr1 term; do
+for run in usr1 term wall; do
   step=${run}_step
   end=$((${!step} + 7))
   "$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/$run" --restart latest --max-steps "$end" \
