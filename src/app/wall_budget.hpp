@@ -23,6 +23,7 @@ class WallBudget {
   /// Asked before every MPM step, with the time now: true when what is left may not hold one more
   /// step and the final checkpoint, that is, less than twice the longest interval between two
   /// calls so far (a step with its outputs, a periodic checkpoint included) plus 1 % of the budget.
+  /// Never at the first call: a run does at least one step.
   [[nodiscard]] bool spent(Clock::time_point now);
   [[nodiscard]] double seconds() const { return budget_; }
 

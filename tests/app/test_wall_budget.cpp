@@ -25,9 +25,17 @@ TEST(WallBudget, StopsWhenTwoOfTheLongestStepsAndOnePercentNoLongerFit) {
 // had a 30 s step and not one of 5 s steps.
 TEST(WallBudget, TheLongestIntervalCounts) {
   app::WallBudget b(100.0, at(0.0));
-  EXPECT_FALSE(b.spent(at(5.0)));   // no step yet: 95 s left, more than 1 s
+  EXPECT_FALSE(b.spent(at(5.0)));   // before the first step
   EXPECT_FALSE(b.spent(at(10.0)));  // 90 s left, more than 2 x 5 + 1
   EXPECT_TRUE(b.spent(at(40.0)));   // a 30 s step: 60 s left, under 2 x 30 + 1
   app::WallBudget even(100.0, at(0.0));
   for (int k = 1; k <= 8; ++k) EXPECT_FALSE(even.spent(at(5.0 * k))) << "at " << 5 * k << " s";
+}
+
+// A start longer than the budget still lets the run do one step (else every link of a chain would
+// end where it began); the next call stops it.
+TEST(WallBudget, NeverBeforeTheFirstStep) {
+  app::WallBudget b(10.0, at(0.0));
+  EXPECT_FALSE(b.spent(at(30.0)));
+  EXPECT_TRUE(b.spent(at(31.0)));
 }
