@@ -49,6 +49,11 @@ export OMPI_MCA_btl_base_warn_component_unused=0
 if [ ! -e /usr/lib/x86_64-linux-gnu/pmix2 ]; then
   ln -s "$D/usr/lib/x86_64-linux-gnu/pmix2" /usr/lib/x86_64-linux-gnu/pmix2 2>/dev/null ||
     echo "env.sh: could not link /usr/lib/x86_64-linux-gnu/pmix2 (not root?): mpirun may fail" >&2
+elif [ "$(readlink -f /usr/lib/x86_64-linux-gnu/pmix2)" != "$D/usr/lib/x86_64-linux-gnu/pmix2" ]; then
+  # A node image with a PMIx of its own (the lent H200 node, 2026-11-26): mpirun loads its plugins
+  # and fails ("pmix_mca_pcompress_zlib.so: undefined symbol: pmix_output_info").
+  echo "env.sh: this node has its own /usr/lib/x86_64-linux-gnu/pmix2: mpirun may fail; on a" \
+       "throwaway node, as root: mv it aside and source env.sh again" >&2
 fi
 ENV
 tar -C "$R" -cJf "$OUT" .
