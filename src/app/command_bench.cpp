@@ -56,6 +56,7 @@ int bench_dem(const Options& o, int max_threads) {
 }  // namespace
 
 int command_bench(const Options& o, const Comm& comm) {
+  check_omp_environment(comm);
   if (comm.rank != 0) return 0;
   const int max_threads = omp_get_max_threads();
   if (o.bench == "mpm") {

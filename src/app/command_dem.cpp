@@ -103,6 +103,7 @@ void check_lateral_control(const common::Mat3& stress, double confining, double 
 
 int command_dem(const Options& o, const Comm& comm) {
   const Job job = load_job_collective(o.job, comm);
+  check_omp_environment(comm);
   if (!job.has_section("dem.loading")) {
     throw common::InputError(fmt::format(
         "{}: `dem` needs a [dem.loading] section (what to do after preparation)", job.file()));

@@ -31,6 +31,7 @@ namespace app {
 int command_run(const Options& given, const Comm& comm) {
   const auto started = WallBudget::Clock::now();  // --max-wall counts from here
   const Job job = load_job_collective(given.job, comm);
+  check_omp_environment(comm);
   Options o = given;
   if (o.restart == kRestartLatest) {
     // Resolved once, on rank 0, so that every rank continues from the same file.

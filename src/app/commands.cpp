@@ -5,8 +5,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <omp.h>
+
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -100,6 +104,43 @@ void check_step_count(const Job& job, const Options& o, double steps, const std:
       key, fmt::format("implies about {:.3g} {} steps, more than {:.0e} (years of computing): "
                        "shorten the run, or bound it with --max-steps",
                        steps, what, kMaxSteps)));
+}
+
+void check_omp_environment(const Comm& comm) {
+  agree(comm, [] {
+    const char* env = std::getenv("OMP_NUM_THREADS");
+    if (env == nullptr) return;
+    const std::string text = env;
+    // Empty (a script's `OMP_NUM_THREADS=$UNSET`): as unset, OpenMP's default.
+    if (text.find_first_not_of(" \t") == std::string::npos) return;
+    const std::string shown = text.size() > 60 ? text.substr(0, 57) + "..." : text;
+    std::int64_t first = 0;
+    std::size_t at = 0;
+    do {
+      const std::size_t comma = std::min(text.find(',', at), text.size());
+      std::string item = text.substr(at, comma - at);
+      item.erase(0, item.find_first_not_of(" \t"));
+      item.erase(item.find_last_not_of(" \t") + 1);
+      std::int64_t v = 0;
+      const auto r = std::from_chars(item.data(), item.data() + item.size(), v);
+      if (item.empty() || r.ec != std::errc() || r.ptr != item.data() + item.size() || v < 1) {
+        throw common::InputError(fmt::format(
+            "OMP_NUM_THREADS (environment) = '{}': must be a thread count >= 1 (or a "
+            "comma-separated list of them, one per nesting level); OpenMP would ignore it and use "
+            "every core",
+            shown));
+      }
+      if (at == 0) first = v;
+      at = comma + 1;
+    } while (at <= text.size());
+    const int cores = std::max(1, omp_get_num_procs());
+    if (first > static_cast<std::int64_t>(kMaxThreadsPerCore) * cores) {
+      throw common::InputError(fmt::format(
+          "OMP_NUM_THREADS (environment) = {}: more than {} threads per core of the {} core(s) "
+          "this rank may use (at most {}): a typo? one thread per core is the fastest",
+          shown, kMaxThreadsPerCore, cores, kMaxThreadsPerCore * cores));
+    }
+  });
 }
 
 int command_check(const Options& o, const Comm& comm) {

@@ -55,6 +55,13 @@ std::int64_t check_job_packing(const Job& job, const Comm& comm);
 void check_step_count(const Job& job, const Options& o, double steps, const std::string& what,
                       const std::string& key);
 
+/// Collective: OMP_NUM_THREADS, when set, must be a thread count >= 1 (or a comma-separated list
+/// of them, one per nesting level) and at most kMaxThreadsPerCore per core this rank may use;
+/// otherwise an InputError naming the variable, its value and the rule on every rank (libgomp
+/// would ignore a bad value and use every core; 10^5 threads crashed the run).
+void check_omp_environment(const Comm& comm);
+inline constexpr int kMaxThreadsPerCore = 64;
+
 int command_check(const Options& o, const Comm& comm);
 int command_run(const Options& o, const Comm& comm);
 int command_schema(const Options& o, const Comm& comm);

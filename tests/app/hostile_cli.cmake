@@ -34,3 +34,22 @@ cli_error(ARGS check /dev/zero EXPECT "/dev/zero: cannot open the job file: not 
 if(EXISTS "${DIR}")
   message(FATAL_ERROR "a refused command line created ${DIR}")
 endif()
+# OMP_NUM_THREADS (environment): a count no machine runs (10^5 threads crashed the run with
+# SIGSEGV), or a value OpenMP would ignore, is refused naming the variable; a nesting list passes.
+foreach(case IN ITEMS "100000|more than 64 threads per core of the" "abc|= 'abc': must be a thread count >= 1"
+                      "0|= '0': must be a thread count >= 1" "2,x|= '2,x': must be")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case 0 value)
+  list(GET case 1 fragment)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env "OMP_NUM_THREADS=${value}"
+                          "${EXE}" run jobs/elastic_triaxial.toml --out "${DIR}/omp" --max-steps 1
+                  RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+  expect_failure("${rc}" "${err}" 2 "OMP_NUM_THREADS (environment)" "${fragment}")
+  if(EXISTS "${DIR}/omp")
+    message(FATAL_ERROR "OMP_NUM_THREADS=${value}: the refused run left ${DIR}/omp")
+  endif()
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} -E env "OMP_NUM_THREADS=2,1"
+                        "${EXE}" run jobs/elastic_triaxial.toml --out "${DIR}/omp_list" --max-steps 1
+                RESULT_VARIABLE rc ERROR_VARIABLE err TIMEOUT 60)
+expect_failure("${rc}" "${err}" 0)
