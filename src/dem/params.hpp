@@ -69,13 +69,15 @@ inline constexpr auto kNumerics = common::make_table<Numerics>(
     "dem::Numerics", "dem.numerics",
     {{"damping", &Numerics::damping, Unit::Dimensionless, common::in_co(0, 1), Source::job_default,
       "Cundall non-viscous damping coefficient lambda."},
-     {"timestep_safety", &Numerics::dt_safety, Unit::Dimensionless, common::in_oc(0, 1),
-      Source::job_default, "Fraction of the critical time step used."},
-     {"verlet_skin", &Numerics::skin_factor, Unit::Dimensionless, common::gt(0),
+     {"timestep_safety", &Numerics::dt_safety, Unit::Dimensionless, common::in_cc(0.01, 1),
+      Source::job_default,
+      "Fraction of the critical time step used. At least 0.01: below, the DEM steps grow with no "
+      "gain (1e-300 stalled the sample's preparation for 2,000,000 steps)."},
+     {"verlet_skin", &Numerics::skin_factor, Unit::Dimensionless, common::in_oc(0, 1),
       Source::job_default,
       "Verlet skin as a fraction of the largest radius: the neighbour list keeps pairs whose gap "
       "is below it and is rebuilt when motion could close it (speed and round-off, not "
-      "physics)."},
+      "physics). At most 1 (a skin of one radius: a list of most of the cell's neighbours)."},
      {"verlet_skin_min", &Numerics::skin_min_factor, Unit::Dimensionless, common::in_cc(0, 1),
       Source::job_default,
       "0: the skin is verlet_skin (before 2026-11-26). Above 0: each RVE adapts its skin between "

@@ -48,9 +48,10 @@ inline constexpr auto kRveParams = common::make_table<RveParams>(
       "per increment grow as 1 / I_n, and below I ~ 1e-3 the response is already "
       "quasi-static."},
      {"max_strain_per_step", &RveParams::max_strain_per_step, Unit::Dimensionless,
-      common::in_oo(0, 1), Source::job_default,
+      common::in_co(1e-8, 1), Source::job_default,
       "Guard: largest strain increment of one DEM step (more DEM steps than T_p / dt_DEM when "
-      "needed)."},
+      "needed). At least 1e-8: an MPM strain increment of 1e-4 is then 10^4 DEM steps; 1e-300 "
+      "made every RVE step run its cap of 2,000,000 DEM steps."},
      {"pressure_floor", &RveParams::p_floor, Unit::Pressure, common::gt(0), Source::job_default,
       "Guard: smallest pressure used in T_p (an RVE losing its contacts)."},
      {"d50", &RveParams::d50, Unit::Length, common::ge(0), Source::cpp_only,

@@ -41,10 +41,10 @@ TEST(Params, NumericsErrorsNameTheJobKeysOrTheMember) {
   dem::Numerics n;
   EXPECT_EQ(error_of(n), "");
   n.skin_factor = 0.0;
-  EXPECT_EQ(error_of(n), "dem.numerics.verlet_skin = 0: must be > 0");
+  EXPECT_EQ(error_of(n), "dem.numerics.verlet_skin = 0: must be in (0, 1]");
   n = {};
   n.dt_safety = 1.5;
-  EXPECT_EQ(error_of(n), "dem.numerics.timestep_safety = 1.5: must be in (0, 1]");
+  EXPECT_EQ(error_of(n), "dem.numerics.timestep_safety = 1.5: must be in [0.01, 1]");
   n = {};
   n.dt_refresh = 0;
   EXPECT_EQ(error_of(n), "dem::Numerics::dt_refresh = 0: must be >= 1");
@@ -61,7 +61,7 @@ TEST(Params, RveParamsErrorsNameTheCouplingKeys) {
   EXPECT_EQ(error_of(p), "dem.coupling.inertial_number = 0: must be in [1e-06, 1)");
   p.inertial_number = 1e-3;
   p.max_strain_per_step = 0.0;
-  EXPECT_EQ(error_of(p), "dem.coupling.max_strain_per_step = 0: must be in (0, 1)");
+  EXPECT_EQ(error_of(p), "dem.coupling.max_strain_per_step = 0: must be in [1e-08, 1)");
   p.max_strain_per_step = 1e-5;
   p.max_steps_per_call = 0;
   EXPECT_EQ(error_of(p), "dem::RveParams::max_steps_per_call = 0: must be >= 1");
