@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -109,12 +110,14 @@ std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t,
   mc.max_rate = t.max_rate;
   MixedController ctl(mc);
   std::int64_t done = 0;
+  Measures m;
+  double worst = 0.0;
   while (done < t.max_steps) {
     advance(sim, &ctl, t.check_every);
     done += t.check_every;
-    const Measures m = measure(sim);
+    m = measure(sim);
     if (observe) observe(sim, m);
-    double worst = 0.0;
+    worst = 0.0;
     for (int a = 0; a < 3; ++a) worst = std::max(worst, std::abs(m.stress(a, a) + t.pressure));
     if (worst <= t.stress_tol * t.pressure && m.unbalanced <= t.unbalanced_tol &&
         m.n_contacts > 0) {
@@ -122,9 +125,16 @@ std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t,
       return done;
     }
   }
-  throw common::NumericalError("dem: equilibrate: target p = " + std::to_string(t.pressure) +
-                               " Pa not reached in " + std::to_string(t.max_steps) +
-                               " steps (p = " + std::to_string(pressure(sim.stress())) + " Pa)");
+  // Which criterion failed, each against its tolerance (a tolerance no packing reaches reads as
+  // such: 1e-300 against 1e-9).
+  char msg[320];
+  std::snprintf(msg, sizeof msg,
+                "dem: equilibrate: target p = %.6g Pa not reached in %lld steps: p = %.6g Pa, "
+                "largest diagonal stress error %.3g of p (tolerance %.3g), unbalanced force %.3g "
+                "(tolerance %.3g), %lld contacts",
+                t.pressure, static_cast<long long>(t.max_steps), m.p, worst / t.pressure,
+                t.stress_tol, m.unbalanced, t.unbalanced_tol, static_cast<long long>(m.n_contacts));
+  throw common::NumericalError(msg);
 }
 
 namespace {

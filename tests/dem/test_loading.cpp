@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "common/errors.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
 #include "dem_test_util.hpp"
@@ -93,6 +95,27 @@ TEST(Loading, EquilibrateCallsTheObserverAtEveryCheck) {
   EXPECT_EQ(calls * t.check_every, steps);
   EXPECT_EQ(last_steps, sim.steps());
   EXPECT_EQ(last_p, dem::measure(sim).p);
+}
+
+// A tolerance no packing reaches: a numerical failure that says which criterion failed, each
+// with its value and tolerance.
+TEST(Loading, EquilibrateFailureNamesTheCriterionAndItsTolerance) {
+  dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
+                                             dem_test::reference_material(), dem::Numerics{});
+  dem::EquilibriumTarget t;
+  t.unbalanced_tol = 1e-300;
+  t.check_every = 50;
+  t.max_steps = 200;
+  try {
+    (void)dem::equilibrate(sim, t);
+    FAIL() << "no error";
+  } catch (const common::NumericalError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("not reached in 200 steps"), std::string::npos) << what;
+    EXPECT_NE(what.find("(tolerance 1e-300)"), std::string::npos) << what;
+    EXPECT_NE(what.find("(tolerance 0.01)"), std::string::npos) << what;
+    EXPECT_NE(what.find(" contacts"), std::string::npos) << what;
+  }
 }
 
 }  // namespace
