@@ -19,6 +19,15 @@ fail() { echo "FAIL: $*"; exit 1; }
 sed 's/end_time = "2 s"/end_time = "1e5 s"/; s/z = "-1 mm\/s"/z = -1e-6/' jobs/elastic_triaxial.toml > "$dir/job.toml"
 grep -q "z = -1e-6" "$dir/job.toml" || fail "the platen of jobs/elastic_triaxial.toml is not the one this test slows"
 
+# The processes whose command line starts with $1 (from /proc: no procps needed).
+pids_of() {
+  local f cmd
+  for f in /proc/[0-9]*/cmdline; do
+    cmd=$(tr '\0' ' ' < "$f" 2> /dev/null) || continue
+    [[ "$cmd" == "$1"* ]] && echo "${f//[^0-9]/}"
+  done
+}
+
 # Starts a 2-rank run into $dir/$1 in the background; returns when its stepping loop has begun
 # (the farm's first log line comes after the handlers are installed), then lets it step a while.
 start() {
@@ -57,7 +66,8 @@ finish usr1 138 SIGUSR1
 usr1_step=$step
 
 start term
-ranks=$(pgrep -f "^$exe run $dir/job.toml --out $dir/term") || fail "term: no rank processes"
+ranks=$(pids_of "$exe run $dir/job.toml --out $dir/term")
+[ -n "$ranks" ] || fail "term: no rank processes"
 [ "$(wc -w <<< "$ranks")" -eq 2 ] || fail "term: expected 2 rank processes: $ranks"
 kill -TERM $ranks
 finish term 143 SIGTERM
