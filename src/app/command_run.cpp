@@ -63,8 +63,8 @@ int command_run(const Options& given, const Comm& comm) {
   std::optional<farm::CoupledConfig> config;
   std::optional<MpmSetup> setup;
   agree(comm, [&] {
-    config.emplace(coupled_setup(job, RunLimits{output_path(o).string(), o.max_steps}));
     setup.emplace(mpm_setup(job));
+    config.emplace(coupled_setup(job, *setup, RunLimits{output_path(o).string(), o.max_steps}));
   });
   const farm::CoupledConfig& cfg = *config;
   // The points by ascending id, and the ranks that own RVEs: as farm::Placement starts, each of

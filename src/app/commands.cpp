@@ -150,8 +150,8 @@ int command_check(const Options& o, const Comm& comm) {
   if (job.has_section("mpm")) {
     // The mapping onto the grid and the run set-up: the errors `run` would give before writing.
     agree(comm, [&] {
-      (void)coupled_setup(job, RunLimits{"(check)", -1});
       const MpmSetup setup = mpm_setup(job);
+      (void)coupled_setup(job, setup, RunLimits{"(check)", -1});
       dem_points =
           std::count(setup.points.material.begin(), setup.points.material.end(), kDemMaterial);
     });

@@ -110,7 +110,10 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
 }  // namespace
 
 farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits) {
-  MpmSetup setup = mpm_setup(job);
+  return coupled_setup(job, mpm_setup(job), limits);
+}
+
+farm::CoupledConfig coupled_setup(const Job& job, MpmSetup setup, const RunLimits& limits) {
   farm::CoupledConfig c;
   InsituPlan plan;
   if (setup.has_dem) plan = insitu_plan(job, setup);  // before the materials are reset below

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/job.hpp"
+#include "app/mpm_setup.hpp"
 #include "farm/driver.hpp"
 
 namespace app {
@@ -24,5 +25,8 @@ struct RunLimits {
 /// dem::reach_stress, app/insitu.hpp); every RVE of the rank starts as a copy of its point's.
 /// Throws common::InputError naming the job key when the job cannot be run.
 [[nodiscard]] farm::CoupledConfig coupled_setup(const Job& job, const RunLimits& limits);
+/// The same from the job's MPM set-up, made by the caller (who also reads it: mpm_setup once).
+[[nodiscard]] farm::CoupledConfig coupled_setup(const Job& job, MpmSetup setup,
+                                                const RunLimits& limits);
 
 }  // namespace app
