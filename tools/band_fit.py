@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Shear-band orientation from a field of accumulated deviatoric strain at scattered points
-(the MPM points of a biaxial test, docs/biaxial.md), for one band or for the X of two conjugate
+(the MPM points of a biaxial test, docs/validation/biaxial.md), for one band or for the X of two conjugate
 bands that rough platens make.
 
 Method (a Hough transform on strips, scored by the MEAN excess strain, not the sum): for each

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed against error of the RVE step's work-saving options (docs/dem.md "RVE step"):
+"""Speed against error of the RVE step's work-saving options (docs/design/dem.md "RVE step"):
 dem.coupling.dt_refresh (the critical time step kept over several DEM steps) and
 dem.coupling.end_forces = "carried" (one force evaluation fewer per RVE step).
 

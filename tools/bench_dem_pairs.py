@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Paired DEM speed runs of two bench_dem binaries (docs/dem.md, "Speed").
+"""Paired DEM speed runs of two bench_dem binaries (docs/design/dem.md, "Speed").
 
 Per repetition runs `OLD "" tiles threads steps` then `NEW ...` (alternating, so both see the
 same load) and prints the medians of wall and CPU microseconds per particle-step and the median

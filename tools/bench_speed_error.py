@@ -2,12 +2,12 @@
 """Speed against error: the paper's drained triaxial test over a matrix of RVE sizes and inertial
 numbers, in MPM x DEM (the paper's single cell, 8 RVEs) and in pure DEM (one sample of the same
 size), every result compared with one reference curve. Writes a Markdown table into
-docs/benchmarks.md (between generated-part markers) and a Pareto plot of time against error.
+docs/validation/speed.md (between generated-part markers) and a Pareto plot of time against error.
 
 Usage (Debian's python3-matplotlib and python3-h5py; use /usr/bin/python3), from the repository:
   tools/bench_speed_error.py [--sizes 125,250,500,1000] [--inertia 2.5e-4,1e-3,4e-3]
       [--strain 0.25] [--ranks 2] [--budget-s 400] [--work DIR] [--reuse N:I=RUN_DIR]...
-      [--reference CSV] [--markdown docs/benchmarks.md] [--figure docs/figures/pareto.png]
+      [--reference CSV] [--markdown docs/validation/speed.md] [--figure docs/figures/pareto.png]
 
 Every size N gets one sample: N = 1000 is the reference packing of ../shared/reference
 (jobs/packings/packing_N1000_e0.562.txt), the others are generated clouds with the same size
@@ -179,7 +179,7 @@ def main():
     ap.add_argument("--exe", default=os.path.join(REPO, "build", "mpmxdem"))
     ap.add_argument("--reuse", action="append", default=[], help="N:I=DIR of a full MPM x DEM run")
     ap.add_argument("--reference", help="reference series CSV (eps_a, eps_v, q)")
-    ap.add_argument("--markdown", default=os.path.join(REPO, "docs", "benchmarks.md"))
+    ap.add_argument("--markdown", default=os.path.join(REPO, "docs", "validation", "speed.md"))
     ap.add_argument("--figure", default=os.path.join(REPO, "docs", "figures", "pareto.png"))
     a = ap.parse_args()
     sizes = sorted(int(s) for s in a.sizes.split(","))

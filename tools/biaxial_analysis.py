@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of the plane-strain biaxial test (docs/biaxial.md): global stress ratio against the
+"""Figures of the plane-strain biaxial test (docs/validation/biaxial.md): global stress ratio against the
 pure DEM, shear band angle and thickness from the points' accumulated deviatoric strain, and the
 Roscoe / Coulomb angles from phi and psi of our own pure DEM tests.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Biaxial runs against a pure-DEM reference at fixed axial strains (docs/biaxial.md, "Which pure
+"""Biaxial runs against a pure-DEM reference at fixed axial strains (docs/validation/biaxial.md, "Which pure
 DEM"): for each run, in % against the reference's sigma_a / sigma_r, (1) the global ratio
 (int sigma_zz dV / (H A)) / 100 kPa and (2) the ratio of the volume means sigma_zz / sigma_xx (the
 specimen's average element), and the volume-mean sigma_xx [kPa].

@@ -2,7 +2,7 @@
 """Pure DEM plane-strain biaxial tests of the RVE samples an MPM x DEM biaxial job uses (seeds
 1..N of docs/data/biaxial_dem/biaxial_dem_300.toml, i.e. the pool of `dem.initial_state.samples`
 = N, sample k with seed 1 + k), then their mean with tools/biaxial_seed_mean.py: the reference of
-docs/biaxial.md, "Which pure DEM".
+docs/validation/biaxial.md, "Which pure DEM".
 
   tools/biaxial_dem_seeds.py OUT_DIR [--samples 16] [--inertial-number 2.5e-4] [--strain 0.06]
                              [--exe build/mpmxdem] [--mean MEAN.csv]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Maps of the points' volume ratio J = det F of plane-strain biaxial runs (docs/biaxial.md): one
+"""Maps of the points' volume ratio J = det F of plane-strain biaxial runs (docs/validation/biaxial.md): one
 panel per run at the output row nearest a given axial strain, points coloured by J (crushed rows
 blue, torn rows red), with the counts of crushed (J < 0.9) and torn (J > 1.3) points and of RVEs
 without contacts in the title. For the inter-cell mode of linear shape functions at low mass

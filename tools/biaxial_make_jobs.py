@@ -37,7 +37,7 @@ def platen_boxes(h, v, t_end, lead=0.5):
     t_k = (k - lead) h / v, i.e. `lead` of a cell before the top reaches H - k h. The top row of
     points (a quarter cell under the top) must never leave the cells whose upper node plane is
     held: with lead = 0 (as written before 2026-11-25) it did from 3/4 h to h of travel and the fine
-    meshes broke up there (docs/biaxial.md, "Three meshes to 10 %"). The material above a newly
+    meshes broke up there (docs/validation/biaxial.md, "Three meshes to 10 %"). The material above a newly
     held plane (half a cell) moves with the platen. A node held by several boxes keeps its first
     constraint's reaction: the platen's reaction is the sum over the boxes named platen_*."""
     boxes = []
@@ -104,7 +104,7 @@ def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header
         base_where = 'face = "z-"\n'
     lines = [header.rstrip(), f'title = "Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, '
              f'{4 * nx * nz} RVEs of {spheres} spheres"', "",
-             """[dem.material]                 # the reference material (docs/validation.md)
+             """[dem.material]                 # the reference material (docs/validation/triaxial.md)
 density = "2650 kg/m^3"
 young_modulus = "300 MPa"
 stiffness_ratio = 0.5
@@ -130,7 +130,7 @@ samples = {samples}                   # distinct RVEs (point id mod {samples}): 
 inertial_number = 4e-3         # I_n of eq. 11 (as jobs/triaxial_mpmxdem_distinct.toml)
 pressure_floor = "10 kPa"      # T_p of an RVE that loses its contacts (the corners under the rough
                                # platens dilate to p = 0): with 1 kPa those few RVEs took most of
-                               # the run (up to 5700 DEM steps per MPM step, docs/biaxial.md)
+                               # the run (up to 5700 DEM steps per MPM step, docs/validation/biaxial.md)
 
 [mpm]
 shape_function = "{shape}"{shape_note}
@@ -140,7 +140,7 @@ flip = 1.0
 position_update = "grid"       # points move with the grid velocity, which the platens hold: a FLIP
                                # velocity carried corner points through the platens on fine meshes
 strain_smoothing = "{smoothing}"     # cell: selective reduced integration per cell; without it the rough
-                               # platens lock the dilatant specimen (docs/biaxial.md, "Locking")
+                               # platens lock the dilatant specimen (docs/validation/biaxial.md, "Locking")
 damping = 0.2                  # Cundall damping (eq. 8)
 mass_scaling = {mass_scaling:g}           # quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):g}; the log checks E_kin/W_int < 0.01
 cfl = 0.5
@@ -206,7 +206,7 @@ def main():
     ap.add_argument("--smoothing", default="cell", help="mpm.strain_smoothing: cell or none")
     ap.add_argument("--shape", default="ugimp", choices=["linear", "ugimp"],
                     help="mpm.shape_function (ugimp, the default since 2026-11-25: the grid gets a "
-                         "cell under the base; linear: the jobs of before, docs/biaxial.md)")
+                         "cell under the base; linear: the jobs of before, docs/validation/biaxial.md)")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     ap.add_argument("--self-test", action="store_true")

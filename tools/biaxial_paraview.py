@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The points of a plane-strain biaxial run (points.xmf, ParaView's default Xdmf reader) seen
-along the thickness (y), coloured by a few arrays, side by side in one PNG (docs/biaxial.md).
+along the thickness (y), coloured by a few arrays, side by side in one PNG (docs/validation/biaxial.md).
 
   xvfb-run -a /usr/bin/python3 tools/biaxial_paraview.py RUN_DIR OUT.png [--arrays q,void_ratio,z]
       [--step -1] [--radius 0.003]

@@ -2,7 +2,7 @@
 """The mean pure-DEM response of the RVE samples an MPM x DEM job uses: the per-sample series of
 `mpmxdem dem` (dem_series.csv of each seed) averaged on a common axial-strain grid, written as one
 series with the columns tools/biaxial_analysis.py reads (eps_a, eps_v, sig_a, sig_r), so that it
-can stand as the reference (`--dem MEAN.csv:label`). docs/biaxial.md, "Which pure DEM".
+can stand as the reference (`--dem MEAN.csv:label`). docs/validation/biaxial.md, "Which pure DEM".
 
   tools/biaxial_seed_mean.py OUT.csv SERIES.csv [SERIES.csv ...] [--step 2.5e-4]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Is a [dem.coupling] option a bias or noise on a sensitive scene? (issue 17, docs/benchmarks.md)
+"""Is a [dem.coupling] option a bias or noise on a sensitive scene? (issue 17, docs/validation/speed.md)
 
 A single run of an option against a single reference says little where the scene's response is
 chaotic (the biaxial's softening branch moves by several per cent under a 1e-6 perturbation of
@@ -19,7 +19,7 @@ to the curve's largest).
 
 A variant's parts joined by '+' are [dem.coupling] lines, or 'numerics.KEY = x' ([dem.numerics]),
 'mpm.KEY = x' ([mpm]), 'sparing.tolerance = x' (tools/bench_coupling.py). --keep-going reports a
-failed run (exit 3, say) and leaves it out: the collapse families of docs/column_collapse.md
+failed run (exit 3, say) and leaves it out: the collapse families of docs/validation/column_collapse.md
 section 12, e.g. --scene collapse --keep-going --variants 'end_forces = "separate"+
 numerics.verlet_skin_min = 0;end_forces = "carried"+numerics.verlet_skin_min = 0.03' (add
 '+mpm.wall_impulse = "points"' to both for the "points" families).

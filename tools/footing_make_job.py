@@ -63,13 +63,13 @@ def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressur
 # (tools/footing_curves.py). The default layer (200 x 100 mm, 2 B deep on a rough base) is small:
 # at 0.1 B it carries 6.7 MPa against 4.8 and 4.4 on layers 2 and 3 times as wide and deep; study
 # the footing itself on the larger ones (--width 0.6 --depth 0.3: 4608 RVEs, about 4 min on 2 cores).
-# Sparing the idle far field: docs/benchmarks.md "Sparing on a strip footing".
+# Sparing the idle far field: docs/validation/speed.md "Sparing on a strip footing".
 #
 # Run:        mpirun -n 2 --bind-to none mpmxdem run jobs/footing_plane_strain.toml --out results/footing
 # Validate:   mpmxdem check jobs/footing_plane_strain.toml
 title = "Plane-strain strip footing, MPM x DEM, {nx} x {nz} cells, {rves} RVEs of {spheres} spheres"
 
-[dem.material]                 # the reference material (docs/validation.md)
+[dem.material]                 # the reference material (docs/validation/triaxial.md)
 density = "2650 kg/m^3"
 young_modulus = "300 MPa"
 stiffness_ratio = 0.5
@@ -92,7 +92,7 @@ inertial_number = 1e-2
 inertial_number = 4e-3         # I_n of eq. 11 (as the biaxial)
 pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the footing's edge)
 # dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.33x on this
-                               # footing, errors inside its sensitivity (docs/benchmarks.md)
+                               # footing, errors inside its sensitivity (docs/validation/speed.md)
 
 [mpm]
 shape_function = "ugimp"       # in the plane; linear through the thickness

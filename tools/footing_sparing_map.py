@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Where sparing spares, on a strip footing (docs/benchmarks.md, "Sparing on a strip footing"):
+"""Where sparing spares, on a strip footing (docs/validation/speed.md, "Sparing on a strip footing"):
 maps over the points' initial positions of (left) the DEM steps per MPM step of each RVE in the
 run without sparing and (right) the share of its MPM steps that the spared run spared, from the
 rows of results.h5 (every output.every-th step).

@@ -8,7 +8,7 @@ YADE reference series of docs/data/column_collapse_yade (the longest-running one
 
 Usage: /usr/bin/python3 tools/mpm_column_collapse.py RUN_DIR [RUN_DIR ...] [--data D] [--fig F]
 
-Definitions (docs/column_collapse.md): t* = sqrt(H0 / g); every point carries the volume of its
+Definitions (docs/validation/column_collapse.md): t* = sqrt(H0 / g); every point carries the volume of its
 initial cell share, so the front is the farthest point plus its initial half-width, shifted so
 that L(0) = L0 (as YADE's front is corrected by its t = 0 offset); H is the highest point top in
 the first cell column at the back wall, shifted so that H(0) = H0. The connected front (dotted)

@@ -3,7 +3,7 @@
 # many-core node): the stripped binaries (mpmxdem, bench_dem, bench_farm), every shared library
 # they, Open MPI's launchers and its plugins need (glibc and the C++ runtime excepted: the node's
 # own), Open MPI's runtime (plugins, help files) and PMIx's plugins, and env.sh, which points
-# Open MPI at its new place (OPAL_PREFIX). Made for tools/bench_node.sh (docs/scaling.md section 6).
+# Open MPI at its new place (OPAL_PREFIX). Made for tools/bench_node.sh (docs/validation/scaling.md section 6).
 #
 #   tools/node_bundle.sh [BUILD] [OUT]     # default build/ and node_bundle.tar.xz (about 13 MB)
 # On the node, from the repository root:

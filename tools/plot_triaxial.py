@@ -11,7 +11,7 @@ Usage (Debian's python3-matplotlib and python3-h5py; use /usr/bin/python3):
               triax_dem, or YADE's yade_triax_*.csv
 q is sigma_a - sigma_r in every figure (the paper's q; from sig_a and sig_r where a series has
 them, from the mean RVE stress of a run); --summary prints the mean von Mises q of the RVEs
-(means.csv), the figure docs/validation.md quotes. A series whose lateral stress strays more than
+(means.csv), the figure docs/validation/triaxial.md quotes. A series whose lateral stress strays more than
 5 % from its start (after 0.1 % axial strain) is plotted with a warning: its control failed.
 One colour per RVE in every panel of the RVE figure.
 Writes FIG_PREFIX_q_epsv.png (fig. 1: q and eps_v against eps_ax, every source) and, for each
@@ -53,7 +53,7 @@ def series_of_csv(path, label=None, q_column=False):
     """eps_a, eps_v and q = sigma_a - sigma_r (the paper's q; YADE's `q` column is that, while
     the `q` of dem_series.csv is the von Mises q, shear included: both files carry sig_a, sig_r).
     q_column: the file's own `q` column instead (tools/bench_speed_error.py, whose figures in
-    docs/benchmarks.md were computed so)."""
+    docs/validation/speed.md were computed so)."""
     label = label or path
     d = read_csv(path)
     q = d["sig_a"] - d["sig_r"] if "sig_a" in d and "sig_r" in d and not q_column else d["q"]
@@ -144,10 +144,10 @@ def plot_rves(directory, label, prefix, index):
 
 
 def summary(directory, label):
-    """Numbers of docs/validation.md: peak q, q and eps_v at 10/20/30 %, lateral stress per RVE."""
+    """Numbers of docs/validation/triaxial.md: peak q, q and eps_v at 10/20/30 %, lateral stress per RVE."""
     import h5py
 
-    # The q of docs/validation.md: the mean over RVEs of their von Mises q (means.csv).
+    # The q of docs/validation/triaxial.md: the mean over RVEs of their von Mises q (means.csv).
     eps, epsv, q = series_of_run(directory, von_mises_mean=True)
     k = int(np.argmax(q))
     print(f"{label}: peak q (mean von Mises q of the RVEs) {q[k] / 1e3:.1f} kPa at eps_ax {100 * eps[k]:.2f} %")

@@ -9,7 +9,7 @@ PNG: one panel per array, the points as spheres coloured by it, at one time step
 velocity, displacement, F); NAME:X|Y|Z|Magnitude picks a component of a vector. --step: the
 row (time step) index, negative from the end. Needs python3-paraview (Debian 12: paraview 5.11)
 and, without a display, xvfb-run. docs/figures/points_geostatic_column.png was made with it
-(docs/farm.md, "Outputs").
+(docs/reference/outputs.md).
 """
 
 import argparse

@@ -11,7 +11,7 @@ Panels: `grains` the spheres coloured by a sphere array (--color; vectors: their
 the same with the shear force magnitude. Colour scales are shared by the rows. Needs
 python3-paraview (Debian 12: paraview 5.11) and, without a display, xvfb-run. The figures
 docs/figures/rve_grains.png (one RVE, grains + normal) and docs/figures/rve_neighbours_forces.png
-(two neighbour RVEs, normal + shear) were made with it (docs/dem.md, "Grain-scale views").
+(two neighbour RVEs, normal + shear) were made with it (docs/design/dem.md, "Grain-scale views").
 """
 
 import argparse

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Errors of MPM x DEM triaxial runs against reference series (docs/validation.md sections 6-7).
+"""Errors of MPM x DEM triaxial runs against reference series (docs/validation/triaxial.md sections 6-7).
 
 Usage (from the repository, /usr/bin/python3 for h5py):
   tools/triaxial_errors.py RUN_DIR[=label]... [--reference CSV[=label]]... [--strain 0.30]

@@ -68,7 +68,7 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
       "A signal (SIGUSR1 to mpirun, which forwards it; SIGTERM, SIGUSR1 or SIGUSR2 to every\n"
       "rank, as a batch system sends before or at a time limit) ends the run after its current\n"
       "MPM step with a checkpoint; it exits 128 + the signal, and --restart latest continues it\n"
-      "(docs/errors.md, \"Stopping a run\").");
+      "(docs/reference/errors.md, \"Stopping a run\").");
   run->add_option("job", o.job, "Job file (TOML)")->required();
   run->add_option("-o,--out", o.out, "Output directory (default: results/<job file name>)");
   run->add_option(
@@ -144,7 +144,7 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
           "Write the grain-scale views of the --rve RVEs into this directory (created if\n"
           "needed): spheres, contact network and periodic cell as VTK files for ParaView,\n"
           "rve_<id>_step_<step>.vtm each, and rve_<id>.pvd: every step written there\n"
-          "(docs/dem.md, \"Grain-scale views\")")
+          "(docs/design/dem.md, \"Grain-scale views\")")
       ->needs(rve_opt);
 
   auto* demc = cli.add_subcommand(

@@ -62,7 +62,7 @@ int command_bench(const Options& o, const Comm& comm) {
   if (o.bench == "mpm") {
     const std::int64_t points = o.bench_size > 0 ? o.bench_size : 100000;
     const int steps = o.bench_steps > 0 ? o.bench_steps : 20;
-    // The rank-0 cost per step of a scene with the issue-15 features on (docs/mpm.md).
+    // The rank-0 cost per step of a scene with the issue-15 features on (docs/design/mpm.md).
     const mpm::SceneFeatures features;
     std::printf(
         "# mpm scene: rank-0 MPM cost per step, elastic column, plane strain %s, mass scaling "

@@ -137,7 +137,7 @@ int command_dem(const Options& o, const Comm& comm) {
   series.add(row(sim, dem::measure(sim), ref));
 
   // From here a signal ends the loading at its next series row, with the series and the final
-  // packing written (docs/errors.md, "Stopping a run"); a pure DEM test has no checkpoint.
+  // packing written (docs/reference/errors.md, "Stopping a run"); a pure DEM test has no checkpoint.
   // (Not during an isotropic equilibration: it has no rows to stop at.)
   std::optional<StopSignals> signals;
   if (type != "isotropic") signals.emplace();

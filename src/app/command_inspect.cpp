@@ -1,6 +1,6 @@
 // `mpmxdem inspect CKPT [--rve ID|all ...] [--vtk DIR]`: what a checkpoint holds (checksums
 // verified), the measures of chosen DEM RVEs and their grain-scale views for ParaView
-// (dem/vtk_export.hpp; docs/dem.md "Grain-scale views"). Serial: rank 0 does everything.
+// (dem/vtk_export.hpp; docs/design/dem.md "Grain-scale views"). Serial: rank 0 does everything.
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -77,7 +77,7 @@ int command_run(const Options& given, const Comm& comm) {
   const int first_worker = !cfg.farm.rank0_rves && comm.size > 1 ? 1 : 0;
   const std::vector<int> part = farm::partition_blocks(by_id.size(), comm.size - first_worker);
   auto mine = [&](std::size_t k) { return part[k] + first_worker == comm.rank; };
-  // The DEM RVEs against the memory of the nodes, before any preparation (docs/errors.md).
+  // The DEM RVEs against the memory of the nodes, before any preparation (docs/reference/errors.md).
   agree(comm, [&] {
     RveMemory m;
     m.spheres = spheres;
@@ -191,7 +191,7 @@ int command_run(const Options& given, const Comm& comm) {
       "coupled run: {} material points, end time {:.6g} s{}", cfg.points.size(), cfg.end_time,
       cfg.max_steps > 0 ? fmt::format(", at most {} MPM steps in total", cfg.max_steps) : "");
   // From here a signal (a batch system's warning or time limit, Ctrl-C) ends the run after the
-  // current MPM step with a checkpoint, instead of killing it (docs/errors.md).
+  // current MPM step with a checkpoint, instead of killing it (docs/reference/errors.md).
   const StopSignals signals;
   std::optional<WallBudget> budget;
   if (o.max_wall_s > 0.0) budget.emplace(o.max_wall_s, started);

@@ -1,7 +1,7 @@
 // The DEM RVEs of a coupled job on one rank (app::DemPool): the prepared samples of the pool and
 // the RVEs brought to the in-situ targets, made once and copied to every point that starts alike;
 // and their preparation ahead of the farm's first create(), shared over the ranks and threads
-// (docs/dem.md, "In-situ initial states", Where).
+// (docs/design/dem.md, "In-situ initial states", Where).
 #pragma once
 
 #include <mpi.h>

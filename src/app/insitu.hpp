@@ -1,7 +1,7 @@
 // In-situ initial states of the DEM points (issue 15): each point's target stress (the prepared
 // sample's, a constant tensor, or geostatic from gravity, density and K0), a pressure floor, the
 // grouping of points whose targets agree (one preparation per group and sample) and the pool of
-// independently generated samples. docs/dem.md, "In-situ initial states".
+// independently generated samples. docs/design/dem.md, "In-situ initial states".
 #pragma once
 
 #include <cstdint>

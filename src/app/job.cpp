@@ -394,7 +394,7 @@ Job Job::parse(std::string_view text, std::string file, const Schema& schema, bo
   if (root.empty()) {
     throw common::InputError(
         fmt::format("{}: the job file is empty: it needs at least the required sections "
-                    "(see docs/jobs.md or `mpmxdem schema`)",
+                    "(see docs/reference/jobs.md or `mpmxdem schema`)",
                     job.file_));
   }
   Validator v(job, schema);

@@ -1,7 +1,7 @@
 // Whether a coupled run's DEM RVEs fit in the memory of the nodes it runs on, checked before any
 // sample is prepared or anything written: a job too large for its allocation is an input error
 // naming the key that makes it large (exit 2), not std::bad_alloc or the kernel's OOM killer in
-// the middle of the run (docs/errors.md).
+// the middle of the run (docs/reference/errors.md).
 #pragma once
 
 #include <cstdint>
@@ -14,7 +14,7 @@ namespace app {
 
 /// Heap bytes per sphere of a DEM RVE, a lower bound: the spheres, their Verlet pairs and contacts
 /// (1104 B at 4 pairs per sphere, `bench dem`'s bytes/sphere); a run's peak, with its checkpoint
-/// buffers, measured about 2300 B (docs/errors.md). A refusal at this figure is certain.
+/// buffers, measured about 2300 B (docs/reference/errors.md). A refusal at this figure is certain.
 inline constexpr double kRveBytesPerSphere = 1024.0;
 
 /// Memory this process may use [B]: the machine's physical memory, or its control group's limit

@@ -1,6 +1,6 @@
 // What a restart may continue: the checkpoint's job (dataset /job) and the new job are resolved and
 // compared key by key; a changed physical key is refused, run-control keys may change
-// (docs/errors.md).
+// (docs/reference/errors.md).
 #pragma once
 
 #include <filesystem>

@@ -1,6 +1,6 @@
 // `mpmxdem run JOB --out DIR --restart latest`: continue from the newest valid checkpoint of DIR,
 // or start from the beginning when DIR holds none yet. One command line for every link of a chain
-// of batch jobs (jobs/slurm/, docs/errors.md "Restart").
+// of batch jobs (jobs/slurm/, docs/reference/errors.md "Restart").
 #pragma once
 
 #include <filesystem>

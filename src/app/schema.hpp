@@ -1,5 +1,5 @@
 // Job-file schema: every key declares its type, quantity (unit), allowed range, and whether it is
-// required or has a default. Validation (job.cpp) and the reference docs/jobs.md both come from it.
+// required or has a default. Validation (job.cpp) and the reference docs/reference/jobs.md both come from it.
 #pragma once
 
 #include <cstdint>
@@ -111,7 +111,7 @@ void add_mpm_sections(Schema& s);
 /// In-situ initial states of DEM bodies (schema_insitu.cpp): after add_mpm_sections.
 void add_insitu_sections(Schema& s);
 
-/// docs/jobs.md, generated from the schema.
+/// docs/reference/jobs.md, generated from the schema.
 [[nodiscard]] std::string schema_markdown(const Schema& s);
 
 }  // namespace app

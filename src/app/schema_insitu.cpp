@@ -13,7 +13,7 @@
 namespace app {
 
 namespace {
-// The body keys go right after the last key of [[mpm.body]], so that docs/jobs.md lists them in
+// The body keys go right after the last key of [[mpm.body]], so that docs/reference/jobs.md lists them in
 // that table.
 void add_body_keys(Schema& s) {
   using Q = Quantity;
@@ -21,7 +21,7 @@ void add_body_keys(Schema& s) {
   b.add("mpm.body[].initial_state", Type::String,
         "material = \"dem\": initial state of the RVEs; absent: prepared (every RVE a copy of the "
         "isotropic prepared sample); uniform: initial_stress; geostatic: from gravity, density "
-        "and k0 (docs/dem.md, In-situ initial states).")
+        "and k0 (docs/design/dem.md, In-situ initial states).")
       .one_of({"prepared", "uniform", "geostatic"});
   b.add("mpm.body[].k0", Type::Float,
         "initial_state = \"geostatic\": lateral over vertical stress K0 (sigma_h = K0 sigma_v).")

@@ -21,7 +21,7 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.move_points", Type::Bool,
         "false: points keep their initial positions (eq. 10 skipped): only for element tests whose "
         "cell is the "
-        "sample, e.g. the paper's single-cell triaxial (see docs/mpm.md, Fixed points).")
+        "sample, e.g. the paper's single-cell triaxial (see docs/design/mpm.md, Fixed points).")
       .or_default(true);
   s.add("mpm.damping_mode", Type::String,
         "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
@@ -31,20 +31,20 @@ void add_mpm_sections(Schema& s) {
         "cell: every point of a grid cell gets the cell's volume-averaged velocity gradient before "
         "the material update, and the internal forces come from the cell's mean stress (cures "
         "the checkerboard of softening single-cell tests, but also suppresses real localisation "
-        "within a cell; docs/mpm.md, Strain smoothing). none: off.")
+        "within a cell; docs/design/mpm.md, Strain smoothing). none: off.")
       .one_of({"none", "cell"})
       .or_default(std::string("none"));
   s.add("mpm.formulation", Type::String,
         "total_lagrangian: the grid is the reference configuration (needs mpm.move_points = "
         "false): L = Fdot F^-1 and internal forces from sigma F^-T, so that a single-cell sample "
-        "holds its confining pressure at any strain instead of p / F_xx (docs/mpm.md, Total "
+        "holds its confining pressure at any strain instead of p / F_xx (docs/design/mpm.md, Total "
         "Lagrangian formulation). updated_lagrangian: classical MPM.")
       .one_of({"updated_lagrangian", "total_lagrangian"})
       .or_default(std::string("updated_lagrangian"));
   s.add("mpm.position_update", Type::String,
         "point: the points move with their own (FLIP/PIC) velocity (eq. 10, the paper's); grid: "
         "with the end-of-step grid velocity, which the walls hold, so no point crosses a rigid "
-        "base (docs/mpm.md, Position update).")
+        "base (docs/design/mpm.md, Position update).")
       .one_of({"point", "grid"})
       .or_default(std::string("point"));
   s.add("mpm.wall_impulse", Type::String,
@@ -52,20 +52,20 @@ void add_mpm_sections(Schema& s) {
         "of Bardenhagen's contact) is only the step's kinematics, and a pure-FLIP point keeps a "
         "velocity into a rigid base that never moves it (as before); points: it is an impulse on "
         "the points, seen by their FLIP velocity and the wall's reaction, one contact impulse per "
-        "step (docs/mpm.md, Frictional boundaries; a frictional no_penetration wall then holds "
+        "step (docs/design/mpm.md, Frictional boundaries; a frictional no_penetration wall then holds "
         "a block less well). Only walls (friction, contact) have it.")
       .one_of({"grid", "points"})
       .or_default(std::string("grid"));
   s.add("mpm.transfer", Type::String,
         "flip: the FLIP/PIC velocity blend of mpm.flip (the paper's); apic: affine PIC (Jiang et "
         "al. 2015), each point also carries the grid's velocity gradient, so a homogeneous "
-        "deformation survives with one point per cell (docs/mpm.md, Transfers).")
+        "deformation survives with one point per cell (docs/design/mpm.md, Transfers).")
       .one_of({"flip", "apic"})
       .or_default(std::string("flip"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
-        "held at zero and the material sees no strain rate through it, docs/mpm.md). Absent: 3D.")
+        "held at zero and the material sees no strain rate through it, docs/design/mpm.md). Absent: 3D.")
       .one_of({"x", "y", "z"});
   s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.")
       .unit(Q::Time)
@@ -135,7 +135,7 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.velocity[].face", Type::String, "Grid face (give one of face, node, min and max).")
       .one_of({"x-", "x+", "y-", "y+", "z-", "z+"});
   s.add("mpm.velocity[].node", Type::FloatList,
-        "Position of one grid node, e.g. to pin rigid motions (docs/mpm.md).")
+        "Position of one grid node, e.g. to pin rigid motions (docs/design/mpm.md).")
       .unit(Q::Length);
   s.add("mpm.velocity[].min", Type::FloatList,
         "Lower corner of a box: every node inside it, boundary included (e.g. a padded grid's "
@@ -148,7 +148,7 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.velocity[].friction", Type::Float,
         "Coulomb friction coefficient: the nodes form a rigid wall moving at (x, y, z) (absent "
         "components 0; the normal one must be given), tangential slip resisted up to friction "
-        "times the normal force (0: smooth, large: rough). docs/mpm.md, Frictional boundaries.")
+        "times the normal force (0: smooth, large: rough). docs/design/mpm.md, Frictional boundaries.")
       .in(0, std::nullopt);
   s.add("mpm.velocity[].normal", Type::String,
         "Side of the material a frictional box or node wall lies on (a face gives its own).")

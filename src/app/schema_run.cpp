@@ -16,7 +16,7 @@ void add_run_sections(Schema& s) {
   s.add("output.grains", Type::Table,
         "Grain-scale views of chosen DEM RVEs during the run (spheres, contact network, periodic "
         "cell as VTK for ParaView), in <out>/grains/: rve_<id>_step_<step>.vtm and one time "
-        "series rve_<id>.pvd per RVE (docs/dem.md).");
+        "series rve_<id>.pvd per RVE (docs/design/dem.md).");
   s.add("output.grains.rves", Type::IntList,
         "Point ids of the DEM RVEs to draw (the id array of points.xmf, /points/id of results.h5).")
       .in(0, std::nullopt)
@@ -37,7 +37,7 @@ void add_run_sections(Schema& s) {
   s.add("farm.rank0_rves", Type::Bool,
         "Rank 0 steps RVEs besides the MPM (true), or, with more than one rank, runs only the MPM "
         "and the exchange while ranks 1.. step the RVEs (false: for many ranks, where rank 0's "
-        "MPM is on every step's critical path; give rank 0 the node's threads, docs/farm.md). "
+        "MPM is on every step's critical path; give rank 0 the node's threads, docs/design/farm.md). "
         "Results are the same bits either way.")
       .or_default(true);
 }

@@ -1,4 +1,4 @@
-// Stopping a coupled run on a signal with a checkpoint (docs/errors.md "Stopping a run"): the
+// Stopping a coupled run on a signal with a checkpoint (docs/reference/errors.md "Stopping a run"): the
 // batch system's warning before a time limit (Slurm `--signal=USR1@300`, SGE's SIGUSR2), its
 // SIGTERM at the limit, Ctrl-C. The handler only records the signal; rank 0 reads it after each
 // MPM step, writes a checkpoint and ends the run there, and every rank exits 128 + the signal.

@@ -2,7 +2,7 @@
 // program started, for a batch job's time limit where no warning signal comes (or comes too late
 // for a checkpoint: PBS's kill delay, an unset Slurm --signal), as GROMACS's -maxh does. The run
 // exits 75 (EX_TEMPFAIL: to be continued) and --restart latest continues it bit for bit
-// (docs/errors.md, "Stopping a run").
+// (docs/reference/errors.md, "Stopping a run").
 #pragma once
 
 #include <chrono>

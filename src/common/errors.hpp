@@ -1,4 +1,4 @@
-// Error tiers (docs/architecture.md): debug-only assertions for internal invariants,
+// Error tiers (docs/design/architecture.md): debug-only assertions for internal invariants,
 // always-on checks that throw with context, and InputError for everything a user controls.
 #pragma once
 

@@ -1,6 +1,6 @@
 // Parameter tables: one row per member of a plain parameter struct (key, member, unit, range,
 // default, meaning), the one home of a setting. Modules declare their tables as plain data; the
-// app derives its job schema, the job-to-struct mapping and docs/jobs.md from them, and the
+// app derives its job schema, the job-to-struct mapping and docs/reference/jobs.md from them, and the
 // struct's validate() checks the same ranges and names the same keys.
 //
 // The default of a row is the struct's default member initializer (read from S{}), so the C++ API
@@ -52,7 +52,7 @@ struct Range {
     if (hi && (hi_open ? !(v < *hi) : !(v <= *hi))) return false;
     return true;
   }
-  /// The rule in words, as job errors and docs/jobs.md write it: "must be in [0, 90) deg",
+  /// The rule in words, as job errors and docs/reference/jobs.md write it: "must be in [0, 90) deg",
   /// "must be > 0 Pa"; "must be a finite number" for an unbounded range.
   [[nodiscard]] std::string rule(Unit u) const;
 };

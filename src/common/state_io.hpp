@@ -1,9 +1,9 @@
-// Named-field state interfaces: how state crosses module borders (docs/architecture.md).
+// Named-field state interfaces: how state crosses module borders (docs/design/architecture.md).
 // A module writes its state as named flat arrays ("contacts/shear_force"); the farm maps them to
 // HDF5 datasets or MPI buffers without knowing what they mean. Shapes are flat: a field of N
 // vectors is written as 3N doubles and the reader knows its layout. A parameter is a field of its
 // own ("params/material/young", one value), never a position in an array: adding one adds a field
-// instead of silently shifting a layout (docs/checkpoint.md).
+// instead of silently shifting a layout (docs/reference/checkpoint.md).
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The adaptive Verlet skin (docs/dem.md "Neighbour search").
+// The adaptive Verlet skin (docs/design/dem.md "Neighbour search").
 #include "dem/adaptive_skin.hpp"
 
 #include <algorithm>

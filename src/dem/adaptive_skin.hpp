@@ -11,7 +11,7 @@ namespace dem {
 
 /// The cost of a list build, in pair evaluations per sphere (a step costs about 1.3 + the pairs
 /// per sphere of them): the model's one constant. Measured on the reference packing, one thread:
-/// a build 1356 us, 13.4 steps; a pair 19 ns (docs/dem.md "Neighbour search").
+/// a build 1356 us, 13.4 steps; a pair 19 ns (docs/design/dem.md "Neighbour search").
 inline constexpr double kRebuildPairCost = 70.0;
 /// Steps a list must have lasted before it may be rebuilt early with a thinner skin (a shorter
 /// history measures no rate).

@@ -52,7 +52,7 @@ struct BenchmarkResult {
 
 /// The numerics of the benchmark: the defaults with the fixed skin (skin_factor 0.1), so that
 /// its figures measure the kernel as they always did (the adaptive skin thins the lists of its
-/// slow triaxial and would change what is measured: docs/dem.md "Speed").
+/// slow triaxial and would change what is measured: docs/design/dem.md "Speed").
 [[nodiscard]] inline Numerics benchmark_numerics() {
   Numerics n;
   n.skin_min_factor = 0.0;

@@ -1,6 +1,6 @@
 // Linear elastic-frictional contact with elastic-plastic rolling and twisting resistance, as YADE's
 // Law2_ScGeom6D_CohFrictPhys_CohesionMoment (incremental form, no cohesion). Aboul Hosn et al.
-// 2017, Granular Matter 19(1); see docs/dem.md and docs/yade_reference.md sections 1-3.
+// 2017, Granular Matter 19(1); see docs/design/dem.md and docs/validation/yade_reference.md sections 1-3.
 #pragma once
 
 #include <Eigen/Dense>
@@ -63,7 +63,7 @@ struct CohFrictBatch {
 /// every property but the friction coefficient. Harmonic forms of YADE's
 /// Ip2_CohFrictMat_CohFrictMat_CohFrictPhys for identical materials. They are computed where they
 /// are needed (the batched law computes them lane by lane) instead of stored per pair: a step then
-/// reads 48 bytes less per pair (docs/dem.md "Speed"). One definition, so that every use has the
+/// reads 48 bytes less per pair (docs/design/dem.md "Speed"). One definition, so that every use has the
 /// same bits.
 struct CohFrictStiffness {
   double kn, ks, kr, kt, roll_cap, twist_cap;

@@ -155,7 +155,7 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
                             "no cell: add the line '# CELL' + O.cell.size (or '# HSIZE' + "
                             "O.cell.hSize) before the spheres, give the cell sizes in the job "
                             "(dem.sample.cell = [Lx, Ly, Lz]), or export with "
-                            "tools/yade_export_packing.py (docs/yade_reference.md)"
+                            "tools/yade_export_packing.py (docs/validation/yade_reference.md)"
                       : std::string()));
       }
       const auto v = numbers(path, ln, line, 4);

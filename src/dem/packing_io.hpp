@@ -1,4 +1,4 @@
-// Plain packing text format (docs/yade_reference.md section 8): '#' comments, "CELL Lx Ly Lz",
+// Plain packing text format (docs/validation/yade_reference.md section 8): '#' comments, "CELL Lx Ly Lz",
 // "HSIZE" + 9 numbers (cell matrix row-major, columns are the cell vectors), "x y z r" per sphere.
 // The cell lines may be written as comments ("# CELL ...", "# HSIZE ..."), as write_packing does,
 // so that YADE's ymport.text reads our packings as they are.

@@ -1,4 +1,4 @@
-// The reference material of the project (the paper's Table 1 as YADE runs it; docs/dem.md gives
+// The reference material of the project (the paper's Table 1 as YADE runs it; docs/design/dem.md gives
 // the sources): the one home of its parameters for tests, benchmarks and tools. Jobs carry their
 // own copy in TOML, as users do.
 #pragma once

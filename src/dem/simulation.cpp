@@ -153,7 +153,7 @@ SkinDecision Simulation::neighbor_check(double measure, const SkinInputs& list) 
 
 // One parallel region per step: the pair loop and the per-sphere loop are work-shared loops of
 // the same team (an implicit barrier between them), not separate regions: on 2 threads each
-// region's fork and join cost as much as a few hundred spheres of work (docs/dem.md).
+// region's fork and join cost as much as a few hundred spheres of work (docs/design/dem.md).
 
 // The pair loop takes the Verlet pairs of a stress block in runs of CohFrictBatch::kLanes
 // consecutive pairs: it gathers their kinematics (every pair, in overlap or not: no branch on the
@@ -506,7 +506,7 @@ double Simulation::critical_dt() const {
   // state), their terms computed in vector lanes (stiffness_lanes: the scalar operations, bit
   // for bit), then added in order. In buffers of the calling thread (the farm calls this for
   // many RVEs at once, one per thread); one thread: it is called once per MPM step or dt_refresh
-  // steps. 1000 spheres: 21 us a call, 32 us with the scalar terms (docs/dem.md "Speed").
+  // steps. 1000 spheres: 21 us a call, 32 us with the scalar terms (docs/design/dem.md "Speed").
   struct Sums {
     Vec3 kt = Vec3::Zero();
     Vec3 kr = Vec3::Zero();

@@ -17,7 +17,7 @@ using common::Vec3;
 
 namespace {
 
-/// Parameters and contact properties as named fields, one per member (docs/checkpoint.md).
+/// Parameters and contact properties as named fields, one per member (docs/reference/checkpoint.md).
 template <class S>
 struct Member {
   const char* name;

@@ -11,7 +11,7 @@
 namespace dem {
 
 /// Version of the named-field state of a Simulation and of an Rve (field dem/version; history in
-/// docs/checkpoint.md). 1: positional parameter arrays; 2: one named field per parameter; 3: of
+/// docs/reference/checkpoint.md). 1: positional parameter arrays; 2: one named field per parameter; 3: of
 /// the contact properties only tan_phi (the others follow from the radii). Written: 3; read: 2, 3.
 inline constexpr std::int64_t kStateVersion = 3;
 
@@ -20,7 +20,7 @@ inline constexpr std::int64_t kStateVersion = 3;
 /// one (or when the field is missing).
 std::int64_t check_state_version(const common::StateReader& r, const std::string& prefix = "");
 
-/// Write every field under `prefix` (e.g. "" or "rve/"). Field names: see docs/dem.md.
+/// Write every field under `prefix` (e.g. "" or "rve/"). Field names: see docs/design/dem.md.
 void save_simulation(const Simulation& sim, common::StateWriter& w, const std::string& prefix = "");
 /// Rebuild a simulation from fields written by save_simulation. Throws common::InputError
 /// naming the field when one is missing or has the wrong size.

@@ -1,7 +1,7 @@
 // dem::contact_stiffness_tangent: the homogenised contact-stiffness operator of a periodic packing
 // under affine kinematics, C = (1/V) sum_c l_c^2 [k_n n(x)n(x)n(x)n + a k_s (I - n(x)n)(x)n(x)n]
 // (minor-symmetrised), as in Guo & Zhao 2014, doi:10.1002/nme.4702 (FEMxDEM); used to predict the
-// stress of an RVE that is not stepped (farm::SparedMicro, docs/sparing.md).
+// stress of an RVE that is not stepped (farm::SparedMicro, docs/design/sparing.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -21,7 +21,7 @@ using Tangent = Eigen::Matrix<double, 9, 9>;
 /// law's factor a = (R1 + R2) / |branch|). Rolling and twisting springs see no relative rotation
 /// under affine kinematics and add nothing. Tension positive, extension positive; symmetric in
 /// (i, j) and in (k, l). It ignores non-affine relaxation and sliding: an upper bound on the
-/// packing's stiffness (measured against the DEM in docs/sparing.md). No contacts: zero.
+/// packing's stiffness (measured against the DEM in docs/design/sparing.md). No contacts: zero.
 /// Geometric terms of order sigma deps (the forces' rotation, the volume change) are left out.
 [[nodiscard]] Tangent contact_stiffness_tangent(const Simulation& sim);
 

@@ -13,7 +13,7 @@ namespace dem {
 inline constexpr std::int64_t kParallelSpheres = 512;
 
 /// Spheres per thread below which a larger team loses more at its synchronisations than its
-/// share of the work gains: on a 16-core Xeon, threads bound, 4 rounds (docs/dem.md "Speed"),
+/// share of the work gains: on a 16-core Xeon, threads bound, 4 rounds (docs/design/dem.md "Speed"),
 /// 1000 spheres were fastest on 8 threads (0.054-0.064 us per particle-step; 0.066-0.075 on 16),
 /// 2000 on 12-16, 4000 and 8000 on 16.
 inline constexpr std::int64_t kSpheresPerThread = 125;
@@ -29,7 +29,7 @@ inline int team_size(std::int64_t n) {
 /// allowed, or nested in an active region (the farm's loop over RVEs). The loops then run on the
 /// calling thread without a region (work-shared constructs orphaned, or plain loops): a region of
 /// one thread still costs libgomp a team (a few us and futex system calls: 25 per MPM step of a
-/// 100-sphere RVE in the farm, docs/dem.md "Speed"). The same code runs either way: the same bits.
+/// 100-sphere RVE in the farm, docs/design/dem.md "Speed"). The same code runs either way: the same bits.
 inline bool one_thread(std::int64_t n) {
   return n <= kParallelSpheres || omp_in_parallel() != 0 || omp_get_max_threads() == 1;
 }

@@ -1,4 +1,4 @@
-// triax_dem: drained triaxial validation study on a packing (not a test; docs/dem.md).
+// triax_dem: drained triaxial validation study on a packing (not a test; docs/design/dem.md).
 // Re-equilibrates at the confining pressure, then shears at inertial number I to a final axial
 // strain, printing one CSV row per 0.1 % of axial strain (compression positive, as YADE's CSV).
 // Usage: triax_dem [packing.txt] [final_eps_a=0.25] [I=2.5e-4] [threads=1]

@@ -1,4 +1,4 @@
-// VTK XML (ASCII) views of a periodic cell: see vtk_export.hpp and docs/dem.md.
+// VTK XML (ASCII) views of a periodic cell: see vtk_export.hpp and docs/design/dem.md.
 #include "dem/vtk_export.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Grain-scale views of one periodic cell as VTK XML files that ParaView's default readers open:
 // the spheres (points), the contact network (lines between the centres, drawn along the branch
 // vector so that a contact across the periodic boundary has its true length) and the cell
-// (a hexahedron), grouped by a multiblock file. Format and arrays: docs/dem.md "Grain-scale views".
+// (a hexahedron), grouped by a multiblock file. Format and arrays: docs/design/dem.md "Grain-scale views".
 #pragma once
 
 #include <cstdint>

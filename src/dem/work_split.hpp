@@ -16,7 +16,7 @@ namespace dem {
 /// a thread's mean time (noise: a cut of 1000 units would wander with it, measured 2 % slower
 /// at 8000 spheres without the band).
 ///
-/// Why (docs/dem.md "Speed"): with the spheres in spatial order and pairs stored under their
+/// Why (docs/design/dem.md "Speed"): with the spheres in spatial order and pairs stored under their
 /// lower index, the pairs that cross from one thread's spheres to the next thread's are all in
 /// the lower thread's share, and they read spheres another core has just written: on this VM,
 /// 2 threads at 1000 spheres, thread 0's half of the pairs took 27.5 us against 25.5 us.

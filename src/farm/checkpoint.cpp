@@ -1,4 +1,4 @@
-// Farm checkpoints: the format (what goes where, docs/checkpoint.md) on top of the typed HDF5
+// Farm checkpoints: the format (what goes where, docs/reference/checkpoint.md) on top of the typed HDF5
 // layer (farm/h5_file.hpp: blocks with checksums) and the atomic publication
 // (common/atomic_file.hpp).
 #include "farm/checkpoint.hpp"
@@ -128,7 +128,7 @@ std::size_t run_begin(std::size_t n, int r, int size) {
 /// [run_begin(r), run_begin(r + 1)) in index order: one contiguous run of /rve/fields/<name>.
 /// A selection of one block per rank makes the collective write cost the same whatever the
 /// owners; with METIS's interleaved owners, one block per RVE made it grow with the square of
-/// the RVEs per rank (docs/scaling.md, finding 4). Returns false (nothing sent) on one rank
+/// the RVEs per rank (docs/validation/scaling.md, finding 4). Returns false (nothing sent) on one rank
 /// (its blocks are one run already) and where a rank would send or receive more than INT_MAX
 /// values (MPI's int counts): the caller then writes the blocks of its own RVEs.
 template <class T>
@@ -335,7 +335,7 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
   bcast_string(comm, job);
 
   // From here on, HDF5 collectives: a failure on one rank would leave the others waiting in a
-  // collective, so it aborts the job (docs/architecture.md: a run never hangs).
+  // collective, so it aborts the job (docs/design/architecture.md: a run never hangs).
   try {
     h5::File file = h5::File::create(comm, tmp);
     file.write_attribute("format", std::string(kCheckpointFormat));

@@ -1,6 +1,6 @@
 // Farm checkpoints: ONE parallel HDF5 file written collectively by all ranks (chunked + shuffle +
 // deflate), atomic (name.tmp, fsync, rename), with a format version and a 64-bit checksum per
-// dataset. Format, field names and state versions: docs/checkpoint.md.
+// dataset. Format, field names and state versions: docs/reference/checkpoint.md.
 #pragma once
 
 #include <mpi.h>

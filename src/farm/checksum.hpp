@@ -1,6 +1,6 @@
 // The checkpoint checksum: a position-keyed 64-bit sum over 8-byte words, additive so that ranks
 // holding disjoint pieces of a dataset combine their partial sums with MPI_SUM, and independent
-// of how the dataset is split into pieces (docs/checkpoint.md, "Checksums").
+// of how the dataset is split into pieces (docs/reference/checkpoint.md, "Checksums").
 #pragma once
 
 #include <cstdint>

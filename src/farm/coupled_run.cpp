@@ -105,7 +105,7 @@ class Master {
   GrainViews grains_;
   CheckpointSchedule checkpoints_;
   BalanceSchedule balance_;
-  mpm::QuasiStaticWatch quasi_static_;  ///< energy ratio of a mass-scaled run (docs/mpm.md)
+  mpm::QuasiStaticWatch quasi_static_;  ///< energy ratio of a mass-scaled run (docs/design/mpm.md)
 };
 
 /// The MPM solver around the farm, at the start state: the checkpoint's, or for a fresh run

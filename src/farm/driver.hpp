@@ -1,7 +1,7 @@
 // The coupled MPM x DEM run: what `mpmxdem run job.toml` and `--restart` call. Rank 0 runs the MPM
 // solver and hosts RVEs; other ranks serve the RVE farm. Entry API (small on purpose):
 // CoupledConfig, run_coupled, restart_coupled, inspect_checkpoint; the run itself is
-// farm/coupled_run.*. See docs/farm.md.
+// farm/coupled_run.*. See docs/design/farm.md.
 #pragma once
 
 #include <mpi.h>
@@ -44,7 +44,7 @@ struct CoupledConfig {
   std::function<void(std::int64_t step, const FarmTimes& times)> on_step;
   /// Optional, rank 0: asked before every MPM step; a nonzero answer (the app's: the signal
   /// received, app/stop_signals.hpp) ends the run there as if at its end, with a checkpoint
-  /// (docs/errors.md, "Stopping a run").
+  /// (docs/reference/errors.md, "Stopping a run").
   std::function<int()> stop_requested;
   /// Throws common::InputError naming the field, value and rule.
   void validate() const;

@@ -7,7 +7,7 @@
 
 namespace farm {
 
-/// Version of ElasticMicro's state (field elastic/version; docs/checkpoint.md). 1 (no field):
+/// Version of ElasticMicro's state (field elastic/version; docs/reference/checkpoint.md). 1 (no field):
 /// positional arrays elastic/params and elastic/int_params; 2: one named field per parameter.
 inline constexpr std::int64_t kElasticStateVersion = 2;
 
@@ -38,7 +38,7 @@ class ElasticMicro final : public MicroModel {
   /// No grains: MicroMeasures::none() (NaN: fabric, Z without rattlers, unbalanced force and
   /// kinetic energy are not defined for a continuum).
   [[nodiscard]] MicroMeasures measures() const override { return MicroMeasures::none(); }
-  /// Named fields (docs/checkpoint.md): elastic/version, elastic/id, elastic/params/<name> (one per
+  /// Named fields (docs/reference/checkpoint.md): elastic/version, elastic/id, elastic/params/<name> (one per
   /// ElasticMicroParams member), elastic/stress, elastic/j, elastic/steps.
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override {

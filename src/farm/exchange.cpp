@@ -1,4 +1,4 @@
-// The farm's wire (see header and docs/farm.md, "Protocol").
+// The farm's wire (see header and docs/design/farm.md, "Protocol").
 #include "farm/exchange.hpp"
 
 #include <cstring>

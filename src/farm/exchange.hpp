@@ -1,4 +1,4 @@
-// The farm's wire: typed records and the two collectives of an MPM step (docs/farm.md,
+// The farm's wire: typed records and the two collectives of an MPM step (docs/design/farm.md,
 // "Protocol"). Rank 0 scatters [CommandHeader | L block] to every rank with one MPI_Iscatterv;
 // every rank gathers [busy | RveRecord...] back to rank 0 with one MPI_Igatherv. Buffers are laid
 // out once per partition (no allocation per step); record sizes are sizeof of the structs below.

@@ -1,4 +1,4 @@
-// Grain-scale views during a coupled run (job keys [output.grains], docs/dem.md "Grain-scale
+// Grain-scale views during a coupled run (job keys [output.grains], docs/design/dem.md "Grain-scale
 // views during a run"): the spheres, contacts and cell of chosen RVEs every few MPM steps, for
 // ParaView, in <out>/grains/ as rve_<id>_step_<step>.vtm (+ .vtp/.vtu) and one time series
 // rve_<id>.pvd per RVE. The owners of the RVEs write the views (RveFarm::write_grain_views);

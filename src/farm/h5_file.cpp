@@ -18,7 +18,7 @@ constexpr unsigned kDeflateLevel = 4;
 
 /// `blocks` (ascending, disjoint) with empty ones dropped and adjacent ones merged: one
 /// hyperslab per run of consecutive RVEs, so that the collective filtered-chunk path exchanges
-/// one piece per run instead of one per RVE (docs/scaling.md, finding 4). The file layout and
+/// one piece per run instead of one per RVE (docs/validation/scaling.md, finding 4). The file layout and
 /// the checksums (position-keyed) do not depend on how a selection is split.
 std::vector<Block> merged(std::span<const Block> blocks) {
   std::vector<Block> out;

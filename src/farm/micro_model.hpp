@@ -68,7 +68,7 @@ class MicroModel {
   [[nodiscard]] virtual MicroMeasures measures() const = 0;
   /// The grain-scale view of the current state as files for ParaView, named from `stem` (a plain
   /// file name): for DEM the spheres, the contact network and the periodic cell
-  /// (dem/vtk_export.hpp, docs/dem.md "Grain-scale views"). Continuum models have none (empty).
+  /// (dem/vtk_export.hpp, docs/design/dem.md "Grain-scale views"). Continuum models have none (empty).
   [[nodiscard]] virtual std::vector<ViewFile> grain_view(const std::string& stem) const {
     (void)stem;
     return {};

@@ -28,7 +28,7 @@ void wait_for(MPI_Request& request, WaitMode mode) {
   // rank 0's MPM step, rank 0 waiting for a slightly slower worker) and end with no latency.
   // Then sleep with an exponential back-off capped at 100 us, so a long wait leaves its core to
   // the DEM of another rank yet notices its end within ~0.15 ms (with Linux timer slack).
-  // Measured (docs/farm.md): 20 polls only cost 0.16 ms of latency per MPM step, this 0.03 ms.
+  // Measured (docs/design/farm.md): 20 polls only cost 0.16 ms of latency per MPM step, this 0.03 ms.
   const auto start = std::chrono::steady_clock::now();
   while (done == 0 && std::chrono::steady_clock::now() - start < kPollBudget) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);

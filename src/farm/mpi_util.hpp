@@ -13,7 +13,7 @@ namespace farm {
 /// How a rank waits for a non-blocking collective.
 enum class WaitMode {
   automatic,  ///< spin where every thread of the node's ranks has a core, sleep where they share
-              ///< cores (resolve_wait_mode; docs/farm.md, "Waiting")
+              ///< cores (resolve_wait_mode; docs/design/farm.md, "Waiting")
   spin,       ///< MPI_Wait: Open MPI busy-polls (a core at 100 %)
   sleep,      ///< polls MPI_Test for up to 200 us, then sleeps with a back-off from 10 us to
               ///< 100 us (a long wait frees the core)

@@ -333,7 +333,7 @@ std::int64_t keep_owners(const std::vector<int>& current, std::vector<int>& prop
   // Greedy matching of new parts onto old ones by the RVEs they share, largest share first (ties:
   // smallest new part, then smallest old one). Only the (new, old) pairs that share RVEs can
   // score: they are counted by sorting the N pair keys, O(N log N) time and O(N) memory (the
-  // dense P x P table and its O(P^3) scan took 145 s at 4096 parts: docs/scaling.md).
+  // dense P x P table and its O(P^3) scan took 145 s at 4096 parts: docs/validation/scaling.md).
   std::vector<std::int64_t> keys(current.size());
   for (std::size_t k = 0; k < current.size(); ++k) keys[k] = proposal[k] * np + current[k];
   std::sort(keys.begin(), keys.end());

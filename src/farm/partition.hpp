@@ -45,7 +45,7 @@ struct DescentStep {
 /// Incremental (diffusive) repartition from the current owners: moves RVEs one at a time out of
 /// the heaviest part (ties: lowest label) while a move lowers the larger of the two loads it
 /// changes, so it moves only what the balance needs (a fresh METIS partition moves 35-95 % of the
-/// RVEs for a few per cent of gain: docs/scaling.md, finding 2). A move takes an RVE of the
+/// RVEs for a few per cent of gain: docs/validation/scaling.md, finding 2). A move takes an RVE of the
 /// heaviest part to the lightest part or to a part owning one of its graph neighbours; the move
 /// chosen is the first by (1) the largest part load after it, (2) a neighbour part before the
 /// lightest, (3) the larger of the two changed loads, (4) the lowest RVE index, (5) the lowest

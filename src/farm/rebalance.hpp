@@ -38,7 +38,7 @@ class CostAverage {
 /// must pay for itself within the time the partition is expected to last. It refuses small gains
 /// on short-lived partitions and dear moves (large RVEs); it does not stop the paper's job at
 /// threshold 1.05 from chasing the post-peak flicker of the costs, whose moves are cheap
-/// (docs/farm.md, "Balancing").
+/// (docs/design/farm.md, "Balancing").
 struct Payback {
   double step_s = 0.0;          ///< RVE time of the critical rank per MPM step, recent [s]
   double horizon_steps = 0.0;   ///< steps the new partition is expected to last [-]

@@ -1,4 +1,4 @@
-// results.h5 / points.xmf / means.csv writer (see header and docs/farm.md, "Outputs").
+// results.h5 / points.xmf / means.csv writer (see header and docs/reference/outputs.md).
 #include "farm/results.hpp"
 
 #include <algorithm>
@@ -430,7 +430,7 @@ void ResultsWriter::write_csv() const {
   auto it = std::back_inserter(out);
   // The first line is the header (pandas, csv.DictReader, numpy.genfromtxt(names=True) and
   // ParaView's CSV reader take it so); units are the names' suffixes (_s, _Pa; strains are [-]).
-  // Definitions and sign conventions: the attributes of /means/* in results.h5, docs/farm.md.
+  // Definitions and sign conventions: the attributes of /means/* in results.h5, docs/design/farm.md.
   fmt::format_to(it, "{}\n", kMeansCsvHeader);
   for (std::size_t t = 0; t < steps_.size(); ++t) {
     const std::array<double, 4>& m = means_[t];

@@ -1,6 +1,6 @@
 // Run outputs of the coupled driver (rank 0 only): results.h5 (extendible time series of every RVE
 // and material point), points.xmf (XDMF index for ParaView) and means.csv (sample means).
-// Layout: docs/farm.md, "Outputs".
+// Layout: docs/reference/outputs.md.
 #pragma once
 
 #include <array>
@@ -70,7 +70,7 @@ class ResultsWriter {
   static constexpr std::int64_t kRowsPerWrite = 64;
   static constexpr std::size_t kBytesPerWrite = 8u << 20;
   static constexpr double kIndexShare = 0.005;  ///< wall-time share of index rewrites [-]
-  /// Root attributes "format" and "format_version" of results.h5 (the layout of docs/farm.md).
+  /// Root attributes "format" and "format_version" of results.h5 (the layout of docs/design/farm.md).
   static constexpr const char* kFormat = "mpmxdem results";
   static constexpr std::int64_t kFormatVersion = 1;
   /// First line of means.csv: the column names, units as suffixes (strains are [-]).

@@ -17,7 +17,7 @@ using h5::check;
 using h5::Handle;
 
 // Sign conventions: stress tensors are Cauchy, tension positive; p, q and the strains of
-// /means are compression positive (root attribute "conventions", docs/farm.md "Outputs").
+// /means are compression positive (root attribute "conventions", docs/reference/outputs.md).
 constexpr SeriesSpec kSeriesTable[] = {
     {"time", false, 0, '-', "s", "MPM time of the row"},
     {"step", true, 0, '-', "", "MPM step of the row"},
@@ -32,8 +32,8 @@ constexpr SeriesSpec kSeriesTable[] = {
     {"rve/t_p", false, 1, 'r', "s", "quasi-static time of the step, eq. (11)"},
     {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
     {"rve/guards", true, 1, 'r', "",
-     "guard bits (dem::RveGuard, docs/dem.md; bit 16 farm::kGuardSpared: the DEM was not stepped, "
-     "docs/sparing.md)"},
+     "guard bits (dem::RveGuard, docs/design/dem.md; bit 16 farm::kGuardSpared: the DEM was not stepped, "
+     "docs/design/sparing.md)"},
     {"points/x", false, 3, 'p', "m",
      "position of every material point (order of /points/id) [row, point, xyz]"},
     {"points/stress", false, 9, 'p', "Pa",

@@ -1,5 +1,5 @@
 // points.xmf of ResultsWriter: the XDMF 3 index of results.h5's point series for ParaView (see
-// results.hpp and docs/farm.md, "Outputs").
+// results.hpp and docs/reference/outputs.md).
 #include <fmt/format.h>
 
 #include <filesystem>

@@ -33,7 +33,7 @@ struct CheckpointOptions {
 struct BalanceOptions {
   bool enabled = true;
   /// Rebalance when max/mean of the averaged rank loads exceeds this [-] (>= 1). Below 1.2, moves
-  /// chase the measurement noise (docs/farm.md, "Balancing").
+  /// chase the measurement noise (docs/design/farm.md, "Balancing").
   double threshold = 1.2;
   std::int64_t check_every = 20;  ///< MPM steps between checks (>= 1)
 };

@@ -59,7 +59,7 @@ class BalanceSchedule {
   /// Share of the run the proposals may take (METIS dominates them; the incremental one takes
   /// 0.3-12 % of its time from 256 parts on): after a check whose proposals took m seconds with
   /// steps of s seconds, the next check waits max(check_every, m / (kMetisShare s)) steps
-  /// (docs/scaling.md, finding 3: 0.25 s of METIS at 10^4 RVEs on 1024 parts is 12-17 steps).
+  /// (docs/validation/scaling.md, finding 3: 0.25 s of METIS at 10^4 RVEs on 1024 parts is 12-17 steps).
   static constexpr double kMetisShare = 0.01;
   BalanceSchedule(const BalanceOptions& options, int nranks) : options_(options), nranks_(nranks) {}
   [[nodiscard]] bool due(std::int64_t step) const {
@@ -69,7 +69,7 @@ class BalanceSchedule {
   /// After a check at `step` (wall clock `now` [s]) whose proposal took `metis_s` [s] (0: none
   /// made): the step time is measured since the previous check (or `start` steps and wall time
   /// given to start()); returns the steps until the next check may run (>= check_every).
-  /// Timing only: which steps check never changes a result (docs/farm.md, "Balancing").
+  /// Timing only: which steps check never changes a result (docs/design/farm.md, "Balancing").
   std::int64_t checked(std::int64_t step, double now, double metis_s);
   /// The run's first step and wall clock [s] (the first step-time measurement starts there).
   void start(std::int64_t step, double now) {

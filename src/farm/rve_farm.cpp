@@ -1,4 +1,4 @@
-// RveFarm: the collective farm of RVEs, driven by rank 0 (see header and docs/farm.md,
+// RveFarm: the collective farm of RVEs, driven by rank 0 (see header and docs/design/farm.md,
 // "Protocol"): step, checkpoint, migrate, serve, stop.
 #include "farm/rve_farm.hpp"
 

@@ -1,7 +1,7 @@
 // farm::RveFarm: mpm::MaterialModel whose points are RVEs spread over MPI ranks. Rank 0 runs the
 // MPM solver and hosts RVEs too; ranks > 0 serve commands (step, checkpoint, migrate, stop).
 // Its collaborators: Placement (who owns what), StepExchange (the wire), CostLedger (costs and
-// times). Protocol, ordering rules and measurements: docs/farm.md.
+// times). Protocol, ordering rules and measurements: docs/design/farm.md.
 #pragma once
 
 #include <mpi.h>
@@ -26,13 +26,13 @@
 namespace farm {
 
 struct FarmOptions {
-  WaitMode wait = WaitMode::automatic;  ///< how idle ranks wait (docs/farm.md, "Waiting")
+  WaitMode wait = WaitMode::automatic;  ///< how idle ranks wait (docs/design/farm.md, "Waiting")
   /// OpenMP over the RVEs of a rank (schedule dynamic, 1); false: one RVE at a time, OpenMP
   /// left to the inside of each RVE.
   bool omp_over_rves = true;
   int metis_seed = 1;  ///< METIS_OPTION_SEED
   /// Rank 0 owns RVEs too; false: with more than one rank, rank 0 runs only the MPM and the
-  /// exchange, the RVEs go to ranks 1.. (`farm.rank0_rves`; docs/farm.md, docs/scaling.md).
+  /// exchange, the RVEs go to ranks 1.. (`farm.rank0_rves`; docs/design/farm.md, docs/validation/scaling.md).
   bool rank0_rves = true;
 };
 

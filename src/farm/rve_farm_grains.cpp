@@ -1,5 +1,5 @@
 // RveFarm::write_grain_views (Command::grains): the owners of chosen RVEs write their grain-scale
-// views during a run (docs/dem.md "Grain-scale views during a run"). Apart from rve_farm.cpp
+// views during a run (docs/design/dem.md "Grain-scale views during a run"). Apart from rve_farm.cpp
 // because it is the farm's one command that writes files from every rank.
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // SparedMicro: sparing of idle RVEs with a tangent prediction and error control (see header and
-// docs/sparing.md).
+// docs/design/sparing.md).
 #include "farm/spared_micro.hpp"
 
 #include <algorithm>
@@ -82,7 +82,7 @@ SparedMicro::SparedMicro(std::unique_ptr<MicroModel> inner, const SparingOptions
 Mat3 SparedMicro::predict(const Mat3& sigma0, const Mat3& g) const {
   const Mat3 e = sym(g);
   // The fitted scale holds while the loading goes on; a reversal unloads elastically, which the
-  // (stiffer) contact tangent describes better (measured: docs/sparing.md).
+  // (stiffer) contact tangent describes better (measured: docs/design/sparing.md).
   const bool scaled = options_.tangent == static_cast<std::int64_t>(SparingTangent::scaled) &&
                       (e.array() * e_fit_.array()).sum() >= 0.0;
   const Mat3 q = rotation(g);

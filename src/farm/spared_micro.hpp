@@ -1,7 +1,7 @@
 // farm::SparedMicro: a MicroModel decorator that spares an RVE whose accumulated strain increment
 // since its last update is small: the stress is predicted with a tangent taken at that update,
 // and the accumulated increment is handed to the inner model (the DEM) in one step when it passes
-// the tolerance, after max_spared_steps, or at once where the prediction drifted (docs/sparing.md).
+// the tolerance, after max_spared_steps, or at once where the prediction drifted (docs/design/sparing.md).
 #pragma once
 
 #include <cstdint>
@@ -18,7 +18,7 @@ namespace farm {
 /// stress is the tangent's prediction and no DEM step ran.
 inline constexpr std::uint32_t kGuardSpared = 1u << 16;
 
-/// Version of SparedMicro's fields (spare/version; docs/checkpoint.md).
+/// Version of SparedMicro's fields (spare/version; docs/reference/checkpoint.md).
 inline constexpr std::int64_t kSparedStateVersion = 1;
 
 /// How a spared step predicts the stress.
@@ -47,7 +47,7 @@ inline constexpr auto kSparingOptions = common::make_table<SparingOptions>(
       common::Source::job_default,
       "Sparing of idle RVEs: an RVE whose strain increment accumulated since its last DEM update "
       "(Frobenius norm of the symmetric part of sum L dt) stays at or below this is not stepped; "
-      "its stress is predicted with a tangent (docs/sparing.md). 0: off, every RVE is stepped "
+      "its stress is predicted with a tangent (docs/design/sparing.md). 0: off, every RVE is stepped "
       "every MPM step."},
      {"max_spared_steps", &SparingOptions::max_spared_steps, common::Unit::Dimensionless,
       common::in_cc(1, 1e6), common::Source::job_default,
@@ -86,7 +86,7 @@ class SparedMicro final : public MicroModel {
   [[nodiscard]] std::vector<ViewFile> grain_view(const std::string& stem) const override {
     return inner_->grain_view(stem);
   }
-  /// The inner model's fields and spare/* (docs/checkpoint.md).
+  /// The inner model's fields and spare/* (docs/reference/checkpoint.md).
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override { return inner_->cost_estimate(); }
   [[nodiscard]] double wave_speed() const override { return inner_->wave_speed(); }

@@ -27,7 +27,7 @@ BenchmarkResult run_benchmark(std::int64_t num_points, int threads, int steps,
 /// "points=... threads=... steps=... seconds=... updates/s=..." on one line.
 std::string to_string(const BenchmarkResult& r);
 
-/// The scene features of issue 15 that a rank-0 MPM step pays for (docs/mpm.md).
+/// The scene features of issue 15 that a rank-0 MPM step pays for (docs/design/mpm.md).
 struct SceneFeatures {
   bool plane_strain = true;   ///< one-cell-thick grid (y), 2 x 1 x 2 points per cell
   double mass_scaling = 100;  ///< SolverConfig::mass_scaling (1: off)

@@ -1,4 +1,4 @@
-// Velocity constraints and face loads (see header and docs/mpm.md, "Tractions").
+// Velocity constraints and face loads (see header and docs/design/mpm.md, "Tractions").
 #include "mpm/boundary.hpp"
 
 #include <Eigen/LU>

@@ -36,7 +36,7 @@ struct VelocityConstraint {
   /// velocity on the plane is then exactly V.
   int mirror_axis = -1;
   double mirror_plane = 0.0;  ///< [m]
-  /// Optional frictional wall (docs/mpm.md, "Frictional boundaries and reactions"): when
+  /// Optional frictional wall (docs/design/mpm.md, "Frictional boundaries and reactions"): when
   /// wall.axis is 0..2 (see has_wall), the nodes are on a rigid wall moving at `velocity` (all
   /// three components; `fixed` is not used) with Coulomb friction (apply_wall_friction).
   /// No mirror.
@@ -96,7 +96,7 @@ void apply_acceleration_constraints(const Grid& grid, const std::vector<Resolved
 /// The face is made of the facets of the points whose initial domain touched the material's
 /// initial bounding face (normal `axis`, `side`); each facet is carried by its point and deforms
 /// with it (Nanson: a_p = J_p F_p^-T N A0_p), so a pressure stays a pressure on the deformed
-/// face, whatever the points' drift inside the grid (docs/mpm.md, "Tractions").
+/// face, whatever the points' drift inside the grid (docs/design/mpm.md, "Tractions").
 struct TractionLoad {
   int axis = 0;           ///< normal axis of the face, 0..2
   int side = -1;          ///< -1: the face at the material's lowest coordinate, +1 the highest

@@ -1,4 +1,4 @@
-// Energy accounting of the MPM for quasi-static scenes (docs/mpm.md, "Mass scaling"): kinetic
+// Energy accounting of the MPM for quasi-static scenes (docs/design/mpm.md, "Mass scaling"): kinetic
 // energy of the points with the scaled inertia, the stress power, the kinetic-to-internal ratio,
 // and a watch that warns once when a mass-scaled scene stops being quasi-static.
 #pragma once

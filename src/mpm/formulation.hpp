@@ -1,4 +1,4 @@
-// Formulation of the point kinematics (docs/mpm.md, "Total Lagrangian formulation"): updated
+// Formulation of the point kinematics (docs/design/mpm.md, "Total Lagrangian formulation"): updated
 // Lagrangian (classical MPM: the grid is the current configuration) or total Lagrangian (the
 // grid is the reference configuration: only with points that do not move, where the grid is
 // indeed where the material was at the start).

@@ -1,6 +1,6 @@
 // Coulomb friction of a rigid wall on one grid node: the standard MPM frictional boundary, i.e.
 // the contact algorithm of Bardenhagen et al. (2001, CMES 2(4):509-522) with a rigid body as the
-// other side. docs/mpm.md, "Frictional boundaries and reactions".
+// other side. docs/design/mpm.md, "Frictional boundaries and reactions".
 #pragma once
 
 #include "common/types.hpp"

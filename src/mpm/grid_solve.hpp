@@ -6,7 +6,7 @@
 
 namespace mpm {
 
-/// How the damping force of eq. 8 is formed (docs/mpm.md, "Damping").
+/// How the damping force of eq. 8 is formed (docs/design/mpm.md, "Damping").
 enum class DampingMode {
   /// Eq. 8 as written: a = (f - D |f| V / |V|) / m, one vector norm per node.
   cundall_vector,

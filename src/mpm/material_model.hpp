@@ -1,4 +1,4 @@
-// The seam between MPM and any constitutive model, the DEM farm included (docs/mpm.md, "Seam").
+// The seam between MPM and any constitutive model, the DEM farm included (docs/design/mpm.md, "Seam").
 #pragma once
 
 #include <cstdint>
@@ -12,7 +12,7 @@ namespace mpm {
 /// velocity gradient dv/dx (1/s, spin included), stress is Cauchy, Pa, TENSION POSITIVE.
 /// State is not part of the seam: the owner of a model knows its concrete type and checkpoints
 /// it with that type's save/load (LinearElastic::save; the farm's collective checkpoint), as
-/// Solver::save does for the points (docs/checkpoint.md, "One state protocol").
+/// Solver::save does for the points (docs/reference/checkpoint.md, "One state protocol").
 class MaterialModel {
  public:
   virtual ~MaterialModel() = default;

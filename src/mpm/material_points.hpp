@@ -42,7 +42,7 @@ struct MaterialPoints {
 /// Fills the box [lo, hi] (aligned with the grid's cells) with points_per_cell[d] points per cell
 /// along each axis d, at the regular positions (k + 1/2)/points_per_cell[d] of each cell (for 2
 /// per cell: the 1/4 and 3/4 positions of the paper's single-cell test; [2, 1, 2]: one point
-/// through the thickness of a plane-strain grid, docs/mpm.md "Plane strain"). Each point's domain
+/// through the thickness of a plane-strain grid, docs/design/mpm.md "Plane strain"). Each point's domain
 /// has half-widths spacing[d] / (2 points_per_cell[d]). Mass = density * volume, ids continue
 /// from the largest existing id + 1. Returns the number of points added. Throws
 /// common::InputError when a count is < 1, the density is not positive, or the box is not a whole

@@ -13,7 +13,7 @@ inline constexpr std::int64_t kMinParallelPoints = 4096;
 /// fn(i) for i in [0, n): one `omp parallel for` (static schedule) from kMinParallelPoints items,
 /// a plain loop below. Not `#pragma omp parallel for if (...)`: libgomp still starts a team of
 /// one for a false if-clause, measured at 1.5-10 us per region, which was 3/4 of the MPM step of
-/// the paper's 8-point job (docs/mpm.md, "Small problems").
+/// the paper's 8-point job (docs/design/mpm.md, "Small problems").
 template <class Fn>
 inline void for_each_index(std::int64_t n, Fn&& fn) {
   if (n < kMinParallelPoints) {

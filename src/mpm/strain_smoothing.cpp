@@ -1,4 +1,4 @@
-// Cell-averaged velocity gradient (see strain_smoothing.hpp, docs/mpm.md "Strain smoothing").
+// Cell-averaged velocity gradient (see strain_smoothing.hpp, docs/design/mpm.md "Strain smoothing").
 #include "mpm/strain_smoothing.hpp"
 
 #include <algorithm>

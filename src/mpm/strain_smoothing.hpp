@@ -1,6 +1,6 @@
 // Strain smoothing: every material point of a grid cell gets the cell's volume-averaged velocity
 // gradient before the material update (the cell-based averaging of Anura3D's mixed integration;
-// docs/mpm.md, "Strain smoothing"). A cure for the checkerboard of softening single-cell tests.
+// docs/design/mpm.md, "Strain smoothing"). A cure for the checkerboard of softening single-cell tests.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +17,7 @@ namespace mpm {
 enum class StrainSmoothing {
   none,  ///< each point its own L (the default)
   cell,  ///< each point the volume-weighted mean L of the points in its grid cell, and the
-         ///< internal forces from the cell's mean stress (no hourglass forces; docs/mpm.md)
+         ///< internal forces from the cell's mean stress (no hourglass forces; docs/design/mpm.md)
 };
 
 /// "none" or "cell"; throws common::InputError otherwise.

@@ -15,7 +15,7 @@
 
 namespace mpm {
 
-/// How velocities go between points and grid (docs/mpm.md, "Transfers").
+/// How velocities go between points and grid (docs/design/mpm.md, "Transfers").
 enum class Transfer {
   flip,  ///< v_p blended FLIP/PIC (eqs. 9-10, SolverConfig::flip); P2G of m_p v_p
   /// Affine PIC (Jiang et al. 2015): each point also carries C_p, the grid's velocity gradient at

@@ -1,4 +1,4 @@
-// Analytic verification set-ups (see header and docs/mpm.md, "Verification").
+// Analytic verification set-ups (see header and docs/design/mpm.md, "Verification").
 #include "mpm/verification_cases.hpp"
 
 #include <algorithm>
@@ -35,7 +35,7 @@ BarResult run_elastic_bar(ShapeKind shape, int cells, double periods, double cfl
   Solver solver(cfg, pts, {&material});
   solver.add_constraint(
       {Vec3::Constant(-10), Vec3::Constant(100), {false, true, true}, Vec3::Zero(), {}});
-  // Fixed end: every node at x <= 0 (plain node fixing; see docs/mpm.md on B-splines).
+  // Fixed end: every node at x <= 0 (plain node fixing; see docs/design/mpm.md on B-splines).
   solver.add_constraint(
       {Vec3::Constant(-10), Vec3(0, 100, 100), {true, false, false}, Vec3::Zero(), {}});
 

@@ -36,7 +36,7 @@ list(LENGTH hashes nh)
 if(NOT nh EQUAL 1)
   message(FATAL_ERROR "bench dem: final states differ between thread counts: ${hashes}")
 endif()
-# The reference packing at 100 kPa has 2.7-2.9 contacts per sphere while sheared (docs/dem.md).
+# The reference packing at 100 kPa has 2.7-2.9 contacts per sphere while sheared (docs/design/dem.md).
 if(NOT out MATCHES "contacts/sphere=2\\.[5-9]")
   message(FATAL_ERROR "bench dem: contacts per sphere outside [2.5, 3) on the reference packing:\n${out}")
 endif()

@@ -1,6 +1,6 @@
 # A run whose DEM RVEs cannot fit in the memory of its nodes (8192 RVEs of 500,000 spheres: at
 # least 4.2 TB) is refused on 2 ranks before any sample is prepared or anything written: exit 2,
-# naming the job key, the figures and what to change (docs/errors.md), both into a new directory
+# naming the job key, the figures and what to change (docs/reference/errors.md), both into a new directory
 # and into an earlier run's, which stays as it was; `check` of the same job says what it needs.
 # Usage: cmake -DEXE -DMPIEXEC -DDIR -P (from the source root)
 include("${CMAKE_CURRENT_LIST_DIR}/hostile_util.cmake")

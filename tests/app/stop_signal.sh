@@ -1,5 +1,5 @@
 #!/bin/bash
-# A signal ends a running `mpmxdem run` after its current MPM step with a checkpoint (docs/errors.md
+# A signal ends a running `mpmxdem run` after its current MPM step with a checkpoint (docs/reference/errors.md
 # "Stopping a run"), and `--restart latest` continues bit for bit:
 #  1. SIGUSR1 to mpiexec (Open MPI forwards it to every rank; what `mpirun` users and Slurm's
 #     `--signal=USR1@T` before a time limit send): exit 138, the log names the signal and the

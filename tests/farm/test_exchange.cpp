@@ -1,4 +1,4 @@
-// Unit tests of the farm's wire records (farm/exchange.hpp): sizes as docs/farm.md states them, and
+// Unit tests of the farm's wire records (farm/exchange.hpp): sizes as docs/design/farm.md states them, and
 // a record that survives the byte copy of the wire bit for bit.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 namespace {
 
-// The figures of docs/farm.md ("Protocol"): a 24-byte header, 160-byte records, 120-byte start-up
+// The figures of docs/design/farm.md ("Protocol"): a 24-byte header, 160-byte records, 120-byte start-up
 // records. A new field changes these sizes: update the docs with them.
 TEST(Exchange, RecordSizesAreThoseTheDocsState) {
   EXPECT_EQ(sizeof(farm::CommandHeader), 24u);

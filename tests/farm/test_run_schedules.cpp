@@ -42,7 +42,7 @@ TEST(RunSchedules, CheckpointsByStepsWallTimeAndAtTheEnd) {
 
 TEST(RunSchedules, BalanceOnlyWithRanksToBalance) {
   farm::BalanceOptions b;
-  EXPECT_EQ(b.threshold, 1.2);  // the job file's default (docs/farm.md, "Balancing")
+  EXPECT_EQ(b.threshold, 1.2);  // the job file's default (docs/design/farm.md, "Balancing")
   b.check_every = 4;
   EXPECT_TRUE(farm::BalanceSchedule(b, 2).due(8));
   EXPECT_FALSE(farm::BalanceSchedule(b, 2).due(6));
@@ -83,7 +83,7 @@ TEST(RunSchedules, EtaAndDurations) {
   EXPECT_EQ(farm::format_duration(1e300), "3.17e+292 years");
 }
 
-// Finding 3 of docs/scaling.md: a check whose METIS proposal took 0.25 s with steps of 15 ms
+// Finding 3 of docs/validation/scaling.md: a check whose METIS proposal took 0.25 s with steps of 15 ms
 // (10^4 RVEs on 1024 ranks) makes the next one wait 0.25 / (0.01 * 0.015) = 1667 steps, rounded
 // up to a multiple of check_every (1680): METIS then costs at most 1 % of the run. A check
 // without a proposal (imbalance below the threshold) or a cheap one keeps check_every.

@@ -51,7 +51,7 @@ print(f"front {front[0]:.5f} m -> {front[-1]:.5f} m; lowest point z = {x[:, :, 2
 job = tomllib.loads(open(run + "/job.toml").read())
 impulse = job["mpm"].get("wall_impulse", "grid") == "points"
 # With mpm.wall_impulse = "points" the rough base holds the bottom row's points too, and the
-# column starts more slowly: 2 mm (measured 4.5 mm at 0.15 s, docs/column_collapse.md section 12).
+# column starts more slowly: 2 mm (measured 4.5 mm at 0.15 s, docs/notes/column_collapse_2026-11.md section 12).
 front_min = 0.002 if impulse else 0.005
 check(front[-1] - front[0] >= front_min, f"the front did not move forward by {front_min * 1e3:g} mm")
 if impulse:

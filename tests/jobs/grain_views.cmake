@@ -1,4 +1,4 @@
-# Grain views during a run (issue 19, docs/dem.md "Grain-scale views during a run"), through
+# Grain views during a run (issue 19, docs/design/dem.md "Grain-scale views during a run"), through
 # the command line: A runs tests/jobs/grain_views_small.toml to step 90 on 2 ranks; B runs it to
 # step 70 on 2 ranks (views 0..60 and 70, checkpoints 30, 60, 70), then restarts on 3 ranks from the
 # checkpoint of step 60 to step 90. Checked: B's series rve_<id>.pvd equal A's byte for byte (the

@@ -1,6 +1,6 @@
 // The APIC transfer (mpm/transfers.hpp, Transfer::apic): an affine velocity field goes through
 // G2P and P2G exactly, with one point per cell; FLIP/PIC loses it. And the single-cell triaxial
-// with ONE point (one RVE) holds its confinement only with APIC (docs/mpm.md, "Transfers").
+// with ONE point (one RVE) holds its confinement only with APIC (docs/design/mpm.md, "Transfers").
 #include <gtest/gtest.h>
 
 #include <cstdio>

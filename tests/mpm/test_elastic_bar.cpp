@@ -7,7 +7,7 @@
 
 namespace {
 
-// Period within 1 % of 4 L / c (the requirement). The measured errors (docs/mpm.md) are
+// Period within 1 % of 4 L / c (the requirement). The measured errors (docs/design/mpm.md) are
 // 5e-4 to 7e-4 for linear and uGIMP on 25 cells: the 1 % bound is the requirement, not a fit.
 // Energy: NFLIP + USF is not exactly conservative; the drift is reported, and bounded by 1 %
 // over two periods (measured 0.46 %) only to catch regressions.
@@ -34,7 +34,7 @@ TEST(ElasticBar, UgimpUsfPeriodWithin1Percent) {
 }
 // The B-spline's fixed end is imposed by fixing the nodes at x <= 0, which leaves v(0) = v_1 / 8:
 // the bar is effectively about h / 3 longer, an O(h) error (1.3 % on 25 cells, 0.65 % on 50).
-// Hence 50 cells here; see docs/mpm.md (known limitation).
+// Hence 50 cells here; see docs/design/mpm.md (known limitation).
 TEST(ElasticBar, BSplineUsf50CellsPeriodWithin1Percent) {
   check(mpm::ShapeKind::bspline2, 50, mpm::StressUpdate::usf);
 }

@@ -1,5 +1,5 @@
 // Verification of the frictional walls, reactions and time windows of the velocity constraints
-// (docs/mpm.md, "Frictional boundaries and reactions"): a block sliding on a rough base, the
+// (docs/design/mpm.md, "Frictional boundaries and reactions"): a block sliding on a rough base, the
 // platen reaction of the elastic single-cell triaxial, a gate removed at a given time.
 #include <gtest/gtest.h>
 
@@ -82,7 +82,7 @@ Slide slide(double theta, double mu, double T,
 // but with no shear stress); the fit over 3/4 of the run averages it (measured 0.18 %).
 // Unilateral contact (no_penetration), as a block on a plane: with a fixed (bilateral) base the
 // nodes the friction moment lifts are held in tension, which gives no friction, while the others
-// carry more than the weight: the total friction exceeds mu N (docs/mpm.md).
+// carry more than the weight: the total friction exceeds mu N (docs/design/mpm.md).
 // The same with mpm.wall_impulse = "points" (measured 3e-5).
 TEST(FrictionalWall, BlockSlidesWithCoulombAcceleration) {
   const double theta = 30.0 * std::numbers::pi / 180.0, mu = 0.3;
@@ -100,7 +100,7 @@ TEST(FrictionalWall, BlockSlidesWithCoulombAcceleration) {
 // with gamma = rho g sin(theta) H / G (1.4e-5 m at 20 deg); 3 gamma H as the bound (the shear
 // starts from zero and overshoots; measured 1.9 and 2.1 gamma H), against 0.19 m of sliding.
 // The rough fixed base holds with mpm.wall_impulse = "points" too (measured 0.9 gamma H); the
-// no_penetration base at mu = 0.5 does not (1.8 mm in 0.2 s, 130 gamma H: docs/mpm.md).
+// no_penetration base at mu = 0.5 does not (1.8 mm in 0.2 s, 130 gamma H: docs/design/mpm.md).
 TEST(FrictionalWall, BlockSticksWhenTanThetaBelowMu) {
   const double t20 = 20.0 * std::numbers::pi / 180.0, t30 = 30.0 * std::numbers::pi / 180.0;
   const Slide s20 = slide(t20, 0.5, 0.2);
@@ -301,9 +301,9 @@ struct Landing {
 
 // A layer of stress-free points (pure FLIP, positions with the grid velocity, no gravity), one
 // per cell in the bottom cell row of a rough base, all moving at (0.3, 0, -1) m/s into it: the
-// collapse's front points on its base (docs/column_collapse.md). One point per cell across the
+// collapse's front points on its base (docs/validation/column_collapse.md). One point per cell across the
 // layer: two points above one another could hold a FLIP mode the base nodes do not see
-// (velocities whose momenta cancel there), which no wall can take (docs/mpm.md).
+// (velocities whose momenta cancel there), which no wall can take (docs/design/mpm.md).
 Landing land(bool wall_impulse_on_points) {
   mpm::SolverConfig cfg;
   cfg.grid = {Vec3::Zero(), Vec3::Constant(0.1), common::Vec3i(4, 1, 3)};

@@ -1,4 +1,4 @@
-// Verification of quasi-static mass scaling (SolverConfig::mass_scaling, docs/mpm.md "Mass
+// Verification of quasi-static mass scaling (SolverConfig::mass_scaling, docs/design/mpm.md "Mass
 // scaling"): the elastic triaxial of jobs/elastic_triaxial.toml gives the unscaled answer in fewer
 // steps, and a column under gravity keeps its real weight.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Verification of plane strain (SolverConfig::plane_strain_axis, docs/mpm.md "Plane strain"):
+// Verification of plane strain (SolverConfig::plane_strain_axis, docs/design/mpm.md "Plane strain"):
 // elastic compression against plane-strain Hooke's law, and the L the material is given.
 #include <gtest/gtest.h>
 

@@ -47,7 +47,7 @@ TEST(SingleCellTriaxial, DisplacedPointsLoseLateralControlWithLinearShapes) {
 
 // The DEM RVEs carry shear stresses of a few kPa. With such a seed (sigma_xz = 1.4 kPa) and the
 // points moving (eq. 10), the paper's set-up goes unstable (the points start a rotation about z
-// that grows exponentially; docs/validation.md). With the points held at their regular positions
+// that grows exponentially; docs/validation/triaxial.md). With the points held at their regular positions
 // (SolverConfig::move_points = false) it is stable: lateral stress within 1 % to 3 % axial strain,
 // the seed relaxes, the points stay where they were.
 TEST(SingleCellTriaxial, ShearSeedWithFixedPointsStaysStable) {
@@ -65,7 +65,7 @@ TEST(SingleCellTriaxial, ShearSeedWithFixedPointsStaysStable) {
   EXPECT_EQ(r.max_displacement, 0.0);
 }
 
-// The case of jobs/elastic_triaxial.toml that went unstable (docs/validation.md): nu = 0.3 (with
+// The case of jobs/elastic_triaxial.toml that went unstable (docs/validation/triaxial.md): nu = 0.3 (with
 // nu = 0.25 the same set-up stays stable), platen at 1 mm/s, to 1 % axial strain.
 mpm::TriaxialConfig unstable_case() {
   mpm::TriaxialConfig tc;

@@ -5,7 +5,7 @@
 // Strains are logarithmic, compression positive (means.csv holds 1 - F_zz and 1 - V/V0: converted).
 // At every MPM row with eps_a in [EPS_FROM, EPS_TO] the DEM's q and eps_v are interpolated linearly
 // in eps_a. Passes (exit 0) when
-//   RMS over the rows of (q_mpm - q_dem) / q_dem <= TOL_Q  (the measure of docs/validation.md)
+//   RMS over the rows of (q_mpm - q_dem) / q_dem <= TOL_Q  (the measure of docs/validation/triaxial.md)
 //   and max |eps_v,mpm - eps_v,dem| <= TOL_EPS_V;
 // exit 1 when not, 2 on unreadable input.
 #include <algorithm>

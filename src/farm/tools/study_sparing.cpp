@@ -4,7 +4,7 @@
 // steps, the error of the stress against the plain run (max and RMS over the steps, relative to
 // p) and the prediction error at the DEM updates that follow spared steps (the drift).
 //   study_sparing [--packing file] [--inertial 1e-3] [--steps 400]
-// Figures: docs/sparing.md "Which tangent".
+// Figures: docs/design/sparing.md "Which tangent".
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

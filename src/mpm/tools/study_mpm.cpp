@@ -1,4 +1,4 @@
-// study_mpm: verification figures of the MPM module (docs/mpm.md, "Verification").
+// study_mpm: verification figures of the MPM module (docs/design/mpm.md, "Verification").
 // Run: build/src/mpm/study_mpm [bar|column|triaxial|all]
 #include <cmath>
 #include <cstdio>
