@@ -48,6 +48,11 @@ dem::RveParams rve_params(const Job& job) {
   p.numerics = dem_numerics(job);
   fill_from_job(job, dem::kRveParams, p);
   p.carry_end_forces = job.text("dem.coupling.end_forces") == "carried";
+  p.rate = job.text("dem.coupling.rate") == "coupling" ? dem::RveRate::coupling
+                                                       : dem::RveRate::material;
+  p.contact_loss = job.text("dem.coupling.contact_loss") == "strained"
+                       ? dem::ContactLoss::strained
+                       : dem::ContactLoss::disconnected;
   p.initial_pressure = 0.0;  // the prototype is prepared by prepared_sample()
   p.validate();
   return p;

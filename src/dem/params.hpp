@@ -80,11 +80,11 @@ inline constexpr auto kNumerics = common::make_table<Numerics>(
       "physics). At most 1 (a skin of one radius: a list of most of the cell's neighbours)."},
      {"verlet_skin_min", &Numerics::skin_min_factor, Unit::Dimensionless, common::in_cc(0, 1),
       Source::job_default,
-      "0: the skin is verlet_skin (before 2026-11-26). Above 0: each RVE adapts its skin between "
+      "0: the skin is verlet_skin (the fixed skin of older versions). Above 0: each RVE adapts its skin between "
       "this fraction of "
       "the largest radius and verlet_skin to how fast its spheres move (thin when they barely "
       "move, fewer pairs; wide in a flow, fewer rebuilds), from its own state: restarts, ranks "
-      "and threads keep their bits (docs/dem.md \"Neighbour search\")."},
+      "and threads keep their bits (docs/design/dem.md \"Neighbour search\")."},
      {"dt_refresh", &Numerics::dt_refresh, Unit::Dimensionless, common::ge(1), Source::cpp_only,
       "Steps between critical time step refreshes."},
      {"max_skew", &Numerics::max_skew, Unit::Dimensionless, common::ge(0.5), Source::cpp_only,

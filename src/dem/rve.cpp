@@ -1,4 +1,5 @@
-// Rve: the quasi-static RVE step of Duverger et al. 2022, eqs. (11)-(12), with guards.
+// Rve: the quasi-static RVE step of Duverger et al. 2022, eqs. (11)-(12), at the material's own
+// rate where it flows faster (RveRate), disconnected without contacts (ContactLoss), with guards.
 #include "dem/rve.hpp"
 
 #include <algorithm>
@@ -64,6 +65,37 @@ Rve Rve::from_simulation(Simulation sim, const RveParams& params) {
 Rve::Rve(Simulation sim, const RveParams& params, double d50)
     : sim_(std::move(sim)), params_(params), d50_(d50) {}
 
+namespace {
+std::int64_t active_contacts(const Simulation& sim) {
+  std::int64_t nc = 0;
+  for (auto a : sim.contacts().active) nc += a;
+  return nc;
+}
+}  // namespace
+
+bool Rve::take_free_volume(Mat3& g) {
+  if (params_.contact_loss != ContactLoss::disconnected) return false;
+  // ln J of the increment: the cell's own kinematics (a product of I + L dt_DEM) give exp(g).
+  const double dv = g.trace();
+  // Held only below the disconnection fraction: a contact-free RVE denser than that is a dense
+  // gas, in which a shear or a compression makes contacts at once (holding it loses its shear:
+  // a dense column, held at phi ~ 0.63, flowed as a fluid).
+  if (!(free_volume_ > 0.0) &&
+      !(dv > 0.0 && active_contacts(sim_) == 0 &&
+        1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
+    return false;
+  }
+  const double after = free_volume_ + dv;
+  if (after > 0.0) {
+    free_volume_ = after;  // still disconnected: the cell is held, stress-free
+    return true;
+  }
+  // The compression closed the free volume (dv < 0 here): its remainder strains the cell.
+  g *= after / dv;
+  free_volume_ = 0.0;
+  return false;
+}
+
 StepReport Rve::step(const Mat3& l, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!(dt >= 0.0) || !l.allFinite()) {
@@ -71,7 +103,17 @@ StepReport Rve::step(const Mat3& l, double dt) {
         "dem::Rve::step: non-finite L or negative dt (dt = " + std::to_string(dt) + " s)");
   }
   StepReport rep;
-  const Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
+  Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
+  if (take_free_volume(g)) {
+    // Disconnected (Dunatunga & Kamrin 2015): no contact, so no stress, and no DEM step; the
+    // spheres keep their state for the compression that reconnects them.
+    const StepReport m = measure();
+    rep = m;
+    rep.dt_dem = sim_.dt();
+    rep.guards |= kGuardDisconnected;
+    rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return rep;
+  }
   // T_p of eq. (11) uses the STRAIN increment (symmetric part): a rigid spin of the cell is not a
   // deformation and must not make the step longer. The strain-split guard bounds the whole G.
   const double gmax = g.cwiseAbs().maxCoeff();
@@ -84,6 +126,12 @@ StepReport Rve::step(const Mat3& l, double dt) {
   const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
   const double rho = params_.material.density;
   double t_p = std::max(emax / params_.inertial_number * inertial_time(d50_, rho, p), dt_dem);
+  if (params_.rate == RveRate::material && t_p > dt && dt > 0.0) {
+    // The material is faster than I_n (or the step shorter than one DEM step): the RVE runs in
+    // physical time, at the material's own inertial number.
+    t_p = dt;
+    rep.guards |= kGuardMaterialRate;
+  }
   if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
   // Step counts in double precision until they are capped: a tiny inertial number or a huge
   // increment gives counts beyond int64 (or an infinite t_p), whose conversion is undefined.
@@ -151,14 +199,6 @@ StepReport Rve::step(const Mat3& l, double dt) {
   return rep;
 }
 
-namespace {
-std::int64_t active_contacts(const Simulation& sim) {
-  std::int64_t nc = 0;
-  for (auto a : sim.contacts().active) nc += a;
-  return nc;
-}
-}  // namespace
-
 // With dt_refresh = 1 every step() computes it (each runs at least one DEM step): the results of
 // before this cache, bit for bit. Otherwise the value is kept while fewer than dt_refresh DEM
 // steps have run since (each DEM step strains the cell by at most max_strain_per_step, so the
@@ -207,6 +247,10 @@ void Rve::save(common::StateWriter& w) const {
   common::write_scalar(w, "rve/dt_cache/contacts", dt_cache_.contacts);
   common::write_scalar(w, "rve/carry_end_forces", std::int64_t{params_.carry_end_forces ? 1 : 0});
   common::write_scalar(w, "rve/forces_carried", std::int64_t{forces_carried_ ? 1 : 0});
+  common::write_scalar(w, "rve/rate", static_cast<std::int64_t>(params_.rate));
+  common::write_scalar(w, "rve/contact_loss", static_cast<std::int64_t>(params_.contact_loss));
+  common::write_scalar(w, "rve/free_volume", free_volume_);
+  common::write_scalar(w, "rve/disconnect_fraction", params_.disconnect_fraction);
 }
 
 Rve Rve::load(const common::StateReader& r) {
@@ -233,6 +277,13 @@ Rve Rve::load(const common::StateReader& r) {
     return v == 1;
   };
   params.carry_end_forces = flag("rve/carry_end_forces");
+  // Written since dem.coupling.rate and contact_loss exist: a state without them ran with the
+  // coupling rate and a strained cell, and continues so.
+  params.rate = flag("rve/rate") ? RveRate::material : RveRate::coupling;
+  params.contact_loss = flag("rve/contact_loss") ? ContactLoss::disconnected : ContactLoss::strained;
+  if (r.has("rve/disconnect_fraction")) {
+    params.disconnect_fraction = common::read_scalar_f64(r, "rve/disconnect_fraction");
+  }
   params.validate();
   Rve rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
   rve.forces_carried_ = flag("rve/forces_carried");
@@ -240,6 +291,15 @@ Rve Rve::load(const common::StateReader& r) {
     throw common::InputError(
         "dem state: field 'rve/forces_carried' = 1 with 'rve/carry_end_forces' = 0: carried "
         "forces belong to a state that carries them");
+  }
+  if (r.has("rve/free_volume")) {
+    rve.free_volume_ = common::read_scalar_f64(r, "rve/free_volume");
+    if (!(rve.free_volume_ >= 0.0) || !std::isfinite(rve.free_volume_) ||
+        (rve.free_volume_ > 0.0 && params.contact_loss != ContactLoss::disconnected)) {
+      throw common::InputError("dem state: field 'rve/free_volume' = " +
+                               std::to_string(rve.free_volume_) +
+                               ": must be finite and >= 0, and 0 unless 'rve/contact_loss' = 1");
+    }
   }
   if (r.has("rve/dt_cache/critical_dt")) {
     rve.dt_cache_.critical_dt = common::read_scalar_f64(r, "rve/dt_cache/critical_dt");

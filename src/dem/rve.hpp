@@ -1,6 +1,8 @@
 // dem::Rve: the façade the MPM farm drives. One step = the continuum velocity gradient L over the
 // MPM step dt, applied to the periodic cell over the quasi-static time T_p of Duverger et al.
-// 2022 (eqs. 11-12); returns the Love-Weber Cauchy stress, TENSION POSITIVE (the seam convention).
+// 2022 (eqs. 11-12), or over dt itself where the material flows faster than that (RveRate);
+// an RVE without contacts is a disconnected, stress-free material (ContactLoss). Returns the
+// Love-Weber Cauchy stress, TENSION POSITIVE (the seam convention).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +15,30 @@
 #include "dem/simulation.hpp"
 
 namespace dem {
+
+/// How fast an RVE is sheared (job key dem.coupling.rate; docs/design/rve_step.md).
+enum class RveRate : std::uint8_t {
+  /// Always over T_p of eq. (11), at the coupling inertial number I_n, however fast the material
+  /// flows (the paper; results of before the key).
+  coupling,
+  /// Over min(T_p, dt): the RVE's inertial number is max(I_n, I of the material), so a flow
+  /// keeps its own rate (mu(I)) and a slow material stays quasi-static at I_n.
+  material,
+};
+
+/// What an RVE that has lost every contact does with a dilation (job key
+/// dem.coupling.contact_loss; docs/design/rve_step.md).
+enum class ContactLoss : std::uint8_t {
+  /// The cell follows every increment (results of before the key): a stress-free point strained
+  /// by its neighbours' nodes stretches its cell without bound.
+  strained,
+  /// A disconnected, stress-free material (Dunatunga & Kamrin 2015) once the RVE has no contact
+  /// and its solid fraction is below disconnect_fraction: the dilation goes to a free volume
+  /// outside the cell, which is held; a compression closes the free volume first, then strains
+  /// the cell again from the state in which it was held. Above that fraction a contact-free RVE
+  /// is a dense gas and follows every increment.
+  disconnected,
+};
 
 /// Parameters of an RVE: material, numerics and the quasi-static step control. The member
 /// initializers are the defaults of the job keys too (kRveParams).
@@ -32,6 +58,11 @@ struct RveParams {
   /// step's first DEM step, one force evaluation fewer per step(). false ("separate"): a
   /// zero-length evaluation gives the stress, the next step() computes the forces again.
   bool carry_end_forces = true;
+  /// ContactLoss::disconnected: the solid fraction below which a contact-free RVE is a
+  /// disconnected material (job key dem.coupling.disconnect_fraction) [-], in (0, 1)
+  double disconnect_fraction = 0.5;
+  RveRate rate = RveRate::material;  ///< job key dem.coupling.rate
+  ContactLoss contact_loss = ContactLoss::disconnected;  ///< job key dem.coupling.contact_loss
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
   /// kNumerics, kRveParams).
@@ -56,12 +87,18 @@ inline constexpr auto kRveParams = common::make_table<RveParams>(
       "Guard: smallest pressure used in T_p (an RVE losing its contacts)."},
      {"d50", &RveParams::d50, Unit::Length, common::ge(0), Source::cpp_only,
       "d50 of eq. (11); 0: the mass median of the spheres."},
+     {"disconnect_fraction", &RveParams::disconnect_fraction, Unit::Dimensionless,
+      common::in_oo(0, 1), Source::job_default,
+      "With contact_loss = \"disconnected\": the solid fraction below which an RVE without "
+      "contacts is a disconnected material (stress-free, held; docs/design/rve_step.md). Above "
+      "it a contact-free RVE is a dense granular gas: it follows every increment, and a shear "
+      "or a compression makes contacts again."},
      {"dt_refresh", &RveParams::dt_refresh, Unit::Dimensionless, common::ge(1), Source::job_default,
       "DEM steps between computations of an RVE's critical time step: an RVE step computes it "
       "anew once this many DEM steps have run since the last computation, or when the RVE has "
       "more than 5 % more contacts than then (its stiffness grew). 1: at every RVE step. Larger "
       "values save the computation (half a DEM step) in RVE steps of one or two DEM steps, as "
-      "YADE's GlobalStiffnessTimeStepper.timeStepUpdateInterval does; docs/dem.md."},
+      "YADE's GlobalStiffnessTimeStepper.timeStepUpdateInterval does; docs/design/dem.md."},
      {"max_steps_per_call", &RveParams::max_steps_per_call, Unit::Dimensionless, common::ge(1),
       Source::cpp_only, "Cap on the DEM steps of one step()."},
      {"initial_pressure", &RveParams::initial_pressure, Unit::Pressure, common::ge(0),
@@ -74,6 +111,8 @@ enum RveGuard : std::uint32_t {
   kGuardStepCap = 1u << 2,        ///< T_p shortened to max_steps_per_call DEM steps
   kGuardNoContacts = 1u << 3,     ///< no contact at the end of the step (stress is zero)
   kGuardZeroIncrement = 1u << 4,  ///< L dt == 0: one relaxation step of dt_DEM
+  kGuardMaterialRate = 1u << 5,   ///< RveRate::material: T_p cut to the MPM step dt
+  kGuardDisconnected = 1u << 6,   ///< ContactLoss::disconnected: held, stress-free (no DEM step)
 };
 
 /// What one RVE step did.
@@ -99,7 +138,9 @@ class Rve {
   [[nodiscard]] static Rve from_simulation(Simulation sim, const RveParams& params);
 
   /// Deform the cell by the increment L dt over T_p = max(max|L dt| / I sqrt(rho d50^2 / p),
-  /// dt_DEM): the cell runs with L_DEM = L dt / T_p for n = T_p / dt_DEM whole steps.
+  /// dt_DEM), with RveRate::material at most dt: the cell runs with L_DEM = L dt / T_p for
+  /// n = T_p / dt_DEM whole steps. With ContactLoss::disconnected, an RVE without contacts takes a
+  /// dilation as free volume (no DEM step) and a compression closes it before the cell moves.
   /// @param l  velocity gradient (v = L x, spin included) [1/s]  @param dt MPM step [s], >= 0
   /// @post stress() is the Love-Weber stress at the end, tension positive [Pa]
   StepReport step(const common::Mat3& l, double dt);
@@ -114,7 +155,7 @@ class Rve {
   [[nodiscard]] const RveParams& params() const { return params_; }
   [[nodiscard]] double d50() const { return d50_; }  ///< [m]
 
-  /// Full state as named fields ("spheres/x", "contacts/shear_force", ...; docs/dem.md).
+  /// Full state as named fields ("spheres/x", "contacts/shear_force", ...; docs/design/dem.md).
   void save(common::StateWriter& w) const;
   /// Restore a saved RVE; it continues bit for bit.
   [[nodiscard]] static Rve load(const common::StateReader& r);
@@ -132,11 +173,17 @@ class Rve {
     std::int64_t contacts = 0;   ///< contacts in the state it was computed for [-]
   };
   [[nodiscard]] const DtCache& dt_cache() const { return dt_cache_; }
+  /// ContactLoss::disconnected: ln of the material's volume over the cell's since the RVE lost its
+  /// contacts (> 0: disconnected and held) [-]. Part of the state.
+  [[nodiscard]] double free_volume() const { return free_volume_; }
 
  private:
   Rve(Simulation sim, const RveParams& params, double d50);
   /// The critical time step for this step(): the cached one, or computed anew (dt_refresh).
   double critical_dt_for_step();
+  /// ContactLoss::disconnected: moves the dilation of `g` into the free volume while the RVE has
+  /// no contact, and cuts a compression by the free volume it closes. True: the RVE is held.
+  bool take_free_volume(common::Mat3& g);
 
   Simulation sim_;
   RveParams params_;
@@ -145,6 +192,8 @@ class Rve {
   /// carry_end_forces: the spheres' forces are those of the current state, computed by the last
   /// step() with its dt and L (part of the state; false after construction).
   bool forces_carried_ = false;
+  /// ln(V_material / V_cell) >= 0 of ContactLoss::disconnected [-].
+  double free_volume_ = 0.0;
 };
 
 /// Mass-median diameter of a set of radii [m].

@@ -1,4 +1,4 @@
-// MPM time stepping: USF / MUSL step, time step, state save/load (see header, docs/mpm.md).
+// MPM time stepping: USF / MUSL step, time step, state save/load (see header, docs/design/mpm.md).
 #include "mpm/solver.hpp"
 
 #include <Eigen/LU>
@@ -318,13 +318,18 @@ void Solver::update_material_stress(double dt) {
 void Solver::check_points(double t_end) const {
   // Which points fail, in parallel; the first of them (in slot order) is reported below.
   const double vr = config_.max_volume_ratio;
+  // A stress-free point may expand without bound: a disconnected material (a spray of grains,
+  // dem.coupling.contact_loss) whose volume carries no force; a stressed one has blown up.
+  const auto too_large = [&](std::size_t p, double ratio) {
+    return ratio > vr && !points_.stress[p].isZero(0.0);
+  };
   thread_local std::vector<std::uint8_t> bad;
   compute_terms(static_cast<std::int64_t>(points_.size()), bad, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
     const double vol = points_.volume[p];
     const double ratio = vol / points_.volume0[p];
     const bool ok = vol > 0.0 && std::isfinite(vol) &&
-                    !(points_.volume0[p] > 0.0 && (ratio > vr || ratio < 1.0 / vr)) &&
+                    !(points_.volume0[p] > 0.0 && (too_large(p, ratio) || ratio < 1.0 / vr)) &&
                     points_.stress[p].allFinite() && points_.v[p].allFinite();
     return static_cast<std::uint8_t>(ok ? 0 : 1);
   });
@@ -339,8 +344,7 @@ void Solver::check_points(double t_end) const {
         " m: volume = " + num_str(vol) + " m^3 (must be positive and finite)");
   }
   const double ratio = vol / points_.volume0[p];
-  if (points_.volume0[p] > 0.0 &&
-      (ratio > config_.max_volume_ratio || ratio < 1.0 / config_.max_volume_ratio)) {
+  if (points_.volume0[p] > 0.0 && (too_large(p, ratio) || ratio < 1.0 / vr)) {
     throw common::NumericalError(
         "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) + " s): point id " +
         std::to_string(points_.id[p]) + " at x = " + vec_str(points_.x[p]) +
@@ -348,8 +352,9 @@ void Solver::check_points(double t_end) const {
         short_str(config_.max_volume_ratio) + ", " + short_str(config_.max_volume_ratio) +
         "] (its pressure " + num_str(-points_.stress[p].trace() / 3.0) +
         " Pa, |v| = " + num_str(points_.v[p].norm()) +
-        " m/s): the run has blown up (time step too large), or a material without strength (a "
-        "stress-free point) was strained by its neighbours' nodes");
+        " m/s): the run has blown up (time step too large), or a material that keeps a stress "
+        "without contacts (dem.coupling.contact_loss = \"strained\") was strained by its "
+        "neighbours' nodes");
   }
   if (!points_.stress[p].allFinite() || !points_.v[p].allFinite()) {
     throw common::NumericalError(
@@ -378,7 +383,7 @@ void Solver::internal_force() {
   // Total Lagrangian: the grid gradients are reference ones, V sigma grad_x S = V sigma F^-T
   // grad_X S. Smoothing: the forces of the cell's mean stress, so the hourglass modes, which the
   // smoothed L does not see, get no force either, and the forces' power equals the material's
-  // (docs/mpm.md).
+  // (docs/design/mpm.md).
   if (total) {
     stress_for_reference_gradient(points_.F, points_.stress, force_stress_);
   } else {

@@ -37,7 +37,7 @@ struct SolverConfig {
   /// Unused with Transfer::apic.
   double flip = 1.0;
   /// flip: the FLIP/PIC blend above (the paper's); apic: affine PIC (transfers.hpp), which keeps
-  /// a homogeneous deformation with one point per cell (docs/mpm.md, "Transfers").
+  /// a homogeneous deformation with one point per cell (docs/design/mpm.md, "Transfers").
   Transfer transfer = Transfer::flip;
   /// true: the points move with the end-of-step grid velocity (x_p += dt sum_v S (V_v + dt a_v)),
   /// which walls constrain; false: with their own blended velocity v_p (eq. 10, the paper).
@@ -46,7 +46,7 @@ struct SolverConfig {
   /// an impulse on the points: their FLIP increments and the wall's reaction count it, so a
   /// point's velocity into a wall is taken away. false (default, as before): it is only the
   /// kinematics of the step (L, the PIC share), and a pure-FLIP point keeps a velocity into a
-  /// rigid base that the base never lets it move with (docs/mpm.md, Frictional boundaries).
+  /// rigid base that the base never lets it move with (docs/design/mpm.md, Frictional boundaries).
   bool wall_impulse_on_points = false;
   common::Vec3 gravity = common::Vec3::Zero();  ///< g of eq. 6 [m/s^2]; zero = no gravity
   double damping = 0.0;                         ///< D of eq. 8, in [0, 1) [-]
@@ -59,7 +59,7 @@ struct SolverConfig {
   /// false: eq. 10 is skipped, the points keep their initial positions (their integration
   /// weights stay those of the regular arrangement) while F, volume, stress and velocity evolve.
   /// Only for element tests whose cell IS the sample (the paper's single-cell triaxial): the
-  /// material does not advect. docs/mpm.md, "Fixed points".
+  /// material does not advect. docs/design/mpm.md, "Fixed points".
   bool move_points = true;
   /// A fixed dt above the stability limit h_min / (c + |v|_max) (c: the materials' largest wave
   /// speed) is refused: common::NumericalError naming the step, time and both steps. false only
@@ -68,11 +68,11 @@ struct SolverConfig {
   /// Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run
   /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1.
   double max_volume_ratio = 10.0;
-  /// Plane strain (docs/mpm.md, "Plane strain"): the thickness axis 0, 1 or 2 (-1: 3D). The grid
+  /// Plane strain (docs/design/mpm.md, "Plane strain"): the thickness axis 0, 1 or 2 (-1: 3D). The grid
   /// must have exactly one cell along it; the nodal velocity along it is held at zero and the
   /// thickness row and column of each point's L are zeroed before the material sees it.
   int plane_strain_axis = -1;
-  /// Quasi-static mass scaling s >= 1 [-] (docs/mpm.md, "Mass scaling"): nodal masses and momenta
+  /// Quasi-static mass scaling s >= 1 [-] (docs/design/mpm.md, "Mass scaling"): nodal masses and momenta
   /// (the inertia) are s times the points' masses, gravity acts on the real mass; the CFL step
   /// grows by sqrt(s). 1: off.
   double mass_scaling = 1.0;
@@ -81,11 +81,11 @@ struct SolverConfig {
   double quasi_static_ratio = 0.01;
   /// cell: every point of a grid cell gets the cell's volume-averaged L before the material
   /// update, and the internal forces use the cell's volume-averaged stress, in USF and MUSL
-  /// (docs/mpm.md, "Strain smoothing"). none: each point its own L and stress.
+  /// (docs/design/mpm.md, "Strain smoothing"). none: each point its own L and stress.
   StrainSmoothing strain_smoothing = StrainSmoothing::none;
   /// total_lagrangian: the grid is the reference configuration (only with move_points = false):
   /// L = Fdot F^-1 and the internal forces use sigma F^-T, so that a single-cell sample holds
-  /// its confining pressure at any strain (docs/mpm.md, "Total Lagrangian formulation").
+  /// its confining pressure at any strain (docs/design/mpm.md, "Total Lagrangian formulation").
   Formulation formulation = Formulation::updated_lagrangian;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
@@ -109,11 +109,13 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
       "Nodes lighter than this fraction of the typical nodal mass are inactive."},
      {"max_volume_ratio", &SolverConfig::max_volume_ratio, common::Unit::Dimensionless,
       common::gt(1), common::Source::cpp_only,
-      "Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run."},
+      "Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run; a "
+      "stress-free point (a disconnected material, a spray of grains) may grow beyond V0 * "
+      "ratio, since its volume carries no force."},
      {"mass_scaling", &SolverConfig::mass_scaling, common::Unit::Dimensionless,
       common::in_cc(1, 1e6), common::Source::job_default,
       "Quasi-static mass scaling: the inertia (not the weight) is multiplied by it, the time step "
-      "by its square root (at most 1000 times); 1 = off (docs/mpm.md, Mass scaling)."},
+      "by its square root (at most 1000 times); 1 = off (docs/design/mpm.md, Mass scaling)."},
      {"quasi_static_ratio", &SolverConfig::quasi_static_ratio, common::Unit::Dimensionless,
       common::gt(0), common::Source::job_default,
       "With mass_scaling > 1: the log warns once when the kinetic energy exceeds this fraction "
@@ -155,7 +157,7 @@ class Solver {
   /// Loaded area of each traction load in the last step [m^2], in add_traction order.
   [[nodiscard]] const std::vector<double>& traction_areas() const { return traction_areas_; }
   /// Force each constraint exerted ON the material in the last step [N], in add_constraint order:
-  /// sum over its nodes of m_i (a_i after it - a_i before it) (zero while inactive; docs/mpm.md,
+  /// sum over its nodes of m_i (a_i after it - a_i before it) (zero while inactive; docs/design/mpm.md,
   /// "Frictional boundaries and reactions").
   [[nodiscard]] const std::vector<common::Vec3>& reactions() const { return reactions_; }
   /// Displacement of each constraint [m]: the integral of its prescribed velocity over the time
@@ -166,7 +168,7 @@ class Solver {
   /// Names of the constraints, in add_constraint order.
   [[nodiscard]] std::vector<std::string> constraint_names() const;
 
-  /// Writes the MPM state as named fields (docs/mpm.md, "Checkpoint"): solver/step,
+  /// Writes the MPM state as named fields (docs/design/mpm.md, "Checkpoint"): solver/step,
   /// solver/time, solver/internal_work, points/id, points/x, points/v, points/mass, points/volume,
   /// points/volume0, points/half_width0, points/stress, points/F, points/L, points/material,
   /// loads/traction_<k>/point_slots. The materials'

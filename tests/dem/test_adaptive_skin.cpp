@@ -131,7 +131,7 @@ TEST(AdaptiveSkin, SlowCellThinsItsSkinAndKeepsItsStress_threads_1_2) {
 
 // The same cell then sheared fast, its spheres moving at about 1 m/s: the lists are due after a
 // few steps and the skin widens back to where a build pays (the model's optimum here is about
-// 0.06 r_max, as for the reference packing sheared at I = 1e-2: docs/dem.md).
+// 0.06 r_max, as for the reference packing sheared at I = 1e-2: docs/design/dem.md).
 TEST(AdaptiveSkin, FastCellWidensItsSkin) {
   dem::Simulation sim = slow_cell(0.03);
   for (int k = 0; k < 300; ++k) sim.step();

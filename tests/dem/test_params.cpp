@@ -84,7 +84,7 @@ TEST(Params, DefaultsLieInTheirRanges) {
   expect_defaults_in_range(dem::kRveParams);
 }
 
-// The settings jobs validated with (docs/validation.md) are the C++ defaults: tests run what jobs
+// The settings jobs validated with (docs/validation/triaxial.md) are the C++ defaults: tests run what jobs
 // run.
 TEST(Params, DefaultsOfTheDriftedSettings) {
   EXPECT_EQ(dem::Numerics{}.skin_factor, 0.1);

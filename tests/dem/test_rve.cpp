@@ -21,9 +21,13 @@ namespace {
 using common::Mat3;
 using common::Vec3;
 
+// The paper's step (eq. 11 at every rate, a cell strained without contacts): what these tests
+// check; the material rate and the disconnected state are tested in test_rve_rate.cpp.
 dem::RveParams params() {
   dem::RveParams p;
   p.material = dem_test::reference_material();
+  p.rate = dem::RveRate::coupling;
+  p.contact_loss = dem::ContactLoss::strained;
   return p;
 }
 
@@ -162,7 +166,7 @@ TEST(Rve, SaveLoadContinuesBitForBit) {
   EXPECT_TRUE(store.has("spheres/x"));
 }
 
-// dem.coupling.dt_refresh (docs/dem.md "RVE step"): the critical time step of an RVE step is
+// dem.coupling.dt_refresh (docs/design/dem.md "RVE step"): the critical time step of an RVE step is
 // the one computed at its start (default: every step, the results of before the key), or kept
 // while fewer than dt_refresh DEM steps have run since it was computed and the contacts have not
 // grown by more than 5 %.
@@ -306,7 +310,7 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
   EXPECT_THROW((void)dem::Rve::load(many), common::InputError);
 }
 
-// dem.coupling.end_forces = "carried" (docs/dem.md "RVE step"): the end state's forces are
+// dem.coupling.end_forces = "carried" (docs/design/dem.md "RVE step"): the end state's forces are
 // computed with the step's dt and L and drive the next step's first DEM step. The same motion as
 // "separate" but for the contacts' increments at the steps' ends (the last DEM step's shear,
 // rolling and twisting increments counted with its own dt instead of the next step's): the

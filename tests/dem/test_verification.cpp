@@ -53,7 +53,7 @@ double interp(const std::vector<YadeRow>& rows, double eps, double YadeRow::*fie
 // contact history, which bounds how close the curves can be. Tolerances: |q/p - YADE| <= 0.03
 // (1.5 % of the peak 2.04), |eps_v - YADE| <= 2e-4 (8 % of its maximum 2.4e-3 in this range),
 // lateral stress within 1 % of 100 kPa after 0.1 % axial strain. Measured: see the printed maxima
-// (docs/dem.md).
+// (docs/design/dem.md).
 TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
   const auto yade = read_yade();
   dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),

@@ -2,6 +2,7 @@
 // configuration errors name the key, CFL time step, multi-material dispatch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -187,10 +188,42 @@ TEST(Solver, VolumeBeyondTheBlowUpBoundStopsWithContext) {
   expect_message(
       [&] { s.run(200); },
       {"mpm step 0 (t = 0.5", "point id 0", "volume / initial volume = 1.2", "outside [1/1.1, 1.1]",
-       "(its pressure ", " Pa, |v| = ", "blown up", "a stress-free point"});
+       "(its pressure ", " Pa, |v| = ", "blown up", "dem.coupling.contact_loss"});
   cfg.max_volume_ratio = 1.0;
   expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
                  {"max_volume_ratio = 1", "must be > 1"});
+}
+
+// A material without stress (an RVE that lost its contacts: a disconnected material).
+class StressFreeMaterial : public mpm::MaterialModel {
+ public:
+  void update_stress(std::span<const std::int64_t> /*ids*/, std::span<const common::Mat3> /*L*/,
+                     double /*dt*/, std::span<common::Mat3> stress) override {
+    for (auto& s : stress) s.setZero();
+  }
+  [[nodiscard]] double wave_speed() const override { return 10.0; }
+};
+
+// A stress-free point expands beyond the bound without stopping the run (its volume carries no
+// force: a spray of grains); compressed below V0 / ratio it still stops it.
+TEST(Solver, AStressFreePointMayExpandBeyondTheBlowUpBound) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.max_volume_ratio = 1.1;
+  StressFreeMaterial mat;
+  mpm::MaterialPoints pts = small_block(cfg.grid);
+  for (std::size_t p = 0; p < pts.size(); ++p) pts.v[p] = 0.2 * (pts.x[p] - Vec3(0.75, 0.6, 0.9));
+  mpm::Solver s(cfg, pts, {&mat});
+  s.run(200);
+  double largest = 0.0;
+  for (std::size_t p = 0; p < s.points().size(); ++p) {
+    largest = std::max(largest, s.points().volume[p] / s.points().volume0[p]);
+  }
+  EXPECT_GT(largest, 1.1);
+  mpm::MaterialPoints in = small_block(cfg.grid);
+  for (std::size_t p = 0; p < in.size(); ++p) in.v[p] = -0.2 * (in.x[p] - Vec3(0.75, 0.6, 0.9));
+  mpm::Solver c(cfg, in, {&mat});
+  expect_message([&] { c.run(200); }, {"volume / initial volume = 0.", "outside [1/1.1, 1.1]"});
 }
 
 // A material that fails at its third update, as an RVE of the farm may.

@@ -1,0 +1,232 @@
+// dem::Rve's rate (RveRate: the RVE at the material's own inertial number where it flows faster
+// than the coupling one) and its contact loss (ContactLoss: a disconnected, stress-free material
+// that takes dilation as free volume and reconnects when compressed back).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "common/state_store.hpp"
+#include "dem/element_test.hpp"
+#include "dem/rve.hpp"
+#include "dem_test_util.hpp"
+
+namespace {
+
+using common::Mat3;
+
+dem::RveParams params(dem::RveRate rate, dem::ContactLoss loss) {
+  dem::RveParams p;
+  p.material = dem_test::reference_material();
+  p.inertial_number = 1e-2;
+  p.rate = rate;
+  p.contact_loss = loss;
+  p.max_strain_per_step = 1e-2;  // the physics bounds the DEM step here; the guard would split it
+  return p;
+}
+
+Mat3 simple_shear(double gdot) {
+  Mat3 l = Mat3::Zero();
+  l(0, 2) = gdot;
+  return l;
+}
+
+bool same_bits(const Mat3& a, const Mat3& b) { return std::memcmp(a.data(), b.data(), sizeof(Mat3)) == 0; }
+
+// Slower than the coupling inertial number, both rates run the same quasi-static step, bit for bit.
+// Faster, `material` runs the increment over the MPM step itself (the RVE's I is the material's),
+// `coupling` over T_p of eq. (11), which is then longer than the step.
+TEST(RveRate, MaterialRateRunsInPhysicalTimeOnlyWhereTheMaterialIsFaster) {
+  const dem::Packing pk = dem_test::reference_packing();
+  dem::Rve slow_c(pk, params(dem::RveRate::coupling, dem::ContactLoss::disconnected));
+  dem::Rve slow_m(pk, params(dem::RveRate::material, dem::ContactLoss::disconnected));
+  const double t_i = dem::inertial_time(slow_m.d50(), 2650.0, 1e5);  // p ~ 100 kPa
+  const double dt = 1e-5;
+  // Material at I = 1e-3 (< I_n = 1e-2): |D| = I / t_i, D of simple shear = gdot / 2.
+  const Mat3 l_slow = simple_shear(2.0 * 1e-3 / t_i);
+  for (int k = 0; k < 3; ++k) {
+    const dem::StepReport a = slow_c.step(l_slow, dt);
+    const dem::StepReport b = slow_m.step(l_slow, dt);
+    EXPECT_EQ(a.dem_steps, b.dem_steps);
+    EXPECT_EQ(a.t_p, b.t_p);
+    EXPECT_LT(b.t_p, dt);
+    EXPECT_EQ(b.guards & dem::kGuardMaterialRate, 0u);
+    EXPECT_TRUE(same_bits(slow_c.stress(), slow_m.stress()));
+  }
+  // Material at I = 0.2 (20 I_n): T_p of eq. (11) is ~20 dt; the material rate runs dt.
+  dem::Rve fast_c(pk, params(dem::RveRate::coupling, dem::ContactLoss::disconnected));
+  dem::Rve fast_m(pk, params(dem::RveRate::material, dem::ContactLoss::disconnected));
+  const Mat3 l_fast = simple_shear(2.0 * 0.2 / t_i);
+  const double dt_fast = 2e-7;  // an increment of 2.5e-3: T_p(eq. 11) ~ 4e-6 s
+  const dem::StepReport a = fast_c.step(l_fast, dt_fast);
+  const dem::StepReport b = fast_m.step(l_fast, dt_fast);
+  EXPECT_GT(a.t_p, 10.0 * dt_fast);
+  EXPECT_EQ(a.guards & dem::kGuardMaterialRate, 0u);
+  EXPECT_EQ(b.t_p, dt_fast);
+  EXPECT_NE(b.guards & dem::kGuardMaterialRate, 0u);
+  EXPECT_LT(b.dem_steps, a.dem_steps);
+  EXPECT_NEAR(b.t_p / static_cast<double>(b.dem_steps), b.dt_dem, 1e-20);
+  // The same increment either way: the cells end equal.
+  EXPECT_TRUE(fast_c.simulation().cell().h.isApprox(fast_m.simulation().cell().h, 1e-12));
+}
+
+// A step shorter than one DEM step runs one DEM step of that length (physical time), never a
+// longer one.
+TEST(RveRate, StepShorterThanADemStepRunsOneShorterDemStep) {
+  dem::Rve rve(dem_test::reference_packing(),
+               params(dem::RveRate::material, dem::ContactLoss::disconnected));
+  const double dt_dem = rve.simulation().numerics().dt_safety * rve.simulation().critical_dt();
+  const double dt = 0.25 * dt_dem;
+  const dem::StepReport r = rve.step(simple_shear(1e3), dt);
+  EXPECT_EQ(r.dem_steps, 1);
+  EXPECT_EQ(r.t_p, dt);
+  EXPECT_EQ(r.dt_dem, dt);
+}
+
+double solid_fraction(const dem::Rve& rve) { return 1.0 / (1.0 + rve.measure().void_ratio); }
+
+// Extended in steps of 0.6 % volume until it has no contact and a solid fraction below 0.5 (the
+// default disconnect_fraction): from then on a dilation is held with "disconnected".
+dem::Rve without_contacts(dem::ContactLoss loss) {
+  dem::Rve rve(dem_test::reference_packing(), params(dem::RveRate::material, loss));
+  dem::StepReport r;
+  for (int k = 0; k < 80 && ((r.guards & dem::kGuardNoContacts) == 0 ||
+                              !(solid_fraction(rve) < rve.params().disconnect_fraction));
+       ++k) {
+    r = rve.step(Mat3::Identity() * 1e3, 2e-6);  // a few DEM steps each
+    EXPECT_EQ(r.guards & dem::kGuardDisconnected, 0u) << "held above the fraction, step " << k;
+  }
+  EXPECT_NE(r.guards & dem::kGuardNoContacts, 0u) << "the packing did not come apart";
+  EXPECT_LT(solid_fraction(rve), rve.params().disconnect_fraction);
+  EXPECT_EQ(rve.free_volume(), 0.0);
+  return rve;
+}
+
+// Above the disconnection fraction a contact-free RVE is a dense gas, not held: an isochoric
+// shear (no compression at all) makes contacts again and it carries a stress.
+TEST(ContactLoss, ContactFreeDenseRveIsNotHeldAndAShearReconnectsIt) {
+  dem::Rve rve(dem_test::reference_packing(),
+               params(dem::RveRate::material, dem::ContactLoss::disconnected));
+  dem::StepReport r;
+  for (int k = 0; k < 100 && (r.guards & dem::kGuardNoContacts) == 0; ++k) {
+    r = rve.step(Mat3::Identity() * 1e2, 2e-6);  // 0.06 % volume each
+  }
+  ASSERT_NE(r.guards & dem::kGuardNoContacts, 0u);
+  EXPECT_GT(solid_fraction(rve), 0.58);
+  std::printf("contact-free at solid fraction %.4f\n", solid_fraction(rve));
+  r = rve.step(Mat3::Identity() * 1e2, 2e-6);  // one more dilation: not held
+  EXPECT_EQ(r.guards & dem::kGuardDisconnected, 0u);
+  EXPECT_GT(r.dem_steps, 0);
+  double p = 0.0;
+  for (int k = 0; k < 100 && !(p > 1e3); ++k) p = rve.step(simple_shear(1e3), 2e-6).p;
+  EXPECT_GT(p, 1e3);
+  EXPECT_EQ(rve.free_volume(), 0.0);
+}
+
+// Disconnected: the dilation of a contact-free RVE goes to its free volume, the cell is held and
+// the stress is exactly zero; a compression closes the free volume first (the cell does not
+// move), then strains the cell by the remainder only; compressed further, the RVE reconnects and
+// carries a pressure again. `strained` stretches the cell instead (the results of before).
+TEST(ContactLoss, DisconnectedRveHoldsItsCellAndReconnectsWhenCompressedBack) {
+  dem::Rve rve = without_contacts(dem::ContactLoss::disconnected);
+  const Mat3 h_lost = rve.simulation().cell().h;
+  const double t_lost = rve.simulation().time();
+  // Steps of 1e-6 s: the compression that reconnects the RVE runs a few DEM steps each.
+  constexpr double kDt = 1e-6;
+  const Mat3 l = Mat3::Identity() * 1e4;  // + 3 % volume per step
+  for (int k = 0; k < 40; ++k) {  // the material's volume grows 3.3 times
+    const dem::StepReport r = rve.step(l, kDt);
+    ASSERT_NE(r.guards & dem::kGuardDisconnected, 0u) << "step " << k;
+    EXPECT_EQ(r.dem_steps, 0);
+    EXPECT_EQ(rve.stress().norm(), 0.0);
+  }
+  EXPECT_NEAR(rve.free_volume(), 40 * 0.03, 1e-12);
+  EXPECT_TRUE(same_bits(rve.simulation().cell().h, h_lost));
+  EXPECT_EQ(rve.simulation().time(), t_lost);
+
+  // The state round trip keeps the free volume, bit for bit.
+  common::StateStore store;
+  rve.save(store);
+  dem::Rve back = dem::Rve::load(store);
+  EXPECT_EQ(back.free_volume(), rve.free_volume());
+  EXPECT_EQ(back.params().contact_loss, dem::ContactLoss::disconnected);
+  EXPECT_EQ(back.params().rate, dem::RveRate::material);
+
+  // Compression by half of the free volume: still held.
+  const Mat3 c = -Mat3::Identity() * 1e4;
+  for (int k = 0; k < 20; ++k) {
+    const dem::StepReport r = rve.step(c, kDt);
+    ASSERT_NE(r.guards & dem::kGuardDisconnected, 0u);
+  }
+  EXPECT_NEAR(rve.free_volume(), 20 * 0.03, 1e-12);
+  EXPECT_TRUE(same_bits(rve.simulation().cell().h, h_lost));
+  // 20 more close it (to rounding); the next one strains the cell, by one step's 3 % (less the
+  // rounding left in the free volume), for the first time since the contacts were lost.
+  for (int k = 0; k < 20; ++k) (void)rve.step(c, kDt);
+  EXPECT_LT(rve.free_volume(), 1e-12);
+  const dem::StepReport r = rve.step(c, kDt);
+  EXPECT_EQ(r.guards & dem::kGuardDisconnected, 0u);
+  EXPECT_GT(r.dem_steps, 0);
+  EXPECT_EQ(rve.free_volume(), 0.0);
+  const double jv = rve.simulation().cell().h.determinant() / h_lost.determinant();
+  EXPECT_NEAR(std::log(jv), -0.03, 1e-4);  // the cell's product of (I + L dt_DEM): O(0.03^2 / n)
+  // Compressed on, it reconnects and carries a pressure again.
+  double p = 0.0;
+  for (int k = 0; k < 200 && !(p > 1e3); ++k) p = rve.step(c * 0.2, kDt).p;
+  EXPECT_GT(p, 1e3);
+  EXPECT_EQ(rve.free_volume(), 0.0);
+
+  // The restored copy continues bit for bit.
+  dem::Rve again = dem::Rve::load(store);
+  for (int k = 0; k < 3; ++k) {
+    (void)back.step(c, kDt);
+    (void)again.step(c, kDt);
+  }
+  EXPECT_EQ(back.free_volume(), again.free_volume());
+  EXPECT_TRUE(same_bits(back.simulation().cell().h, again.simulation().cell().h));
+}
+
+TEST(ContactLoss, StrainedRveStretchesItsCell) {
+  dem::Rve rve = without_contacts(dem::ContactLoss::strained);
+  const Mat3 h_lost = rve.simulation().cell().h;
+  const dem::StepReport r = rve.step(Mat3::Identity() * 1e4, 1e-6);
+  EXPECT_EQ(r.guards & dem::kGuardDisconnected, 0u);
+  EXPECT_GT(r.dem_steps, 0);
+  // The cell's product of (I + L dt_DEM) over its DEM steps: exp(0.03) to O(0.03^2 / n).
+  EXPECT_NEAR(std::log(rve.simulation().cell().h.determinant() / h_lost.determinant()), 0.03,
+              1e-4);
+  EXPECT_EQ(rve.free_volume(), 0.0);
+}
+
+// A state written before the keys existed continues as it ran: coupling rate, strained cell.
+TEST(ContactLoss, StateWithoutTheKeysContinuesAsBefore) {
+  dem::Rve rve(dem_test::reference_packing(),
+               params(dem::RveRate::material, dem::ContactLoss::disconnected));
+  common::StateStore store;
+  rve.save(store);
+  common::StateStore old;
+  for (const auto& [name, field] : store.fields()) {
+    if (name == "rve/rate" || name == "rve/contact_loss" || name == "rve/free_volume") continue;
+    std::visit([&old, &name](const auto& v) { old.write(name, std::span(v)); }, field);
+  }
+  const dem::Rve back = dem::Rve::load(old);
+  EXPECT_EQ(back.params().rate, dem::RveRate::coupling);
+  EXPECT_EQ(back.params().contact_loss, dem::ContactLoss::strained);
+  // A free volume in a state that does not disconnect is refused by name.
+  common::StateStore bad = old;
+  bad.write("rve/free_volume", std::span<const double>(std::vector<double>{0.5}));
+  try {
+    (void)dem::Rve::load(bad);
+    ADD_FAILURE() << "a free volume without contact_loss = disconnected was accepted";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rve/free_volume"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
