@@ -107,8 +107,7 @@ StepReport Rve::step(const Mat3& l, double dt) {
   if (take_free_volume(g)) {
     // Disconnected (Dunatunga & Kamrin 2015): no contact, so no stress, and no DEM step; the
     // spheres keep their state for the compression that reconnects them.
-    const StepReport m = measure();
-    rep = m;
+    rep = measure();
     rep.dt_dem = sim_.dt();
     rep.guards |= kGuardDisconnected;
     rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
