@@ -5,7 +5,9 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <set>
 #include <utility>
@@ -38,6 +40,8 @@ farm::ElasticMicroParams elastic_params(const Job& job, const MpmSetup& setup,
     }
   }
   p.initial_stress = setup.elastic_initial_stress;
+  if (job.has("mpm.elastic.friction_angle"))
+    p.friction_angle = job.number("mpm.elastic.friction_angle") * M_PI / 180.0;
   p.validate();
   return p;
 }
@@ -48,8 +52,8 @@ dem::RveParams rve_params(const Job& job) {
   p.numerics = dem_numerics(job);
   fill_from_job(job, dem::kRveParams, p);
   p.carry_end_forces = job.text("dem.coupling.end_forces") == "carried";
-  p.rate = job.text("dem.coupling.rate") == "coupling" ? dem::RveRate::coupling
-                                                       : dem::RveRate::material;
+  p.rate =
+      job.text("dem.coupling.rate") == "coupling" ? dem::RveRate::coupling : dem::RveRate::material;
   p.contact_loss = job.text("dem.coupling.contact_loss") == "strained"
                        ? dem::ContactLoss::strained
                        : dem::ContactLoss::disconnected;
@@ -86,15 +90,22 @@ farm::MicroKind micro_kind(const Job& job, const MpmSetup& setup,
     proto = std::make_shared<DemPool>(job, rve_params(job), std::move(plan));
   }
   std::shared_ptr<farm::ElasticMicroParams> elastic;
-  if (setup.has_elastic)
+  std::shared_ptr<const std::map<std::int64_t, common::Mat3>> elastic_s0;
+  if (setup.has_elastic) {
     elastic = std::make_shared<farm::ElasticMicroParams>(elastic_params(job, setup, dem_ids));
+    elastic_s0 = std::make_shared<const std::map<std::int64_t, common::Mat3>>(
+        continuum_initial_stress(job, setup));
+  }
   const std::uint32_t fail_guards = farm::DemMicroParams{}.fail_guards;
 
   farm::MicroKind k;
-  k.create = [proto, elastic, dem_ids,
+  k.create = [proto, elastic, elastic_s0, dem_ids,
               fail_guards](std::int64_t id) -> std::unique_ptr<farm::MicroModel> {
     if (dem_ids.count(id) != 0)
       return std::make_unique<farm::DemMicro>(proto->get(id), fail_guards);
+    const auto s0 = elastic_s0->find(id);
+    if (s0 != elastic_s0->end())
+      return std::make_unique<farm::ElasticMicro>(id, *elastic, s0->second);
     return std::make_unique<farm::ElasticMicro>(id, *elastic);
   };
   k.load = [](const common::StateReader& r) -> std::unique_ptr<farm::MicroModel> {

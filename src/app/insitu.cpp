@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <set>
 
@@ -93,6 +94,59 @@ Mat3 voigt(const std::vector<double>& s) {  // xx, yy, zz, yz, xz, xy
   m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
   return m;
 }
+/// The geostatic stress of point index i of `setup` (its body has initial_state = "geostatic").
+/// Throws common::InputError naming the body's key when it cannot be made.
+Mat3 geostatic_target(const Job& job, const MpmSetup& setup, std::size_t i) {
+  const mpm::MaterialPoints& pts = setup.points;
+  const Vec3 g = setup.config.gravity;
+  const std::int64_t id = pts.id[i];
+  const std::string base = fmt::format("mpm.body[{}].", setup.body[i]);
+  Mat3 t = Mat3::Zero();
+  double surface = 0.0;
+  if (job.has(base + "surface")) {
+    surface = job.number(base + "surface");
+  } else {
+    const auto& lo = job.numbers(base + "min");
+    const auto& hi = job.numbers(base + "max");
+    surface = -std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c) {  // the box corner highest along -gravity
+      const Vec3 x((c & 1) != 0 ? hi[0] : lo[0], (c & 2) != 0 ? hi[1] : lo[1],
+                   (c & 4) != 0 ? hi[2] : lo[2]);
+      surface = std::max(surface, x.dot(-g / g.norm()));
+    }
+  }
+  const double depth = depth_below(pts.x[i], g, surface);
+  if (!(depth > 0.0)) {
+    throw common::InputError(job.message(
+        base + "surface",
+        fmt::format("material point id {} at ({}, {}, {}) lies {} m above the free surface: "
+                    "a geostatic body lies below its surface",
+                    id, pts.x[i][0], pts.x[i][1], pts.x[i][2], -depth)));
+  }
+  t = geostatic_stress(job.number(base + "density"), g, job.number(base + "k0"), depth);
+  if (!t.allFinite()) {
+    const bool vertical = std::isfinite(job.number(base + "density") * g.norm() * depth);
+    throw common::InputError(job.message(
+        base + (vertical ? "k0" : "density"),
+        fmt::format("the geostatic stress of material point id {} (depth {} m, density {} "
+                    "kg/m^3, |g| {} m/s^2, k0 {}) is not a finite number: the product "
+                    "overflows double precision",
+                    id, depth, job.number(base + "density"), g.norm(), job.number(base + "k0"))));
+  }
+  const double p = -t.trace() / 3.0;
+  if (pts.material[i] == kDemMaterial && job.has("dem.material.young_modulus") &&
+      p > 0.1 * job.number("dem.material.young_modulus")) {
+    throw common::InputError(job.message(
+        base + "density",
+        fmt::format("the geostatic mean stress of material point id {} (depth {} m) is {:.4g} "
+                    "Pa, above a tenth of the grains' Young modulus (dem.material.young_modulus "
+                    "= {:.4g} Pa): contacts would overlap by about 4 p / E = {:.2g} of the radii",
+                    id, depth, p, job.number("dem.material.young_modulus"),
+                    4.0 * p / job.number("dem.material.young_modulus"))));
+  }
+  return t;
+}
+
 }  // namespace
 
 InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
@@ -108,8 +162,6 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
 
   const mpm::MaterialPoints& pts = setup.points;
   MPMXDEM_CHECK(setup.body.size() == pts.size(), "one body index per point");
-  // Body data: the surface level of a geostatic body defaults to the top of its box.
-  const Vec3 g = setup.config.gravity;
   std::vector<std::pair<std::int64_t, std::size_t>> dem_points;  // id, index
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (pts.material[i] == kDemMaterial) dem_points.emplace_back(pts.id[i], i);
@@ -127,50 +179,7 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
     if (state == "uniform") {
       t = voigt(job.numbers(base + "initial_stress"));
     } else if (state == "geostatic") {
-      double surface = 0.0;
-      if (job.has(base + "surface")) {
-        surface = job.number(base + "surface");
-      } else {
-        const auto& lo = job.numbers(base + "min");
-        const auto& hi = job.numbers(base + "max");
-        surface = -std::numeric_limits<double>::infinity();
-        for (int c = 0; c < 8; ++c) {  // the box corner highest along -gravity
-          const Vec3 x((c & 1) != 0 ? hi[0] : lo[0], (c & 2) != 0 ? hi[1] : lo[1],
-                       (c & 4) != 0 ? hi[2] : lo[2]);
-          surface = std::max(surface, x.dot(-g / g.norm()));
-        }
-      }
-      const double depth = depth_below(pts.x[i], g, surface);
-      if (!(depth > 0.0)) {
-        throw common::InputError(job.message(
-            base + "surface",
-            fmt::format("material point id {} at ({}, {}, {}) lies {} m above the free surface: "
-                        "a geostatic body lies below its surface",
-                        id, pts.x[i][0], pts.x[i][1], pts.x[i][2], -depth)));
-      }
-      t = geostatic_stress(job.number(base + "density"), g, job.number(base + "k0"), depth);
-      if (!t.allFinite()) {
-        const bool vertical = std::isfinite(job.number(base + "density") * g.norm() * depth);
-        throw common::InputError(job.message(
-            base + (vertical ? "k0" : "density"),
-            fmt::format("the geostatic stress of material point id {} (depth {} m, density {} "
-                        "kg/m^3, |g| {} m/s^2, k0 {}) is not a finite number: the product "
-                        "overflows double precision",
-                        id, depth, job.number(base + "density"), g.norm(),
-                        job.number(base + "k0"))));
-      }
-      const double p = -t.trace() / 3.0;
-      if (job.has("dem.material.young_modulus") &&
-          p > 0.1 * job.number("dem.material.young_modulus")) {
-        throw common::InputError(job.message(
-            base + "density",
-            fmt::format(
-                "the geostatic mean stress of material point id {} (depth {} m) is {:.4g} "
-                "Pa, above a tenth of the grains' Young modulus (dem.material.young_modulus "
-                "= {:.4g} Pa): contacts would overlap by about 4 p / E = {:.2g} of the radii",
-                id, depth, p, job.number("dem.material.young_modulus"),
-                4.0 * p / job.number("dem.material.young_modulus"))));
-      }
+      t = geostatic_target(job, setup, i);
     }
     if (state != "prepared") {
       if (apply_pressure_floor(t, o.pressure_floor)) ++plan.floored;
@@ -183,6 +192,17 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
   for (std::size_t k = 0; k < with_target.size(); ++k)
     plan.group[with_target[k]] = plan.groups.group_of[k];
   return plan;
+}
+
+std::map<std::int64_t, Mat3> continuum_initial_stress(const Job& job, const MpmSetup& setup) {
+  std::map<std::int64_t, Mat3> out;
+  for (std::size_t i = 0; i < setup.points.size(); ++i) {
+    if (setup.points.material[i] == kDemMaterial) continue;
+    const std::string base = fmt::format("mpm.body[{}].", setup.body[i]);
+    if (job.has(base + "initial_state") && job.text(base + "initial_state") == "geostatic")
+      out[setup.points.id[i]] = geostatic_target(job, setup, i);
+  }
+  return out;
 }
 
 std::string stress_text(const Mat3& s) {

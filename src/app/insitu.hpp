@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,11 @@ struct InsituPlan {
 /// The plan of the DEM points of `setup` (targets from each body's initial_state, the floor, the
 /// grouping). Throws common::InputError naming the key of a body whose targets cannot be made.
 [[nodiscard]] InsituPlan insitu_plan(const Job& job, const MpmSetup& setup);
+
+/// The geostatic initial stress of every continuum (material = "elastic") point whose body has
+/// initial_state = "geostatic", by point id [Pa]. Throws common::InputError as insitu_plan does.
+[[nodiscard]] std::map<std::int64_t, common::Mat3> continuum_initial_stress(const Job& job,
+                                                                            const MpmSetup& setup);
 
 /// One line per target: "xx, yy, zz, yz, xz, xy" in kPa (logs).
 [[nodiscard]] std::string stress_text(const common::Mat3& s);

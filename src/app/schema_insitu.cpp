@@ -13,15 +13,16 @@
 namespace app {
 
 namespace {
-// The body keys go right after the last key of [[mpm.body]], so that docs/reference/jobs.md lists them in
-// that table.
+// The body keys go right after the last key of [[mpm.body]], so that docs/reference/jobs.md lists
+// them in that table.
 void add_body_keys(Schema& s) {
   using Q = Quantity;
   Schema b;
   b.add("mpm.body[].initial_state", Type::String,
         "material = \"dem\": initial state of the RVEs; absent: prepared (every RVE a copy of the "
         "isotropic prepared sample); uniform: initial_stress; geostatic: from gravity, density "
-        "and k0 (docs/design/dem.md, In-situ initial states).")
+        "and k0 (docs/design/dem.md, In-situ initial states). material = \"elastic\": geostatic "
+        "only (absent: initial_stress, or zero).")
       .one_of({"prepared", "uniform", "geostatic"});
   b.add("mpm.body[].k0", Type::Float,
         "initial_state = \"geostatic\": lateral over vertical stress K0 (sigma_h = K0 sigma_v).")
@@ -81,17 +82,18 @@ std::vector<std::string> check_insitu_rules(const Job& job) {
     const bool dem = job.text(base + "material") == "dem";
     const std::string state =
         job.has(base + "initial_state") ? job.text(base + "initial_state") : "prepared";
-    if (!dem) {
-      for (const char* k : {"initial_state", "k0", "surface"}) {
-        if (job.has(base + k)) {
-          err.push_back(job.message(base + k,
-                                    "only for material = \"dem\" (an elastic body "
-                                    "starts from initial_stress)"));
-        }
-      }
+    if (!dem && job.has(base + "initial_state") && state != "geostatic") {
+      err.push_back(job.message(base + "initial_state",
+                                "an elastic body takes initial_state = \"geostatic\" only "
+                                "(otherwise it starts from initial_stress)"));
       continue;
     }
-    if (job.has(base + "initial_stress") && state != "uniform") {
+    if (!dem && state == "geostatic" && job.has(base + "initial_stress")) {
+      err.push_back(job.message(base + "initial_stress",
+                                "not with initial_state = \"geostatic\" (the initial stress "
+                                "comes from gravity, density and k0)"));
+    }
+    if (dem && job.has(base + "initial_stress") && state != "uniform") {
       err.push_back(job.message(base + "initial_stress",
                                 "used with material = \"dem\" only when initial_state = "
                                 "\"uniform\" (otherwise the initial stress is the RVEs' own)"));

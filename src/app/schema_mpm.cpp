@@ -52,7 +52,8 @@ void add_mpm_sections(Schema& s) {
         "of Bardenhagen's contact) is only the step's kinematics, and a pure-FLIP point keeps a "
         "velocity into a rigid base that never moves it (as before); points: it is an impulse on "
         "the points, seen by their FLIP velocity and the wall's reaction, one contact impulse per "
-        "step (docs/design/mpm.md, Frictional boundaries; a frictional no_penetration wall then holds "
+        "step (docs/design/mpm.md, Frictional boundaries; a frictional no_penetration wall then "
+        "holds "
         "a block less well). Only walls (friction, contact) have it.")
       .one_of({"grid", "points"})
       .or_default(std::string("grid"));
@@ -65,7 +66,8 @@ void add_mpm_sections(Schema& s) {
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
-        "held at zero and the material sees no strain rate through it, docs/design/mpm.md). Absent: 3D.")
+        "held at zero and the material sees no strain rate through it, docs/design/mpm.md). "
+        "Absent: 3D.")
       .one_of({"x", "y", "z"});
   s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.")
       .unit(Q::Time)
@@ -112,7 +114,8 @@ void add_mpm_sections(Schema& s) {
       .in(0, std::nullopt, true)
       .need();
   s.add("mpm.body[].material", Type::String,
-        "Material of the points: a DEM RVE each, or linear elastic.")
+        "Material of the points: a DEM RVE each, or the continuum of [mpm.elastic] (linear "
+        "elastic, or Drucker-Prager with a friction angle).")
       .one_of({"dem", "elastic"})
       .need();
   s.add("mpm.body[].initial_stress", Type::FloatList,
@@ -120,8 +123,10 @@ void add_mpm_sections(Schema& s) {
       .unit(Q::Pressure)
       .len(6, 6);
 
-  s.add("mpm.elastic", Type::Table,
-        "Linear elastic material (verification), for bodies with material = \"elastic\".");
+  s.add(
+      "mpm.elastic", Type::Table,
+      "Continuum material for bodies with material = \"elastic\": linear elastic "
+      "(verification), or with friction_angle a frictional continuum (a reference for the RVEs).");
   s.add("mpm.elastic.young_modulus", Type::Float, "Young's modulus.")
       .unit(Q::Pressure)
       .in(0, std::nullopt, true)
@@ -129,6 +134,13 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.elastic.poisson_ratio", Type::Float, "Poisson's ratio.")
       .in(-1, 0.5, true, true)
       .need();
+  s.add("mpm.elastic.friction_angle", Type::Float,
+        "Absent: linear elastic. Given: elastic-perfectly plastic, cohesionless Drucker-Prager "
+        "cone matched to Mohr-Coulomb in plane strain, no dilatancy (sqrt(J2) <= p sin(phi); "
+        "tension returns to zero stress): a frictional continuum to compare the DEM RVEs with "
+        "on the same mesh (docs/design/mpm.md, Frictional continuum).")
+      .unit(Q::Angle)
+      .in(0, 90, false, true);
 
   s.add("mpm.velocity[]", Type::TableList,
         "Imposed velocity components on grid nodes: a grid face, one node, or the nodes in a box.");
@@ -148,7 +160,8 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.velocity[].friction", Type::Float,
         "Coulomb friction coefficient: the nodes form a rigid wall moving at (x, y, z) (absent "
         "components 0; the normal one must be given), tangential slip resisted up to friction "
-        "times the normal force (0: smooth, large: rough). docs/design/mpm.md, Frictional boundaries.")
+        "times the normal force (0: smooth, large: rough). docs/design/mpm.md, Frictional "
+        "boundaries.")
       .in(0, std::nullopt);
   s.add("mpm.velocity[].normal", Type::String,
         "Side of the material a frictional box or node wall lies on (a face gives its own).")

@@ -1,6 +1,7 @@
 // ElasticMicro: hypoelastic verification micro model (see header).
 #include "farm/elastic_micro.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
+#include "mpm/drucker_prager.hpp"
 
 namespace farm {
 
@@ -34,11 +36,20 @@ void ElasticMicroParams::validate() const {
   if (!(void_ratio0 >= 0.0)) bad("void_ratio0", void_ratio0, "must be >= 0");
   if (substeps < 1) bad("substeps", static_cast<double>(substeps), "must be >= 1");
   if (!initial_stress.allFinite()) bad("initial_stress", initial_stress.trace(), "must be finite");
+  if (!(friction_angle >= 0.0 && friction_angle < 0.5 * M_PI))
+    bad("friction_angle", friction_angle, "must be in [0, pi/2) rad");
 }
 
 ElasticMicro::ElasticMicro(std::int64_t id, const ElasticMicroParams& params)
     : id_(id), params_(params), stress_(params.initial_stress) {
   params_.validate();
+}
+
+ElasticMicro::ElasticMicro(std::int64_t id, const ElasticMicroParams& params,
+                           const common::Mat3& initial_stress)
+    : ElasticMicro(id, params) {
+  if (!initial_stress.allFinite()) bad("initial_stress", initial_stress.trace(), "must be finite");
+  stress_ = initial_stress;
 }
 
 MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
@@ -50,10 +61,15 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
         ", fail_step = " + std::to_string(params_.fail_step) + ")");
   }
   const double h = dt / static_cast<double>(params_.substeps);
-  const common::HughesWinget update(L, h, common::lame(params_.young, params_.poisson));
+  const common::Lame c = common::lame(params_.young, params_.poisson);
+  const common::HughesWinget update(L, h, c);
   const double dj = (common::Mat3::Identity() + h * L).determinant();
   for (std::int64_t k = 0; k < params_.substeps; ++k) {
-    stress_ = update.apply(stress_);
+    if (params_.friction_angle > 0.0) {
+      frictional_substep(L, h, std::log(dj));
+    } else {
+      stress_ = update.apply(stress_);
+    }
     j_ *= dj;
   }
   if (!stress_.allFinite()) {
@@ -66,6 +82,33 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
   r.guards = 0;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+void ElasticMicro::frictional_substep(const common::Mat3& L, double h, double volumetric) {
+  const common::Lame c = common::lame(params_.young, params_.poisson);
+  const double sin_phi = std::sin(params_.friction_angle);
+  if (free_volume_ > 0.0) {  // disconnected: a dilation adds to the free volume, stress-free
+    free_volume_ += volumetric;
+    if (free_volume_ > 0.0) {
+      stress_ = common::Mat3::Zero();
+      return;
+    }
+    // This compression closed the free volume: the remainder strains the material.
+    const double remainder = free_volume_ / volumetric;  // in (0, 1]: both negative
+    free_volume_ = 0.0;
+    stress_ = mpm::drucker_prager_return(
+                  common::HughesWinget(L, remainder * h, c).apply(common::Mat3::Zero()), sin_phi)
+                  .stress;
+    return;
+  }
+  const double p = -stress_.trace() / 3.0;
+  const mpm::DruckerPragerResult r =
+      mpm::drucker_prager_return(common::HughesWinget(L, h, c).apply(stress_), sin_phi);
+  stress_ = r.stress;
+  if (r.apex) {  // the dilation beyond the elastic unloading of p becomes free volume
+    const double bulk = c.lambda + 2.0 * c.mu / 3.0;
+    free_volume_ = std::max(0.0, volumetric - p / bulk);
+  }
 }
 
 MicroReport ElasticMicro::report() const {
@@ -89,11 +132,13 @@ void ElasticMicro::save(common::StateWriter& w) const {
   common::write_scalar(w, "elastic/params/density", params_.density);
   common::write_scalar(w, "elastic/params/void_ratio0", params_.void_ratio0);
   w.write("elastic/params/initial_stress", nine(params_.initial_stress));
+  common::write_scalar(w, "elastic/params/friction_angle", params_.friction_angle);
   common::write_scalar(w, "elastic/params/substeps", params_.substeps);
   common::write_scalar(w, "elastic/params/fail_id", params_.fail_id);
   common::write_scalar(w, "elastic/params/fail_step", params_.fail_step);
   w.write("elastic/stress", nine(stress_));
   common::write_scalar(w, "elastic/j", j_);
+  common::write_scalar(w, "elastic/free_volume", free_volume_);
   common::write_scalar(w, "elastic/steps", steps_);
 }
 
@@ -102,14 +147,14 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   // elastic/int_params (3).
   const std::int64_t version =
       r.has("elastic/version") ? common::read_scalar_i64(r, "elastic/version") : 1;
-  if (version != kElasticStateVersion) {
+  if (version != kElasticStateVersion && version != 2) {
     throw common::InputError(
         "elastic micro state: field 'elastic/version' = " + std::to_string(version) +
         (r.has("elastic/version") ? "" : " (absent)") + ": this build reads version " +
         std::to_string(kElasticStateVersion) +
-        " only (version 1 stored the parameters as the positional array 'elastic/params'; "
-        "version 2 stores named fields such as 'elastic/params/young'); restart from a state "
-        "written by this version");
+        " and 2 only (version 1 stored the parameters as the positional array "
+        "'elastic/params'; versions 2 and 3 store named fields such as 'elastic/params/young'); "
+        "restart from a state written by this version");
   }
   auto matrix = [&r](const char* name) {
     const std::vector<double> v = r.read_f64(name);
@@ -126,6 +171,8 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   params.density = common::read_scalar_f64(r, "elastic/params/density");
   params.void_ratio0 = common::read_scalar_f64(r, "elastic/params/void_ratio0");
   params.initial_stress = matrix("elastic/params/initial_stress");
+  params.friction_angle =
+      version >= 3 ? common::read_scalar_f64(r, "elastic/params/friction_angle") : 0.0;
   params.substeps = common::read_scalar_i64(r, "elastic/params/substeps");
   params.fail_id = common::read_scalar_i64(r, "elastic/params/fail_id");
   params.fail_step = common::read_scalar_i64(r, "elastic/params/fail_step");
@@ -137,6 +184,13 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
                              ": a state holds finite numbers only");
   }
   m->steps_ = common::read_scalar_i64(r, "elastic/steps");
+  if (version >= 3) {
+    m->free_volume_ = common::read_scalar_f64(r, "elastic/free_volume");
+    if (!(m->free_volume_ >= 0.0 && std::isfinite(m->free_volume_))) {
+      throw common::InputError("elastic micro state: field 'elastic/free_volume' = " +
+                               std::to_string(m->free_volume_) + ": must be finite and >= 0");
+    }
+  }
   return m;
 }
 

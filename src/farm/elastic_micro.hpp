@@ -1,15 +1,19 @@
-// farm::ElasticMicro: a cheap deterministic VERIFICATION micro model (hypoelastic, Jaumann rate,
-// Hughes-Winget objective update) that exercises the farm's plumbing without DEM. Not a physics
-// model of sand: use it for protocol, determinism, restart and balancing tests and benchmarks.
+// farm::ElasticMicro: a cheap deterministic continuum micro model (hypoelastic, Jaumann rate,
+// Hughes-Winget objective update) that exercises the farm's plumbing without DEM; with a friction
+// angle it is elastic-perfectly plastic (cohesionless Drucker-Prager, mpm/drucker_prager.hpp): the
+// frictional continuum that the DEM RVEs are compared with on the same mesh. Not a model of sand
+// to replace the RVEs: a reference, and a tool for protocol, restart and balancing tests.
 #pragma once
 
 #include "farm/micro_model.hpp"
 
 namespace farm {
 
-/// Version of ElasticMicro's state (field elastic/version; docs/reference/checkpoint.md). 1 (no field):
-/// positional arrays elastic/params and elastic/int_params; 2: one named field per parameter.
-inline constexpr std::int64_t kElasticStateVersion = 2;
+/// Version of ElasticMicro's state (field elastic/version; docs/reference/checkpoint.md). 1 (no
+/// field): positional arrays elastic/params and elastic/int_params; 2: one named field per
+/// parameter; 3: adds elastic/params/friction_angle and elastic/free_volume (a version-2 state is
+/// read as friction_angle = 0, free volume 0).
+inline constexpr std::int64_t kElasticStateVersion = 3;
 
 struct ElasticMicroParams {
   double young = 0.0;        ///< E [Pa], > 0
@@ -17,6 +21,9 @@ struct ElasticMicroParams {
   double density = 0.0;      ///< rho [kg/m^3], > 0 (wave speed only)
   double void_ratio0 = 0.6;  ///< initial void ratio, carried by the volume change [-]
   common::Mat3 initial_stress = common::Mat3::Zero();  ///< tension positive [Pa]
+  /// Friction angle of the Drucker-Prager cone matched to plane-strain Mohr-Coulomb [rad], in
+  /// [0, pi/2). 0: linear elastic (no yield surface).
+  double friction_angle = 0.0;
   /// Cost knob: every step is split into this many equal sub-increments (>= 1). Gives RVEs of
   /// different cost for balancing tests; the stress depends on it (it is part of the model).
   std::int64_t substeps = 1;
@@ -31,6 +38,9 @@ struct ElasticMicroParams {
 class ElasticMicro final : public MicroModel {
  public:
   ElasticMicro(std::int64_t id, const ElasticMicroParams& params);
+  /// The same with its own initial stress (a geostatic body: one stress per point) [Pa].
+  ElasticMicro(std::int64_t id, const ElasticMicroParams& params,
+               const common::Mat3& initial_stress);
   MicroReport step(const common::Mat3& L, double dt) override;
   [[nodiscard]] common::Mat3 stress() const override { return stress_; }
   /// p and q of the stress, e = (1 + e0) J - 1, Z = 0.
@@ -38,8 +48,9 @@ class ElasticMicro final : public MicroModel {
   /// No grains: MicroMeasures::none() (NaN: fabric, Z without rattlers, unbalanced force and
   /// kinetic energy are not defined for a continuum).
   [[nodiscard]] MicroMeasures measures() const override { return MicroMeasures::none(); }
-  /// Named fields (docs/reference/checkpoint.md): elastic/version, elastic/id, elastic/params/<name> (one per
-  /// ElasticMicroParams member), elastic/stress, elastic/j, elastic/steps.
+  /// Named fields (docs/reference/checkpoint.md): elastic/version, elastic/id,
+  /// elastic/params/<name> (one per ElasticMicroParams member), elastic/stress, elastic/j,
+  /// elastic/free_volume, elastic/steps.
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override {
     return static_cast<double>(params_.substeps);
@@ -57,7 +68,16 @@ class ElasticMicro final : public MicroModel {
   std::int64_t id_;
   ElasticMicroParams params_;
   common::Mat3 stress_;
-  double j_ = 1.0;  ///< volume ratio V / V0 [-]
+  /// One sub-step of the frictional model: elastic predictor, return onto the Drucker-Prager
+  /// cone; a tensile trial returns to zero stress and the dilation beyond the elastic unloading
+  /// goes to the free volume; while it is positive the material is disconnected (stress-free),
+  /// and a compression closes it before the material carries stress again (Dunatunga & Kamrin
+  /// 2015, as dem.coupling.contact_loss = "disconnected" does for an RVE).
+  /// @param volumetric ln det(I + h L) of the sub-step [-]
+  void frictional_substep(const common::Mat3& L, double h, double volumetric);
+
+  double j_ = 1.0;            ///< volume ratio V / V0 [-]
+  double free_volume_ = 0.0;  ///< ln(V / V_connected) >= 0 of a disconnected material [-]
   std::int64_t steps_ = 0;
 };
 

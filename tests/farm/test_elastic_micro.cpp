@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -87,10 +88,11 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   p.fail_id = 9;
   p.fail_step = 11;
   p.void_ratio0 = 0.55;
+  p.friction_angle = 0.5;
   const farm::ElasticMicro m(4, p);
   common::StateStore s;
   m.save(s);
-  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{2});
+  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{3});
   EXPECT_EQ(s.read_i64("elastic/id"), std::vector<std::int64_t>{4});
   EXPECT_EQ(s.read_f64("elastic/params/young"), std::vector<double>{p.young});
   EXPECT_EQ(s.read_f64("elastic/params/poisson"), std::vector<double>{p.poisson});
@@ -100,6 +102,7 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   ASSERT_EQ(s0.size(), 9u);
   EXPECT_EQ(s0[1], p.initial_stress(0, 1));  // row-major
   EXPECT_EQ(s0[8], p.initial_stress(2, 2));
+  EXPECT_EQ(s.read_f64("elastic/params/friction_angle"), std::vector<double>{0.5});
   EXPECT_EQ(s.read_i64("elastic/params/substeps"), std::vector<std::int64_t>{3});
   EXPECT_EQ(s.read_i64("elastic/params/fail_id"), std::vector<std::int64_t>{9});
   EXPECT_EQ(s.read_i64("elastic/params/fail_step"), std::vector<std::int64_t>{11});
@@ -123,10 +126,83 @@ TEST(ElasticMicro, OldVersionRefused) {
   } catch (const common::InputError& e) {
     const std::string m = e.what();
     for (const char* needle :
-         {"'elastic/version' = 1 (absent)", "reads version 2 only", "elastic/params/young"}) {
+         {"'elastic/version' = 1 (absent)", "reads version 3 and 2 only", "elastic/params/young"}) {
       EXPECT_NE(m.find(needle), std::string::npos) << m;
     }
   }
+}
+
+// A version-2 state (before the friction angle) is read as a linear elastic model and continues.
+TEST(ElasticMicro, Version2IsReadAsElastic) {
+  const farm::ElasticMicro m(4, params());
+  common::StateStore s;
+  m.save(s);
+  common::StateStore v2;
+  for (const auto& [name, field] : s.fields()) {
+    if (name == "elastic/params/friction_angle" || name == "elastic/version") continue;
+    std::visit([&v2, &name](const auto& values) { v2.write(name, values); }, field);
+  }
+  v2.write("elastic/version", std::vector<std::int64_t>{2});
+  const auto loaded = farm::ElasticMicro::load(v2);
+  common::StateStore again;
+  loaded->save(again);
+  EXPECT_EQ(again.read_f64("elastic/params/friction_angle"), std::vector<double>{0.0});
+  EXPECT_EQ(again.read_f64("elastic/stress"), s.read_f64("elastic/stress"));
+}
+
+// With a friction angle the model is elastic-perfectly plastic: a simple shear at constant volume
+// from an isotropic stress p0 ends on the cone, tau = p0 sin(phi) (no dilatancy: p stays p0).
+TEST(ElasticMicro, FrictionAngleBoundsTheShearStress) {
+  farm::ElasticMicroParams p = params();
+  p.friction_angle = 30.0 * M_PI / 180.0;
+  const double p0 = 10e3;
+  farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
+  common::Mat3 L = common::Mat3::Zero();
+  L(0, 2) = 1.0;                                        // v_x = z: simple shear, 1 /s
+  for (int k = 0; k < 400; ++k) (void)m.step(L, 1e-4);  // gamma = 0.04, far beyond yield
+  const common::Mat3 s = m.stress();
+  EXPECT_NEAR(-s.trace() / 3.0, p0, 1e-9 * p0);
+  EXPECT_NEAR(std::abs(s(0, 2)), p0 * 0.5, 0.01 * p0 * 0.5);
+  const farm::MicroReport r = m.report();
+  EXPECT_NEAR(r.q, std::sqrt(3.0) * p0 * 0.5, 1e-6 * p0);  // on the cone: q = sqrt(3 J2)
+}
+
+// A frictional material pulled apart is disconnected: stress-free while its free volume lasts, and
+// a compression first closes that volume, then loads it again (no stress at a tenth of the
+// density).
+TEST(ElasticMicro, DilatedFrictionalMaterialCarriesNoStressUntilRecompressed) {
+  farm::ElasticMicroParams p = params();
+  p.friction_angle = 30.0 * M_PI / 180.0;
+  const double p0 = 1e3;
+  farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
+  const common::Mat3 I = common::Mat3::Identity();
+  auto volumetric = [](double a, double dt) { return 3.0 * std::log1p(a * dt); };  // L = a I
+  double v = 0.0;
+  for (int k = 0; k < 100; ++k) {  // ln(V / V0) = 0.3
+    (void)m.step(I, 1e-3);
+    v += volumetric(1.0, 1e-3);
+  }
+  EXPECT_TRUE(m.stress() == common::Mat3::Zero());
+  const double bulk = p.young / (3.0 * (1.0 - 2.0 * p.poisson));
+  const double free = v - p0 / bulk;  // the elastic unloading took p0 / K of the dilation
+  // Compress back by about 0.2: still disconnected.
+  double back = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    (void)m.step(-I, 3.3e-4);
+    back -= volumetric(-1.0, 3.3e-4);
+  }
+  ASSERT_LT(back, free);
+  EXPECT_TRUE(m.stress() == common::Mat3::Zero());
+  // Close the rest plus a strain of 1e-4 in one step: only the last part of the step loads it
+  // (the hypoelastic increment K tr(D) h over that part).
+  const double a = -1.0;
+  const double dt = std::expm1(-(free - back + 1e-4) / 3.0) / a;  // volumetric(a, dt) = -(...)
+  (void)m.step(a * I, dt);
+  const double remainder = 1e-4 / (free - back + 1e-4);  // the fraction of the step that loads it
+  EXPECT_NEAR(-m.stress().trace() / 3.0, -bulk * 3.0 * a * remainder * dt, 1e-6 * bulk * 1e-4);
+  common::StateStore s;
+  m.save(s);
+  EXPECT_EQ(s.read_f64("elastic/free_volume"), std::vector<double>{0.0});
 }
 
 TEST(ElasticMicro, LoadRefusesMissingField) {
