@@ -19,7 +19,9 @@ material would have at its initial density, as YADE's h_vol). Macro inertial num
 I = gamma_dot d50 / sqrt(p / rho_s), gamma_dot = sqrt(2 D':D') from the finite difference of F
 between two output rows (D = sym(dF F^-1) / dt), p the point's pressure (floored at 1 Pa), d50 =
 200 um, rho_s = 2650 kg/m^3 (the grains' density). Free flight: an RVE with no contact (rve/z == 0);
-near-zero pressure: rve/p below 100 Pa.
+near-zero pressure: rve/p below 100 Pa. Kinetic energy: kinetic_over_MgH0 from the points'
+velocities (FLIP: a point held by the rough base keeps a velocity it does not move with);
+kinetic_motion_over_MgH0 from the points' motion between two output rows (what "at rest" means).
 """
 import argparse
 import glob
@@ -78,12 +80,23 @@ def analyse(run):
     hback = x[:, back, 2].max(axis=1) - x0[back, 2].max() + H0
     ek = 0.5 * (vol0[None, :] * (vel ** 2).sum(axis=2)).sum(axis=1)  # per unit bulk density
     ek_norm = ek / (vol0.sum() * G * H0)  # E_k / (M g H0): the density cancels
+    # The same from the points' motion between output rows: with mpm.position_update = "grid" a
+    # point held by the rough base keeps a FLIP velocity it does not move with, so E_k of the
+    # point velocities stays finite in a deposit at rest; this one measures the motion.
+    ek_motion = np.zeros(len(t))
+    for k in range(1, len(t)):
+        vm = (x[k] - x[k - 1]) / (t[k] - t[k - 1])
+        ek_motion[k] = 0.5 * (vol0 * (vm ** 2).sum(axis=1)).sum() / (vol0.sum() * G * H0)
     # Inertial number from F between output rows.
     n = len(t)
     inert = np.full((n, x.shape[1]), np.nan)
     for k in range(1, n):
         dtk = t[k] - t[k - 1]
-        Lk = (F[k] - F[k - 1]) @ np.linalg.inv(0.5 * (F[k] + F[k - 1])) / dtk
+        Fm = 0.5 * (F[k] + F[k - 1])
+        ok = np.abs(np.linalg.det(Fm)) > 1e-12  # a stress-free point may be crushed flat
+        Fm[~ok] = np.eye(3)
+        Lk = (F[k] - F[k - 1]) @ np.linalg.inv(Fm) / dtk
+        Lk[~ok] = np.nan
         D = 0.5 * (Lk + np.transpose(Lk, (0, 2, 1)))
         Dd = D - np.trace(D, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
         gdot = np.sqrt(2 * (Dd ** 2).sum(axis=(1, 2)))
@@ -114,12 +127,14 @@ def analyse(run):
                 runout_connected_over_L0=runout_c, t99_connected_over_tstar=t99_c,
                 t_end_over_tstar=t[-1] / tstar, Ekpeak_over_MgH0=ek_norm.max(),
                 t_Ekpeak_over_tstar=t[np.argmax(ek_norm)] / tstar, Ekend_over_MgH0=ek_norm[-1],
+                Ekend_motion_over_MgH0=ek_motion[-1],
                 volume_ratio_max=float((f["points/volume"][:] / vol0[None, :]).max()),
                 I_max=np.nanmax(inert), I_p95_max=np.nanmax(np.nanpercentile(inert[1:], 95, axis=1)),
                 flight_max=int(flight.max()), lowp_max=int(lowp.max()), mpm_steps=int(steps[-1]),
                 dem_steps=int(f["rve/dem_steps"][:].sum()))
     del gate
     return dict(t=t, tstar=tstar, L0=L0, H0=H0, a=a, front=front, front_c=front_c, hback=hback, ek=ek_norm,
+                ek_motion=ek_motion,
                 inert=inert, flight=flight, lowp=lowp, profile=profile, x=x, p=p_pt, summ=summ,
                 dx=dx, dz=dz)
 
@@ -183,14 +198,15 @@ def main():
                 o.write(",".join(keys) + "\n" + row + "\n")
             with open(os.path.join(args.data, f"{s['tag']}_timeseries.csv"), "w") as o:
                 o.write("t_s,t_over_tstar,L_front_m,L_front_connected_m,H_back_m,kinetic_over_MgH0,"
-                        "I_median,I_p95,I_max,rves_no_contact,rves_p_below_100Pa\n")
+                        "I_median,I_p95,I_max,rves_no_contact,rves_p_below_100Pa,"
+                        "kinetic_motion_over_MgH0\n")
                 for k in range(len(r["t"])):
                     i = r["inert"][k]
                     med, p95, mx = ((np.nanmedian(i), np.nanpercentile(i, 95), np.nanmax(i)) if k
                                     else (np.nan,) * 3)
                     o.write(f"{r['t'][k]:.6g},{r['t'][k] / r['tstar']:.4f},{r['front'][k]:.6g},"
                             f"{r['front_c'][k]:.6g},{r['hback'][k]:.6g},{r['ek'][k]:.4g},{med:.4g},{p95:.4g},{mx:.4g},"
-                            f"{r['flight'][k]},{r['lowp'][k]}\n")
+                            f"{r['flight'][k]},{r['lowp'][k]},{r['ek_motion'][k]:.4g}\n")
             with open(os.path.join(args.data, f"{s['tag']}_profiles.csv"), "w") as o:
                 o.write("t_over_tstar,x_m,h_top_m,h_vol_m\n")
                 for k in sorted({0, len(r["t"]) - 1}):

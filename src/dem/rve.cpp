@@ -80,9 +80,8 @@ bool Rve::take_free_volume(Mat3& g) {
   // Held only below the disconnection fraction: a contact-free RVE denser than that is a dense
   // gas, in which a shear or a compression makes contacts at once (holding it loses its shear:
   // a dense column, held at phi ~ 0.63, flowed as a fluid).
-  if (!(free_volume_ > 0.0) &&
-      !(dv > 0.0 && active_contacts(sim_) == 0 &&
-        1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
+  if (!(free_volume_ > 0.0) && !(dv > 0.0 && active_contacts(sim_) == 0 &&
+                                 1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
     return false;
   }
   const double after = free_volume_ + dv;
@@ -130,6 +129,17 @@ StepReport Rve::step(const Mat3& l, double dt) {
     // physical time, at the material's own inertial number.
     t_p = dt;
     rep.guards |= kGuardMaterialRate;
+  }
+  if (params_.min_dem_steps > 1) {
+    // A slow or static RVE relaxes over at least min_dem_steps DEM steps (within the MPM step
+    // when the RVE runs at the material's rate).
+    double t_min = static_cast<double>(params_.min_dem_steps) * dt_dem;
+    if (params_.rate == RveRate::material && dt > 0.0)
+      t_min = std::min(t_min, std::max(dt, dt_dem));
+    if (t_p < t_min) {
+      t_p = t_min;
+      rep.guards |= kGuardMinSteps;
+    }
   }
   if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
   // Step counts in double precision until they are capped: a tiny inertial number or a huge
@@ -250,6 +260,7 @@ void Rve::save(common::StateWriter& w) const {
   common::write_scalar(w, "rve/contact_loss", static_cast<std::int64_t>(params_.contact_loss));
   common::write_scalar(w, "rve/free_volume", free_volume_);
   common::write_scalar(w, "rve/disconnect_fraction", params_.disconnect_fraction);
+  common::write_scalar(w, "rve/min_dem_steps", params_.min_dem_steps);
 }
 
 Rve Rve::load(const common::StateReader& r) {
@@ -279,10 +290,14 @@ Rve Rve::load(const common::StateReader& r) {
   // Written since dem.coupling.rate and contact_loss exist: a state without them ran with the
   // coupling rate and a strained cell, and continues so.
   params.rate = flag("rve/rate") ? RveRate::material : RveRate::coupling;
-  params.contact_loss = flag("rve/contact_loss") ? ContactLoss::disconnected : ContactLoss::strained;
+  params.contact_loss =
+      flag("rve/contact_loss") ? ContactLoss::disconnected : ContactLoss::strained;
   if (r.has("rve/disconnect_fraction")) {
     params.disconnect_fraction = common::read_scalar_f64(r, "rve/disconnect_fraction");
   }
+  // Written since dem.coupling.min_dem_steps exists: a state without it ran with no minimum.
+  if (r.has("rve/min_dem_steps"))
+    params.min_dem_steps = common::read_scalar_i64(r, "rve/min_dem_steps");
   params.validate();
   Rve rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
   rve.forces_carried_ = flag("rve/forces_carried");
@@ -295,9 +310,9 @@ Rve Rve::load(const common::StateReader& r) {
     rve.free_volume_ = common::read_scalar_f64(r, "rve/free_volume");
     if (!(rve.free_volume_ >= 0.0) || !std::isfinite(rve.free_volume_) ||
         (rve.free_volume_ > 0.0 && params.contact_loss != ContactLoss::disconnected)) {
-      throw common::InputError("dem state: field 'rve/free_volume' = " +
-                               std::to_string(rve.free_volume_) +
-                               ": must be finite and >= 0, and 0 unless 'rve/contact_loss' = 1");
+      throw common::InputError(
+          "dem state: field 'rve/free_volume' = " + std::to_string(rve.free_volume_) +
+          ": must be finite and >= 0, and 0 unless 'rve/contact_loss' = 1");
     }
   }
   if (r.has("rve/dt_cache/critical_dt")) {

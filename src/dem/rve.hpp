@@ -61,7 +61,10 @@ struct RveParams {
   /// ContactLoss::disconnected: the solid fraction below which a contact-free RVE is a
   /// disconnected material (job key dem.coupling.disconnect_fraction) [-], in (0, 1)
   double disconnect_fraction = 0.5;
-  RveRate rate = RveRate::material;  ///< job key dem.coupling.rate
+  /// The fewest DEM steps of an RVE step (job key dem.coupling.min_dem_steps) [-], >= 1: a small
+  /// increment runs over at least this many DEM steps, so that the RVE relaxes between MPM steps
+  std::int64_t min_dem_steps = 1;
+  RveRate rate = RveRate::material;                      ///< job key dem.coupling.rate
   ContactLoss contact_loss = ContactLoss::disconnected;  ///< job key dem.coupling.contact_loss
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
@@ -99,6 +102,12 @@ inline constexpr auto kRveParams = common::make_table<RveParams>(
       "more than 5 % more contacts than then (its stiffness grew). 1: at every RVE step. Larger "
       "values save the computation (half a DEM step) in RVE steps of one or two DEM steps, as "
       "YADE's GlobalStiffnessTimeStepper.timeStepUpdateInterval does; docs/design/dem.md."},
+     {"min_dem_steps", &RveParams::min_dem_steps, Unit::Dimensionless, common::in_cc(1, 1e6),
+      Source::job_default,
+      "The fewest DEM steps of one RVE step: an increment whose T_p is shorter than this many DEM "
+      "steps runs over this many (never longer than the MPM step with rate = \"material\"), so "
+      "that an RVE in a slow or static part relaxes between MPM steps instead of running one DEM "
+      "step per MPM step (docs/design/rve_step.md, \"The fewest DEM steps\"). 1: no minimum."},
      {"max_steps_per_call", &RveParams::max_steps_per_call, Unit::Dimensionless, common::ge(1),
       Source::cpp_only, "Cap on the DEM steps of one step()."},
      {"initial_pressure", &RveParams::initial_pressure, Unit::Pressure, common::ge(0),
@@ -113,6 +122,7 @@ enum RveGuard : std::uint32_t {
   kGuardZeroIncrement = 1u << 4,  ///< L dt == 0: one relaxation step of dt_DEM
   kGuardMaterialRate = 1u << 5,   ///< RveRate::material: T_p cut to the MPM step dt
   kGuardDisconnected = 1u << 6,   ///< ContactLoss::disconnected: held, stress-free (no DEM step)
+  kGuardMinSteps = 1u << 7,       ///< T_p raised to min_dem_steps DEM steps
 };
 
 /// What one RVE step did.

@@ -230,3 +230,37 @@ TEST(ContactLoss, StateWithoutTheKeysContinuesAsBefore) {
 }
 
 }  // namespace
+
+// dem.coupling.min_dem_steps: a small increment (T_p below one DEM step) runs over min_dem_steps
+// DEM steps of the critical length, the same increment (the cells end equal), within the MPM step
+// at the material rate; 1 (the default) keeps one DEM step. The minimum is part of the state.
+TEST(RveRate, MinDemStepsRelaxesASmallIncrement) {
+  const dem::Packing pk = dem_test::reference_packing();
+  dem::RveParams p1 = params(dem::RveRate::material, dem::ContactLoss::disconnected);
+  dem::RveParams p10 = p1;
+  p10.min_dem_steps = 10;
+  dem::Rve one(pk, p1);
+  dem::Rve ten(pk, p10);
+  const Mat3 l = simple_shear(1e-3);  // 1e-8 per MPM step of 1e-5 s: T_p far below one DEM step
+  const double dt = 1e-5;
+  const dem::StepReport a = one.step(l, dt);
+  const dem::StepReport b = ten.step(l, dt);
+  EXPECT_EQ(a.dem_steps, 1);
+  EXPECT_EQ(a.guards & dem::kGuardMinSteps, 0u);
+  EXPECT_EQ(b.dem_steps, 10);
+  EXPECT_NE(b.guards & dem::kGuardMinSteps, 0u);
+  EXPECT_NEAR(b.t_p, 10.0 * b.dt_dem, 1e-12 * b.t_p);
+  EXPECT_LT(b.t_p, dt);
+  EXPECT_TRUE(one.simulation().cell().h.isApprox(ten.simulation().cell().h, 1e-14));
+  // An MPM step shorter than ten DEM steps: the material rate keeps the RVE within it.
+  const dem::StepReport c = ten.step(l, 3.0 * b.dt_dem);
+  EXPECT_LE(c.t_p, 3.0 * b.dt_dem * (1 + 1e-12));
+  // Saved and read back.
+  common::StateStore s;
+  ten.save(s);
+  EXPECT_EQ(s.read_i64("rve/min_dem_steps"), std::vector<std::int64_t>{10});
+  const dem::Rve back = dem::Rve::load(s);
+  common::StateStore again;
+  back.save(again);
+  EXPECT_EQ(again.read_i64("rve/min_dem_steps"), std::vector<std::int64_t>{10});
+}
