@@ -66,7 +66,7 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
   const double dj = (common::Mat3::Identity() + h * L).determinant();
   for (std::int64_t k = 0; k < params_.substeps; ++k) {
     if (params_.friction_angle > 0.0) {
-      frictional_substep(L, h, std::log(dj));
+      frictional_substep(update, L, h, std::log(dj));
     } else {
       stress_ = update.apply(stress_);
     }
@@ -84,7 +84,8 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
   return r;
 }
 
-void ElasticMicro::frictional_substep(const common::Mat3& L, double h, double volumetric) {
+void ElasticMicro::frictional_substep(const common::HughesWinget& update, const common::Mat3& L,
+                                      double h, double volumetric) {
   const common::Lame c = common::lame(params_.young, params_.poisson);
   const double sin_phi = std::sin(params_.friction_angle);
   if (free_volume_ > 0.0) {  // disconnected: a dilation adds to the free volume, stress-free
@@ -102,8 +103,7 @@ void ElasticMicro::frictional_substep(const common::Mat3& L, double h, double vo
     return;
   }
   const double p = -stress_.trace() / 3.0;
-  const mpm::DruckerPragerResult r =
-      mpm::drucker_prager_return(common::HughesWinget(L, h, c).apply(stress_), sin_phi);
+  const mpm::DruckerPragerResult r = mpm::drucker_prager_return(update.apply(stress_), sin_phi);
   stress_ = r.stress;
   if (r.apex) {  // the dilation beyond the elastic unloading of p becomes free volume
     const double bulk = c.lambda + 2.0 * c.mu / 3.0;

@@ -5,6 +5,7 @@
 // to replace the RVEs: a reference, and a tool for protocol, restart and balancing tests.
 #pragma once
 
+#include "common/tensor.hpp"
 #include "farm/micro_model.hpp"
 
 namespace farm {
@@ -73,8 +74,10 @@ class ElasticMicro final : public MicroModel {
   /// goes to the free volume; while it is positive the material is disconnected (stress-free),
   /// and a compression closes it before the material carries stress again (Dunatunga & Kamrin
   /// 2015, as dem.coupling.contact_loss = "disconnected" does for an RVE).
+  /// @param update the elastic predictor of the sub-step (L over h)
   /// @param volumetric ln det(I + h L) of the sub-step [-]
-  void frictional_substep(const common::Mat3& L, double h, double volumetric);
+  void frictional_substep(const common::HughesWinget& update, const common::Mat3& L, double h,
+                          double volumetric);
 
   double j_ = 1.0;            ///< volume ratio V / V0 [-]
   double free_volume_ = 0.0;  ///< ln(V / V_connected) >= 0 of a disconnected material [-]
