@@ -101,7 +101,6 @@ Mat3 geostatic_target(const Job& job, const MpmSetup& setup, std::size_t i) {
   const Vec3 g = setup.config.gravity;
   const std::int64_t id = pts.id[i];
   const std::string base = fmt::format("mpm.body[{}].", setup.body[i]);
-  Mat3 t = Mat3::Zero();
   double surface = 0.0;
   if (job.has(base + "surface")) {
     surface = job.number(base + "surface");
@@ -123,7 +122,7 @@ Mat3 geostatic_target(const Job& job, const MpmSetup& setup, std::size_t i) {
                     "a geostatic body lies below its surface",
                     id, pts.x[i][0], pts.x[i][1], pts.x[i][2], -depth)));
   }
-  t = geostatic_stress(job.number(base + "density"), g, job.number(base + "k0"), depth);
+  const Mat3 t = geostatic_stress(job.number(base + "density"), g, job.number(base + "k0"), depth);
   if (!t.allFinite()) {
     const bool vertical = std::isfinite(job.number(base + "density") * g.norm() * depth);
     throw common::InputError(job.message(
