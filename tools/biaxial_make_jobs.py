@@ -87,7 +87,7 @@ def self_test():
 
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
-        smoothing="cell", shape="ugimp"):
+        smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0):
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
@@ -102,17 +102,29 @@ def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header
                       f"max = [{x1!r}, {h!r}, 0.0]\n")
     else:
         base_where = 'face = "z-"\n'
-    lines = [header.rstrip(), f'title = "Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, '
-             f'{4 * nx * nz} RVEs of {spheres} spheres"', "",
-             """[dem.material]                 # the reference material (docs/validation/triaxial.md)
+    initial_stress = '\ninitial_stress = ["-100 kPa", "-100 kPa", "-100 kPa", 0.0, 0.0, 0.0]'
+    if material == "frictional":
+        title = (f"Plane-strain biaxial, frictional continuum (Drucker-Prager, {friction_angle:g} deg), "
+                 f"{nx} x {nz} cells")
+    else:
+        title = f"Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, {4 * nx * nz} RVEs of {spheres} spheres"
+    if reg_mm > 0:
+        title += f", regularised (l = {reg_mm:g} mm, H = {reg_mpa:g} MPa)"
+    reg_table = "" if reg_mm <= 0 else (
+        f"""
+[mpm.regularisation]           # nonlocal strain gradient: the band's thickness from l, not the cell
+length = "{reg_mm:g} mm"              # (docs/design/mpm.md, Regularisation)
+modulus = "{reg_mpa:g} MPa"
+""")
+    dem_tables = """[dem.material]                 # the reference material (docs/validation/triaxial.md)
 density = "2650 kg/m^3"
 young_modulus = "300 MPa"
 stiffness_ratio = 0.5
 friction_angle = "30 deg"
 rolling_stiffness = 2.0
 rolling_strength = 0.3
-""",
-             f"""[dem.sample]                   # generated; sample k of the pool has seed 1 + k
+
+""" + f"""[dem.sample]                   # generated; sample k of the pool has seed 1 + k
 spheres = {spheres}
 psd_diameters = ["130 um", "270 um"]
 psd_passing = [0.0, 1.0]
@@ -131,8 +143,15 @@ inertial_number = 4e-3         # I_n of eq. 11 (as jobs/triaxial_mpmxdem_distinc
 pressure_floor = "10 kPa"      # T_p of an RVE that loses its contacts (the corners under the rough
                                # platens dilate to p = 0): with 1 kPa those few RVEs took most of
                                # the run (up to 5700 DEM steps per MPM step, docs/validation/biaxial.md)
-
-[mpm]
+"""
+    elastic_table = f"""[mpm.elastic]                  # elastic-perfectly plastic Drucker-Prager (plane-strain Mohr-Coulomb), no dilatancy
+young_modulus = "50 MPa"
+poisson_ratio = 0.3
+friction_angle = "{friction_angle:g} deg"
+"""
+    lines = [header.rstrip(), f'title = "{title}"', "",
+             elastic_table if material == "frictional" else dem_tables,
+             f"""[mpm]
 shape_function = "{shape}"{shape_note}
 update = "usf"
 plane_strain = "y"             # one cell through y, [2, 1, 2] points per cell
@@ -145,7 +164,7 @@ damping = 0.2                  # Cundall damping (eq. 8)
 mass_scaling = {mass_scaling:g}           # quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):g}; the log checks E_kin/W_int < 0.01
 cfl = 0.5
 end_time = "{t_end!r} s"        # log axial strain {strain:g} at the platen speed below
-
+{reg_table}
 [mpm.grid]                     # {pad} empty cell(s) each side in x for the lateral expansion, one above
 origin = [{x0!r}, 0.0, {-below * h!r}]  # the top (a point next to the platen may drift above it){grid_note}
 spacing = [{h!r}, {h!r}, {h!r}]
@@ -156,7 +175,7 @@ min = [0.0, 0.0, 0.0]
 max = [{W:g}, {h!r}, {H:g}]
 points_per_cell = [2, 1, 2]
 density = "{RHO_BULK:g} kg/m^3"
-material = "dem"
+material = "{material if material == 'dem' else 'elastic'}"{initial_stress if material == 'frictional' else ''}
 
 # Rough rigid platens: no slip (x = 0) and the normal velocity imposed on the whole node plane
 # (plain constraints, bonded: the specimen is pushed against them throughout). The base first.
@@ -207,6 +226,13 @@ def main():
     ap.add_argument("--shape", default="ugimp", choices=["linear", "ugimp"],
                     help="mpm.shape_function (ugimp, the default since 2026-11-25: the grid gets a "
                          "cell under the base; linear: the jobs of before, docs/validation/biaxial.md)")
+    ap.add_argument("--regularisation", type=float, nargs=2, default=[0.0, 0.0],
+                    metavar=("L_MM", "H_MPA"),
+                    help="mpm.regularisation length [mm] and modulus [MPa] (default: none)")
+    ap.add_argument("--material", default="dem", choices=["dem", "frictional"],
+                    help="dem: every point an RVE; frictional: the Drucker-Prager continuum "
+                         "(mpm.elastic with friction_angle), a cheap reference for the mesh studies")
+    ap.add_argument("--friction-angle", type=float, default=40.0, help="frictional: phi [deg]")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     ap.add_argument("--self-test", action="store_true")
@@ -218,7 +244,7 @@ def main():
         a.pad = math.ceil(0.025 / (W / a.mesh[0]) - 1e-9)
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
                a.mass_scaling, a.every, a.header, a.platen,
-               a.smoothing, a.shape)
+               a.smoothing, a.shape, a.regularisation[0], a.regularisation[1], a.material, a.friction_angle)
     open(a.out, "w").write(text)
 
 

@@ -137,8 +137,26 @@ void numerics_rules(const Job& job, Rules& r) {
   }
 }
 
+void regularisation_rules(const Job& job, Rules& r) {
+  if (!job.has_section("mpm.regularisation")) return;
+  // The strain-gradient regularisation needs its length and its modulus (no silent default).
+  for (const char* key : {"mpm.regularisation.length", "mpm.regularisation.modulus"}) {
+    const auto& entries = job.entries();
+    const auto it = entries.find(key);
+    const bool written = it != entries.end() && !it->second.defaulted && it->second.line > 0;
+    if (!written) {
+      r.fail_missing(key,
+                     "required in [mpm.regularisation]: the regularisation needs its length "
+                     "l and its modulus H (docs/design/mpm.md, Regularisation)");
+    } else if (!(job.number(key) > 0.0)) {
+      r.fail(key, "must be > 0 in [mpm.regularisation] (remove the table for no regularisation)");
+    }
+  }
+}
+
 void mpm_rules(const Job& job, Rules& r) {
   if (!job.has_section("mpm")) return;
+  regularisation_rules(job, r);
   const auto& origin = job.numbers("mpm.grid.origin");
   const auto& h = job.numbers("mpm.grid.spacing");
   const auto& n = job.integers("mpm.grid.cells");

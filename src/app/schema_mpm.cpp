@@ -64,6 +64,10 @@ void add_mpm_sections(Schema& s) {
       .one_of({"flip", "apic"})
       .or_default(std::string("flip"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
+  s.add("mpm.regularisation", Type::Table,
+        "Nonlocal strain-gradient regularisation of a softening material: length and modulus "
+        "together; absent: none (docs/design/mpm.md, Regularisation).");
+  add_params(s, mpm::kSolverConfig, "regularisation");
   s.add("mpm.plane_strain", Type::String,
         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
         "held at zero and the material sees no strain rate through it, docs/design/mpm.md). "

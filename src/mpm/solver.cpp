@@ -61,6 +61,17 @@ void SolverConfig::validate() const {
                              "\": plane strain needs the linear or uGIMP shape functions (the "
                              "B-spline spans 3 node planes, the one-cell-thick grid has 2)");
   }
+  if ((regularisation_length > 0.0) != (regularisation_modulus > 0.0)) {
+    throw common::InputError(
+        "mpm.regularisation.length = " + num_str(regularisation_length) +
+        " m and mpm.regularisation.modulus = " + num_str(regularisation_modulus) +
+        " Pa: the regularisation needs both (> 0), or neither");
+  }
+  if (formulation == Formulation::total_lagrangian && regularisation_length > 0.0) {
+    throw common::InputError(
+        "mpm.regularisation with mpm.formulation = \"total_lagrangian\": the nonlocal average "
+        "is taken in the current configuration; use the updated Lagrangian formulation");
+  }
   if (formulation == Formulation::total_lagrangian && move_points) {
     // The grid is the reference configuration only where the points stay where they started.
     throw common::InputError(
@@ -89,6 +100,9 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
   }
   check_shape_domains(config_.shape, config_.grid, points_, config_.plane_strain_axis);
   fields_.resize(config_.grid);
+  if (config_.regularisation_length > 0.0) {
+    regularisation_.emplace(config_.regularisation_length, config_.regularisation_modulus);
+  }
 }
 
 void Solver::add_constraint(const VelocityConstraint& constraint) {
@@ -285,6 +299,12 @@ void Solver::update_stress(double dt) {
                                  " s): " + e.what());
   }
   internal_work_ += 0.5 * dt * (power_start + stress_power(points_));
+  if (regularisation_) {
+    // The regularisation's strain from the L the materials saw, at the step's positions and
+    // volumes (those of the internal forces that follow, in USF).
+    internal_work_ +=
+        regularisation_->update(points_.x, points_.volume, points_.material, points_.L, dt);
+  }
 }
 
 Energies Solver::energies() const {
@@ -376,7 +396,7 @@ void Solver::add_external_loads() {
 void Solver::internal_force() {
   const bool total = config_.formulation == Formulation::total_lagrangian;
   const bool smooth = config_.strain_smoothing == StrainSmoothing::cell;
-  if (!total && !smooth) {
+  if (!total && !smooth && !regularisation_) {
     p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);
     return;
   }
@@ -388,6 +408,11 @@ void Solver::internal_force() {
     stress_for_reference_gradient(points_.F, points_.stress, force_stress_);
   } else {
     force_stress_ = points_.stress;
+  }
+  if (regularisation_) {
+    // Before the cell average: the energy's strain is taken on the smoothed L, and the cell
+    // average is its own adjoint.
+    regularisation_->add_force_stress(points_.x, points_.volume, points_.material, force_stress_);
   }
   if (smooth) {
     average_per_cell(config_.grid, points_.x, points_.volume, force_stress_, smoothing_scratch_);
@@ -507,6 +532,9 @@ void Solver::save(common::StateWriter& w) const {
   w.write("points/F", flatten(points_.F));
   w.write("points/L", flatten(points_.L));
   if (config_.transfer == Transfer::apic) w.write("points/C", flatten(points_.C));
+  if (regularisation_ && !regularisation_->strain().empty()) {
+    w.write("points/regularisation_strain", flatten(regularisation_->strain()));
+  }
   std::vector<std::int64_t> mat(points_.material.begin(), points_.material.end());
   w.write("points/material", mat);
   for (std::size_t k = 0; k < traction_points_.size(); ++k) {
@@ -589,7 +617,14 @@ void Solver::load(const common::StateReader& r) {
       if (!c.has_window() && !c.field) disp[k] = prescribed_velocity(c, time[0]) * time[0];
     }
   }
+  // The regularisation's strain; absent: saved before the first step (zero).
+  std::vector<common::Mat3> reg_strain;
+  if (regularisation_ && r.has("points/regularisation_strain")) {
+    reg_strain.resize(n);
+    unflatten(read_sized(r, "points/regularisation_strain", 9 * n), reg_strain);
+  }
   traction_points_ = std::move(facets);
+  if (regularisation_) regularisation_->set_strain(std::move(reg_strain));
   points_ = std::move(pts);
   step_ = step[0];
   time_ = time[0];

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "mpm/boundary.hpp"
 #include "mpm/energy.hpp"
 #include "mpm/formulation.hpp"
+#include "mpm/gradient_regularisation.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_solve.hpp"
 #include "mpm/material_model.hpp"
@@ -68,13 +70,13 @@ struct SolverConfig {
   /// Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run
   /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1.
   double max_volume_ratio = 10.0;
-  /// Plane strain (docs/design/mpm.md, "Plane strain"): the thickness axis 0, 1 or 2 (-1: 3D). The grid
-  /// must have exactly one cell along it; the nodal velocity along it is held at zero and the
+  /// Plane strain (docs/design/mpm.md, "Plane strain"): the thickness axis 0, 1 or 2 (-1: 3D). The
+  /// grid must have exactly one cell along it; the nodal velocity along it is held at zero and the
   /// thickness row and column of each point's L are zeroed before the material sees it.
   int plane_strain_axis = -1;
-  /// Quasi-static mass scaling s >= 1 [-] (docs/design/mpm.md, "Mass scaling"): nodal masses and momenta
-  /// (the inertia) are s times the points' masses, gravity acts on the real mass; the CFL step
-  /// grows by sqrt(s). 1: off.
+  /// Quasi-static mass scaling s >= 1 [-] (docs/design/mpm.md, "Mass scaling"): nodal masses and
+  /// momenta (the inertia) are s times the points' masses, gravity acts on the real mass; the CFL
+  /// step grows by sqrt(s). 1: off.
   double mass_scaling = 1.0;
   /// Kinetic energy over internal work above which a mass-scaled run is warned that it is no
   /// longer quasi-static [-] (mpm/energy.hpp, QuasiStaticWatch).
@@ -87,6 +89,11 @@ struct SolverConfig {
   /// L = Fdot F^-1 and the internal forces use sigma F^-T, so that a single-cell sample holds
   /// its confining pressure at any strain (docs/design/mpm.md, "Total Lagrangian formulation").
   Formulation formulation = Formulation::updated_lagrangian;
+  /// Nonlocal strain-gradient regularisation (mpm/gradient_regularisation.hpp, docs/design/mpm.md
+  /// "Regularisation"): l > 0 and H > 0 together, or both 0 (off). The material length l [m].
+  double regularisation_length = 0.0;
+  /// Its modulus H [Pa]: the stiffness of the energy on a point's strain minus its average.
+  double regularisation_modulus = 0.0;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
@@ -119,7 +126,17 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
      {"quasi_static_ratio", &SolverConfig::quasi_static_ratio, common::Unit::Dimensionless,
       common::gt(0), common::Source::job_default,
       "With mass_scaling > 1: the log warns once when the kinetic energy exceeds this fraction "
-      "of the internal work."}});
+      "of the internal work."},
+     {"regularisation.length", &SolverConfig::regularisation_length, common::Unit::Length,
+      common::ge(0), common::Source::job_default,
+      "Material length l of the nonlocal strain-gradient regularisation: an elastic energy on "
+      "each point's strain minus its Gaussian average (standard deviation l, cut at 3 l) over "
+      "its material, which sets a shear band's thickness instead of the cell; 0 = off "
+      "(docs/design/mpm.md, Regularisation)."},
+     {"regularisation.modulus", &SolverConfig::regularisation_modulus, common::Unit::Pressure,
+      common::ge(0), common::Source::job_default,
+      "Modulus H of that energy, given with the length: of the order of the material's shear "
+      "modulus (docs/design/mpm.md, Regularisation); 0 = off."}});
 
 /// Owns the points and the grid fields; materials are not owned and must outlive the solver.
 class Solver {
@@ -157,8 +174,8 @@ class Solver {
   /// Loaded area of each traction load in the last step [m^2], in add_traction order.
   [[nodiscard]] const std::vector<double>& traction_areas() const { return traction_areas_; }
   /// Force each constraint exerted ON the material in the last step [N], in add_constraint order:
-  /// sum over its nodes of m_i (a_i after it - a_i before it) (zero while inactive; docs/design/mpm.md,
-  /// "Frictional boundaries and reactions").
+  /// sum over its nodes of m_i (a_i after it - a_i before it) (zero while inactive;
+  /// docs/design/mpm.md, "Frictional boundaries and reactions").
   [[nodiscard]] const std::vector<common::Vec3>& reactions() const { return reactions_; }
   /// Displacement of each constraint [m]: the integral of its prescribed velocity over the time
   /// it was active (prescribed_velocity; trapezoidal per step).
@@ -171,6 +188,7 @@ class Solver {
   /// Writes the MPM state as named fields (docs/design/mpm.md, "Checkpoint"): solver/step,
   /// solver/time, solver/internal_work, points/id, points/x, points/v, points/mass, points/volume,
   /// points/volume0, points/half_width0, points/stress, points/F, points/L, points/material,
+  /// points/C (APIC), points/regularisation_strain (with the regularisation, after a step),
   /// loads/traction_<k>/point_slots. The materials'
   /// own state is written by their owner (e.g. LinearElastic::save).
   void save(common::StateWriter& writer) const;
@@ -186,7 +204,8 @@ class Solver {
   /// G2P of the point velocities (and positions, C_p): FLIP/PIC or APIC by config_.transfer.
   void update_points(double dt);
   void add_external_loads();
-  /// P2G of the internal forces; with strain smoothing from the cell-averaged stresses.
+  /// P2G of the internal forces; with strain smoothing from the cell-averaged stresses; with the
+  /// regularisation, its stress added first.
   void internal_force();
   void check_points(double t_end) const;
   void advance_displacements(double t, double dt);
@@ -222,7 +241,8 @@ class Solver {
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
   std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
-  std::vector<common::Mat3> force_stress_;  ///< the stress the internal forces use
+  std::vector<common::Mat3> force_stress_;                ///< the stress the internal forces use
+  std::optional<GradientRegularisation> regularisation_;  ///< with regularisation_length > 0
 };
 
 }  // namespace mpm
