@@ -29,13 +29,11 @@ double kinetic_energy(const MaterialPoints& points, double mass_scaling) {
   return 0.5 * mass_scaling * sum;
 }
 
-double stress_power(const MaterialPoints& points) { return stress_power(points, points.L); }
-
-double stress_power(const MaterialPoints& points, const std::vector<common::Mat3>& L) {
+double stress_power(const MaterialPoints& points) {
   thread_local std::vector<double> terms;
   compute_terms(static_cast<std::int64_t>(points.size()), terms, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
-    const common::Mat3 D = 0.5 * (L[p] + L[p].transpose());
+    const common::Mat3 D = 0.5 * (points.L[p] + points.L[p].transpose());
     return points.volume[p] * points.stress[p].cwiseProduct(D).sum();
   });
   double sum = 0.0;

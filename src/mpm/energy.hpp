@@ -1,6 +1,6 @@
-// Energy accounting of the MPM for quasi-static scenes (docs/design/mpm.md, "Mass scaling"):
-// kinetic energy of the points with the scaled inertia, the stress power, the kinetic-to-internal
-// ratio, and a watch that warns once when a mass-scaled scene stops being quasi-static.
+// Energy accounting of the MPM for quasi-static scenes (docs/design/mpm.md, "Mass scaling"): kinetic
+// energy of the points with the scaled inertia, the stress power, the kinetic-to-internal ratio,
+// and a watch that warns once when a mass-scaled scene stops being quasi-static.
 #pragma once
 
 #include <cstdint>
@@ -27,9 +27,6 @@ struct Energies {
 /// (tension positive) and L: the rate of work of the stresses on the material (positive when a
 /// compressed body is compressed further: sigma and D both negative). Sums in slot order.
 [[nodiscard]] double stress_power(const MaterialPoints& points);
-/// The same with the velocity gradients L (one per point) in place of the points' own: the
-/// power the materials take in when they see another L (the nonlocal one) [W].
-[[nodiscard]] double stress_power(const MaterialPoints& points, const std::vector<common::Mat3>& L);
 
 /// Watches the kinetic-to-internal energy ratio of a mass-scaled run. The start of any loading
 /// from rest is dynamic (from rest at a constant platen speed the ratio falls like 1 / t), so
