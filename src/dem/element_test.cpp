@@ -15,6 +15,7 @@ double strain_rate(double inertial_number, double d50, double rho, double p) {
 MixedControl triaxial_servo(const DrainedTriaxial& test) {
   MixedControl mc =
       triaxial_control(test.axial_rate, test.confining, test.servo_rate_factor * test.axial_rate);
+  mc.tau_steps = test.servo_tau_steps;
   if (test.plane_strain) {
     mc.stress_axis[1] = false;  // y follows l_imposed(1, 1) = 0: zero strain
     mc.target[1] = 0.0;

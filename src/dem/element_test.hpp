@@ -30,6 +30,11 @@ struct DrainedTriaxial {
   /// packing to 25 % at I = 2.5e-4 (lateral rate at most 1.44 x axial) and in
   /// jobs/triaxial_dem_small.toml.
   double servo_rate_factor = 10.0;
+  /// Time constant of the lateral PI servo, in DEM steps [-]. 5 (with the stiffness feed-forward
+  /// of MixedController): the lateral stress of the reference packing stays within 0.08 % at
+  /// I = 1e-3 and 0.8 % at I = 1e-2; the former 200 lost it by 5-12 % at 1e-3 to 1e-2 (docs/design/
+  /// dem.md, "Stress control").
+  double servo_tau_steps = 5.0;
   /// Plane strain (a biaxial test): only sigma_xx is held at `confining`; the y strain is held at
   /// zero (L_yy = 0), sigma_yy is what the sample gives. false: the triaxial test (x and y held).
   bool plane_strain = false;

@@ -1,7 +1,9 @@
 // Mixed-control servo, step driver, equilibration, random cloud and compaction.
 #include "dem/loading.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -16,6 +18,37 @@ namespace dem {
 using common::Mat3;
 using common::Vec3;
 
+Vec3 MixedController::feed_forward(double p_ref) const {
+  // The imposed diagonal rates (the other axes) and the stress-controlled axes with stiffness.
+  Vec3 ahead = Vec3::Zero();
+  std::array<int, 3> s{};
+  int ns = 0;
+  bool imposed = false;
+  for (int a = 0; a < 3; ++a) {
+    if (ctl_.stress_axis[a]) {
+      if (modulus_[a] > 1e-3 * p_ref) s[ns++] = a;
+    } else if (ctl_.l_imposed(a, a) != 0.0) {
+      imposed = true;
+    }
+  }
+  if (!imposed || ns == 0) return ahead;
+  // K_SS r_S = -K_SI L_I: the stress-controlled axes' rates that hold their stress.
+  Eigen::MatrixXd kss(ns, ns);
+  Eigen::VectorXd rhs(ns);
+  for (int i = 0; i < ns; ++i) {
+    rhs[i] = 0.0;
+    for (int b = 0; b < 3; ++b) {
+      if (!ctl_.stress_axis[b]) rhs[i] -= stiffness_(s[i], b) * ctl_.l_imposed(b, b);
+    }
+    for (int j = 0; j < ns; ++j) kss(i, j) = stiffness_(s[i], s[j]);
+  }
+  const Eigen::VectorXd r = kss.ldlt().solve(rhs);
+  for (int i = 0; i < ns; ++i) {
+    if (std::isfinite(r[i])) ahead[s[i]] = r[i];
+  }
+  return ahead;
+}
+
 void MixedController::update(Simulation& sim) {
   Mat3 l = ctl_.l_imposed;
   const double dt = sim.dt();
@@ -24,19 +57,24 @@ void MixedController::update(Simulation& sim) {
     // Contact-stiffness modulus, fixed-order sum.
     const Contacts& c = sim.contacts();
     Vec3 m = Vec3::Zero();
+    Mat3 k = Mat3::Zero();
     for (std::size_t p = 0; p < c.size(); ++p) {
       if (!c.active[p]) continue;
       const Vec3& d = c.branch[p];
       const Vec3 n = at(c.hist.normal, p);
       const double kn = sim.contact_props(p).kn;
       for (int a = 0; a < 3; ++a) m[a] += kn * (n[a] * d[a]) * (n[a] * d[a]);
+      const Vec3 nd = n.cwiseProduct(d);
+      k += kn * nd * nd.transpose();
     }
     modulus_ = m / sim.cell().volume();
+    stiffness_ = k / sim.cell().volume();
     last_modulus_step_ = sim.steps();
   }
   const Mat3& sigma = sim.stress();
   // Scale for an empty cell: no modulus, the rate bound governs.
   const double p_ref = std::max(std::abs(ctl_.target.maxCoeff()), std::abs(ctl_.target.minCoeff()));
+  const Vec3 ahead = feed_forward(p_ref);
   for (int a = 0; a < 3; ++a) {
     if (!ctl_.stress_axis[a]) continue;
     const double err = ctl_.target[a] - sigma(a, a);
@@ -45,7 +83,7 @@ void MixedController::update(Simulation& sim) {
       const double e = err / modulus_[a];  // strain error [-]
       integral_[a] += e * dt / (4.0 * tau * tau);
       integral_[a] = std::clamp(integral_[a], -ctl_.max_rate, ctl_.max_rate);
-      rate = e / tau + integral_[a];
+      rate = ahead[a] + e / tau + integral_[a];
     } else {
       // No stiffness: move toward the target at the bound.
       rate = err > 0.0 ? ctl_.max_rate : -ctl_.max_rate;

@@ -27,7 +27,12 @@ struct MixedControl {
 
 /// PI servo on the cell's diagonal strain rates. The stress error is turned into a strain error
 /// with the contact-stiffness modulus M_a = (1/V) sum_c k_n (n_a d_a)^2 (an upper bound of the
-/// tangent modulus: the servo is stable and errs on the slow side).
+/// tangent modulus: the servo is stable and errs on the slow side). When some diagonal rates are
+/// imposed (a triaxial's axial rate), a feed-forward adds the rates of the stress-controlled axes
+/// that keep their stress constant under the imposed ones in the contact stiffness
+/// K_ab = (1/V) sum_c k_n n_a d_a n_b d_b: K_SS r_S = -K_SI L_I (the prediction from the stiffness
+/// that YADE's PeriTriaxController makes; docs/design/dem.md, "Stress control"). Without imposed
+/// diagonal rates (isotropic compaction) it is off and the servo is the plain PI.
 class MixedController {
  public:
   explicit MixedController(const MixedControl& ctl) : ctl_(ctl) {}
@@ -39,9 +44,14 @@ class MixedController {
   void set_integral(const common::Vec3& v) { integral_ = v; }
 
  private:
+  /// The feed-forward rates of the stress-controlled axes [1/s] (zero without imposed diagonal
+  /// rates); p_ref: the stress scale under which an axis counts as without stiffness [Pa].
+  [[nodiscard]] common::Vec3 feed_forward(double p_ref) const;
+
   MixedControl ctl_;
-  common::Vec3 integral_ = common::Vec3::Zero();  ///< integral term [1/s]
-  common::Vec3 modulus_ = common::Vec3::Zero();   ///< M_a [Pa]
+  common::Vec3 integral_ = common::Vec3::Zero();   ///< integral term [1/s]
+  common::Vec3 modulus_ = common::Vec3::Zero();    ///< M_a [Pa]
+  common::Mat3 stiffness_ = common::Mat3::Zero();  ///< K_ab [Pa]
   std::int64_t last_modulus_step_ = -1;
 };
 
