@@ -37,7 +37,7 @@ def platen_boxes(h, v, t_end, lead=0.5):
     t_k = (k - lead) h / v, i.e. `lead` of a cell before the top reaches H - k h. The top row of
     points (a quarter cell under the top) must never leave the cells whose upper node plane is
     held: with lead = 0 (as written before 2026-11-25) it did from 3/4 h to h of travel and the fine
-    meshes broke up there (docs/validation/biaxial.md, "Three meshes to 10 %"). The material above a newly
+    meshes broke up there (docs/notes/biaxial_2026-11.md, "Three meshes to 10 %"). The material above a newly
     held plane (half a cell) moves with the platen. A node held by several boxes keeps its first
     constraint's reaction: the platen's reaction is the sum over the boxes named platen_*."""
     boxes = []
