@@ -47,6 +47,17 @@ double interp(const std::vector<YadeRow>& rows, double eps, double YadeRow::*fie
   return rows.back().*field;
 }
 
+// The reference packing re-equilibrated at 100 kPa (its file holds no shear forces).
+dem::Simulation equilibrated_reference() {
+  dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
+                                             dem_test::reference_material(), dem::Numerics{});
+  dem::EquilibriumTarget et;
+  et.stress_tol = 0.005;
+  et.unbalanced_tol = 0.005;
+  dem::equilibrate(sim, et);
+  return sim;
+}
+
 // Drained triaxial at I = 2.5e-4 (axial rate I / t_ref, t_ref = d50 sqrt(rho / p0)), lateral
 // stress servo-controlled at 100 kPa, to 1 % axial strain. The packing file carries no shear
 // forces, so the sample is first re-equilibrated at 100 kPa: the start differs from YADE's in the
@@ -56,12 +67,7 @@ double interp(const std::vector<YadeRow>& rows, double eps, double YadeRow::*fie
 // (docs/design/dem.md).
 TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
   const auto yade = read_yade();
-  dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
-                                             dem_test::reference_material(), dem::Numerics{});
-  dem::EquilibriumTarget et;
-  et.stress_tol = 0.005;
-  et.unbalanced_tol = 0.005;
-  dem::equilibrate(sim, et);
+  dem::Simulation sim = equilibrated_reference();
   dem::DrainedTriaxial test;
   test.axial_rate = dem::strain_rate(2.5e-4, 2e-4, 2650.0, 1e5);  // d50 of YADE's packing
   test.confining = 1e5;
@@ -100,12 +106,7 @@ TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
 // former servo, tau = 200 steps without feed-forward, lost it by 6 % and 17 % at 0.1 %).
 TEST(Verification, DrainedTriaxialHoldsTheLateralStressAtFastRates) {
   for (const double inertial : {1e-3, 1e-2}) {
-    dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
-                                               dem_test::reference_material(), dem::Numerics{});
-    dem::EquilibriumTarget et;
-    et.stress_tol = 0.005;
-    et.unbalanced_tol = 0.005;
-    dem::equilibrate(sim, et);
+    dem::Simulation sim = equilibrated_reference();
     dem::DrainedTriaxial test;
     test.axial_rate = dem::strain_rate(inertial, 2e-4, 2650.0, 1e5);
     test.confining = 1e5;

@@ -13,21 +13,12 @@
 #include "mpm/gradient_regularisation.hpp"
 #include "mpm/linear_elastic.hpp"
 #include "mpm/solver.hpp"
+#include "plane_lattice.hpp"
 
 namespace {
 
 using common::Mat3;
 using common::Vec3;
-
-/// A regular plane (x, z) lattice of spacing h: nx x nz points centred on 0, y = 0, volume h^2.
-void lattice(int nx, int nz, double h, std::vector<Vec3>& x, std::vector<double>& vol) {
-  for (int k = 0; k < nz; ++k) {
-    for (int i = 0; i < nx; ++i) {
-      x.emplace_back((i - 0.5 * (nx - 1)) * h, 0.0, (k - 0.5 * (nz - 1)) * h);
-      vol.push_back(h * h);
-    }
-  }
-}
 
 TEST(GradientRegularisation, HomogeneousDeformationStoresNoStrain) {
   std::mt19937_64 rng(5);
@@ -60,7 +51,7 @@ TEST(GradientRegularisation, ShortWavesAreResistedLongWavesAreFree) {
     std::vector<Vec3> x;
     std::vector<double> vol;
     // Narrow in x, long in z: every point within lambda of z = 0 has its whole kernel.
-    lattice(33, static_cast<int>(2.0 * (lambda + 4.0 * l) / h) + 1, h, x, vol);
+    mpm_test::plane_lattice(33, static_cast<int>(2.0 * (lambda + 4.0 * l) / h) + 1, h, x, vol);
     const std::vector<std::int32_t> material(x.size(), 0);
     const double k = 2.0 * M_PI / lambda;
     std::vector<Mat3> L(x.size(), Mat3::Zero());

@@ -10,6 +10,7 @@
 
 #include "common/errors.hpp"
 #include "mpm/nonlocal_average.hpp"
+#include "plane_lattice.hpp"
 
 namespace {
 
@@ -22,16 +23,11 @@ Mat3 filled(double a) {
   return m;
 }
 
-/// A regular plane (x, z) lattice of spacing h, n x n points centred on 0, y = 0, volume h^2.
+/// n x n points of spacing h centred on 0 (a fresh lattice).
 void lattice(int n, double h, std::vector<Vec3>& x, std::vector<double>& vol) {
   x.clear();
   vol.clear();
-  for (int k = 0; k < n; ++k) {
-    for (int i = 0; i < n; ++i) {
-      x.emplace_back((i - 0.5 * (n - 1)) * h, 0.0, (k - 0.5 * (n - 1)) * h);
-      vol.push_back(h * h);
-    }
-  }
+  mpm_test::plane_lattice(n, n, h, x, vol);
 }
 
 TEST(NonlocalAverage, HomogeneousFieldUnchangedEverywhere) {
