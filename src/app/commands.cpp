@@ -191,15 +191,24 @@ std::filesystem::path open_output(const Options& o, const Job& job, const Comm& 
   check_output(o, comm);  // every rank has checked before anything is written
   on_root(comm, [&] {
     create_output_dir(out);
-    lock_output_dir(out);
     try {
-      add_log_file((out / "log.txt").string());
-    } catch (const std::exception& e) {
-      throw common::InputError(
-          fmt::format("cannot write the log file '{}': {}", (out / "log.txt").string(), e.what()));
+      lock_output_dir(out);
+      try {
+        add_log_file((out / "log.txt").string());
+      } catch (const std::exception& e) {
+        throw common::InputError(fmt::format("cannot write the log file '{}': {}",
+                                             (out / "log.txt").string(), e.what()));
+      }
+      write_file_atomic(out / "job.toml", job.source_text());
+      write_file_atomic(out / "job.resolved.toml", job.resolved_toml());
+    } catch (const common::IoError& e) {
+      // The storage failed before the run began (a full disk, a quota): exit 4, and nothing of
+      // the run is left, as for a run refused (main takes back what an input error leaves).
+      remove_log_file();
+      const std::string undone = discard_refused_output();
+      throw common::IoError(std::string(e.what()) +
+                            (undone.empty() ? std::string() : "\nnothing written: " + undone));
     }
-    write_file_atomic(out / "job.toml", job.source_text());
-    write_file_atomic(out / "job.resolved.toml", job.resolved_toml());
   });
   spdlog::info("mpmxdem {} `{}` on {} rank(s); job {}; output {}", kVersion, o.command, comm.size,
                o.job, out.string());

@@ -218,9 +218,11 @@ void lock_output_dir(const fs::path& dir) {
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   const std::string text = fmt::format("pid {} host {} since {}\n", ::getpid(), host, when);
   if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) < 0) {
+    const int err = errno;
     ::close(fd);
-    throw common::InputError(
-        fmt::format("cannot write the lock file '{}': {}", file.string(), std::strerror(errno)));
+    // The directory was writable (the file was created): the storage failed (exit 4).
+    throw common::IoError(
+        fmt::format("cannot write the lock file '{}': {}", file.string(), std::strerror(err)));
   }
   g_lock_fd = fd;
 }

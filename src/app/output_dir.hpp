@@ -32,7 +32,8 @@ std::string discard_refused_output() noexcept;
 /// Takes the exclusive lock of an output directory for the rest of this process's life: the file
 /// dir/mpmxdem.lock is locked (flock) and then holds "pid <pid> host <host> since <UTC time>".
 /// A lock held by a live process (another run, or a stray rank of a killed launch) is an
-/// InputError naming the holder; a lock file left by a process that ended is taken over.
+/// InputError naming the holder; a lock file left by a process that ended is taken over. A lock
+/// file that cannot be written (a full disk) is a common::IoError.
 void lock_output_dir(const std::filesystem::path& dir);
 /// The name of the lock file in an output directory.
 inline constexpr const char* kLockFile = "mpmxdem.lock";

@@ -84,15 +84,32 @@ void publish_file(const fs::path& tmp, const fs::path& path) {
   rename_durably(tmp, path);
 }
 
-void write_file_atomic(const fs::path& path, std::string_view content) {
-  const fs::path tmp = staging_path(path);
+void write_new_file(const fs::path& path, std::string_view content) {
   try {
-    write_synced(tmp, content);
+    write_synced(path, content);
   } catch (const IoError&) {
-    ::unlink(tmp.c_str());  // best effort: do not leave a partial file filling the disk
+    ::unlink(path.c_str());  // best effort: do not leave a partial file filling the disk
     throw;
   }
+}
+
+void write_file_atomic(const fs::path& path, std::string_view content) {
+  const fs::path tmp = staging_path(path);
+  write_new_file(tmp, content);
   rename_durably(tmp, path);
+}
+
+void reserve_space(const fs::path& path, std::uint64_t bytes) {
+  const fs::path probe(path.string() + ".reserve");
+  Fd fd(::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  if (fd.get() < 0) fail(probe, "create", errno);
+  const int err = ::posix_fallocate(fd.get(), 0, static_cast<off_t>(bytes));
+  fd.close();
+  ::unlink(probe.c_str());
+  if (err != 0) {
+    throw IoError("no room for the next " + std::to_string(bytes) + " bytes of '" + path.string() +
+                  "': " + std::strerror(err));
+  }
 }
 
 std::string read_file_bytes(const std::filesystem::path& path) {

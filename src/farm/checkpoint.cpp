@@ -1,5 +1,5 @@
-// Farm checkpoints: the format (what goes where, docs/reference/checkpoint.md) on top of the typed HDF5
-// layer (farm/h5_file.hpp: blocks with checksums) and the atomic publication
+// Farm checkpoints: the format (what goes where, docs/reference/checkpoint.md) on top of the typed
+// HDF5 layer (farm/h5_file.hpp: blocks with checksums) and the atomic publication
 // (common/atomic_file.hpp).
 #include "farm/checkpoint.hpp"
 
@@ -128,8 +128,8 @@ std::size_t run_begin(std::size_t n, int r, int size) {
 /// [run_begin(r), run_begin(r + 1)) in index order: one contiguous run of /rve/fields/<name>.
 /// A selection of one block per rank makes the collective write cost the same whatever the
 /// owners; with METIS's interleaved owners, one block per RVE made it grow with the square of
-/// the RVEs per rank (docs/validation/scaling.md, finding 4). Returns false (nothing sent) on one rank
-/// (its blocks are one run already) and where a rank would send or receive more than INT_MAX
+/// the RVEs per rank (docs/validation/scaling.md, finding 4). Returns false (nothing sent) on one
+/// rank (its blocks are one run already) and where a rank would send or receive more than INT_MAX
 /// values (MPI's int counts): the caller then writes the blocks of its own RVEs.
 template <class T>
 bool gather_runs(MPI_Comm comm, const std::vector<int>& owner,
@@ -334,10 +334,12 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
   std::string job = d.job_text;
   bcast_string(comm, job);
 
-  // From here on, HDF5 collectives: a failure on one rank would leave the others waiting in a
-  // collective, so it aborts the job (docs/design/architecture.md: a run never hangs).
+  // Rank 0 writes the file (h5::File); a failure of the storage (disk full, quota, I/O error) is
+  // thrown by create() or close() on every rank, the file removed, the earlier checkpoints kept.
+  h5::File file = h5::File::create(comm, tmp);
+  // Any other failure may have happened on one rank only, inside a collective: it aborts the job
+  // (docs/design/architecture.md: a run never hangs).
   try {
-    h5::File file = h5::File::create(comm, tmp);
     file.write_attribute("format", std::string(kCheckpointFormat));
     file.write_attribute("format_version", kCheckpointVersion);
     file.write_attribute("step", d.step);
@@ -372,12 +374,12 @@ void write_checkpoint(MPI_Comm comm, const std::string& final_path, const Checkp
       with_type(f.type,
                 [&]<class T>(std::type_identity<T>) { write_rve_field<T>(file, comm, d, f.name); });
     }
-    file.close();  // collective: everything is on disk (up to the OS cache)
   } catch (const std::exception& e) {
     std::cerr << "farm: rank " << rank << ": writing checkpoint " << tmp << " failed: " << e.what()
               << "; aborting the job\n";
     MPI_Abort(comm, 4);
   }
+  file.close();  // collective: everything is on disk (up to the OS cache), or rank 0's failure
 
   // Atomic publication by rank 0; its failure (common::IoError) is thrown on every rank.
   ErrorKind kind = ErrorKind::none;

@@ -6,7 +6,9 @@
 #include <sstream>
 #include <type_traits>
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "farm/mpi_util.hpp"
 
 namespace farm::h5 {
 
@@ -15,11 +17,13 @@ namespace {
 /// Chunk length of a checkpoint dataset (elements); a chunk may not exceed a fixed-size dataset.
 constexpr hsize_t kChunk = hsize_t{1} << 16U;
 constexpr unsigned kDeflateLevel = 4;
+/// Growth step of a file built in memory (bytes).
+constexpr std::size_t kCoreIncrement = std::size_t{64} << 20U;
 
 /// `blocks` (ascending, disjoint) with empty ones dropped and adjacent ones merged: one
 /// hyperslab per run of consecutive RVEs, so that the collective filtered-chunk path exchanges
-/// one piece per run instead of one per RVE (docs/validation/scaling.md, finding 4). The file layout and
-/// the checksums (position-keyed) do not depend on how a selection is split.
+/// one piece per run instead of one per RVE (docs/validation/scaling.md, finding 4). The file
+/// layout and the checksums (position-keyed) do not depend on how a selection is split.
 std::vector<Block> merged(std::span<const Block> blocks) {
   std::vector<Block> out;
   for (const Block& b : blocks) {
@@ -62,16 +66,47 @@ File File::create(MPI_Comm comm, const std::string& path) {
   f.what_ = "file";
   f.comm_ = comm;
   MPI_Comm_rank(comm, &f.rank_);
-  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
-  check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio");
-  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
-  if (id < 0) throw common::IoError("cannot create HDF5 file '" + path + "'");
-  f.file_ = Handle(id, H5Fclose);
-  f.lcpl_ = Handle(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
-  check(H5Pset_create_intermediate_group(f.lcpl_.get(), 1), "H5Pset_create_intermediate_group");
-  f.dxpl_ = Handle(check(H5Pcreate(H5P_DATASET_XFER), "H5Pcreate"), H5Pclose);
-  check(H5Pset_dxpl_mpio(f.dxpl_.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  f.on_root("create", [&] {
+    // The file is built in memory (the core driver, no backing store) and written by close() in
+    // one piece with plain system calls: HDF5 never meets a failing disk, whose errors leave its
+    // file objects half closed (HDF5 1.10 then crashes in MPI_Finalize).
+    Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+    check(H5Pset_fapl_core(fapl.get(), kCoreIncrement, 0), "H5Pset_fapl_core");
+    f.file_ = Handle(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
+                           "create HDF5 file " + path),
+                     H5Fclose);
+    f.lcpl_ = Handle(check(H5Pcreate(H5P_LINK_CREATE), "H5Pcreate"), H5Pclose);
+    check(H5Pset_create_intermediate_group(f.lcpl_.get(), 1), "H5Pset_create_intermediate_group");
+    // Nothing is on disk yet: make sure the file can be created at all, now.
+    common::write_new_file(path, "");
+  });
+  f.agree();  // a file that cannot be created fails every rank here
   return f;
+}
+
+template <class F>
+void File::on_root(const char* what, F&& f) {
+  if (rank_ != 0 || !error_.empty()) return;
+  try {
+    f();
+  } catch (...) {
+    error_kind_ = current_error_kind();
+    error_ = common::current_error_text();
+    // Name the file where the failure does not (an HDF5 call's).
+    if (error_.find(path_) == std::string::npos)
+      error_ = "writing '" + path_ + "' (" + what + "): " + error_;
+  }
+}
+
+void File::agree() {
+  if (rank_ == 0 && !error_.empty()) {
+    // Nothing of a file that failed is kept: it would only hold the disk's last free bytes.
+    lcpl_.reset();
+    file_.reset();
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  agree_on_errors(comm_, error_.empty() ? ErrorKind::none : error_kind_, error_);
 }
 
 File File::open(const std::string& path, const std::string& what) {
@@ -91,11 +126,14 @@ File File::open(const std::string& path, const std::string& what) {
 // ---------------------------------------------------------------- writing
 
 void File::attribute(const char* name, hid_t type, const void* value) {
-  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
-  Handle attr(check(H5Acreate2(file_.get(), name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                    std::string("create attribute ") + name),
-              H5Aclose);
-  check(H5Awrite(attr.get(), type, value), std::string("write attribute ") + name);
+  on_root(name, [&] {
+    Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    Handle attr(check(H5Acreate2(file_.get(), name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                      std::string("create attribute ") + name),
+                H5Aclose);
+    check(H5Awrite(attr.get(), type, value), std::string("write attribute ") + name);
+    check(attr.close(), std::string("close attribute ") + name);
+  });
 }
 
 void File::write_attribute(const char* name, std::int64_t value) {
@@ -108,11 +146,50 @@ void File::write_attribute(const char* name, double value) {
 
 void File::write_attribute(const char* name, const std::string& value) {
   // A fixed-length string of the text's size (HDF5 has no zero-length string type: "" is "\0").
-  Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
-  check(H5Tset_size(type.get(), std::max<std::size_t>(1, value.size())), "H5Tset_size");
   const std::string v = value.empty() ? std::string(1, '\0') : value;
-  attribute(name, type.get(), v.data());
+  on_root(name, [&] {
+    Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+    check(H5Tset_size(type.get(), v.size()), "H5Tset_size");
+    Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    Handle attr(
+        check(H5Acreate2(file_.get(), name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              std::string("create attribute ") + name),
+        H5Aclose);
+    check(H5Awrite(attr.get(), type.get(), v.data()), std::string("write attribute ") + name);
+    check(attr.close(), std::string("close attribute ") + name);
+  });
 }
+
+namespace {
+
+/// Largest number of elements sent in one message (MPI counts are ints).
+constexpr std::uint64_t kMessage = std::uint64_t{1} << 28U;
+
+/// Sends (rank > 0) or receives (rank 0, from `from`) a vector in messages of at most kMessage
+/// elements; the receiver learns the length first.
+template <class T>
+void send_vector(MPI_Comm comm, const std::vector<T>& v) {
+  std::uint64_t n = v.size();
+  MPI_Send(&n, 1, MPI_UINT64_T, 0, 0, comm);
+  for (std::uint64_t at = 0; at < n; at += kMessage) {
+    const int c = static_cast<int>(std::min(kMessage, n - at) * sizeof(T));
+    MPI_Send(v.data() + at, c, MPI_BYTE, 0, 0, comm);
+  }
+}
+
+template <class T>
+std::vector<T> receive_vector(MPI_Comm comm, int from) {
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, comm, MPI_STATUS_IGNORE);
+  std::vector<T> v(n);
+  for (std::uint64_t at = 0; at < n; at += kMessage) {
+    const int c = static_cast<int>(std::min(kMessage, n - at) * sizeof(T));
+    MPI_Recv(v.data() + at, c, MPI_BYTE, from, 0, comm, MPI_STATUS_IGNORE);
+  }
+  return v;
+}
+
+}  // namespace
 
 template <Element T>
 void File::write_blocks(const std::string& name, std::uint64_t global_n,
@@ -121,37 +198,68 @@ void File::write_blocks(const std::string& name, std::uint64_t global_n,
   const std::uint64_t local = checksum(blocks, data);
   std::uint64_t total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  const std::vector<Block> mine = merged(blocks);
+  int size = 1;
+  MPI_Comm_size(comm_, &size);
+  if (rank_ != 0) {
+    // Rank 0 writes the file: this rank's pieces go to it, whether or not its writing failed
+    // (the messages are the same either way, so no rank can be left waiting).
+    std::vector<std::uint64_t> desc;
+    for (const Block& b : mine) desc.insert(desc.end(), {b.offset, b.count});
+    send_vector(comm_, desc);
+    send_vector(comm_, std::vector<T>(data, data + total_count(blocks)));
+    return;
+  }
+  Handle dset;
+  Handle fspace;
   const hsize_t dims[1] = {global_n};
-  Handle fspace(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
-  Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
-  if (global_n > 0) {
-    const hsize_t chunk[1] = {std::min<hsize_t>(global_n, kChunk)};
-    check(H5Pset_chunk(dcpl.get(), 1, chunk), "H5Pset_chunk " + name);
-    check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
-    check(H5Pset_deflate(dcpl.get(), kDeflateLevel), "H5Pset_deflate");
+  on_root(name.c_str(), [&] {
+    fspace = Handle(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
+    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+    if (global_n > 0) {
+      const hsize_t chunk[1] = {std::min<hsize_t>(global_n, kChunk)};
+      check(H5Pset_chunk(dcpl.get(), 1, chunk), "H5Pset_chunk " + name);
+      check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
+      check(H5Pset_deflate(dcpl.get(), kDeflateLevel), "H5Pset_deflate");
+    }
+    // A chunk shared by two ranks' pieces stays in the cache between their writes.
+    Handle dapl(check(H5Pcreate(H5P_DATASET_ACCESS), "H5Pcreate"), H5Pclose);
+    check(H5Pset_chunk_cache(dapl.get(), 521, 8 * kChunk * sizeof(T), 1.0), "H5Pset_chunk_cache");
+    dset = Handle(check(H5Dcreate2(file_.get(), name.c_str(), native_type<T>(), fspace.get(),
+                                   lcpl_.get(), dcpl.get(), dapl.get()),
+                        "create dataset " + name),
+                  H5Dclose);
+  });
+  const auto write_piece = [&](std::span<const Block> piece, const T* values) {
+    const std::uint64_t n = total_count(piece);
+    if (n == 0) return;
+    on_root(name.c_str(), [&] {
+      const hsize_t mdims[1] = {n};
+      Handle mspace(check(H5Screate_simple(1, mdims, nullptr), "H5Screate_simple"), H5Sclose);
+      select_blocks(fspace.get(), piece);
+      check(H5Dwrite(dset.get(), native_type<T>(), mspace.get(), fspace.get(), H5P_DEFAULT, values),
+            "write dataset " + name);
+    });
+  };
+  write_piece(mine, data);
+  for (int r = 1; r < size; ++r) {
+    const auto desc = receive_vector<std::uint64_t>(comm_, r);
+    const auto values = receive_vector<T>(comm_, r);
+    std::vector<Block> piece;
+    for (std::size_t i = 0; i + 1 < desc.size(); i += 2) piece.push_back({desc[i], desc[i + 1]});
+    write_piece(piece, values.data());
   }
-  Handle dset(check(H5Dcreate2(file_.get(), name.c_str(), native_type<T>(), fspace.get(),
-                               lcpl_.get(), dcpl.get(), H5P_DEFAULT),
-                    "create dataset " + name),
-              H5Dclose);
-  if (global_n > 0) {
-    // Every rank takes part in the collective write, an empty selection included.
-    const std::uint64_t local_n = total_count(blocks);
-    const hsize_t mdims[1] = {local_n};
-    Handle mspace(check(H5Screate_simple(1, mdims, nullptr), "H5Screate_simple"), H5Sclose);
-    select_blocks(fspace.get(), blocks);
-    if (local_n == 0) check(H5Sselect_none(mspace.get()), "H5Sselect_none");
-    const T dummy{};
-    check(H5Dwrite(dset.get(), native_type<T>(), mspace.get(), fspace.get(), dxpl_.get(),
-                   local_n == 0 ? &dummy : data),
-          "write dataset " + name);
-  }
-  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
-  Handle attr(check(H5Acreate2(dset.get(), "hash64", H5T_NATIVE_UINT64, space.get(), H5P_DEFAULT,
-                               H5P_DEFAULT),
-                    "create attribute hash64 of " + name),
-              H5Aclose);
-  check(H5Awrite(attr.get(), H5T_NATIVE_UINT64, &total), "write attribute hash64 of " + name);
+  on_root(name.c_str(), [&] {
+    Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    Handle attr(check(H5Acreate2(dset.get(), "hash64", H5T_NATIVE_UINT64, space.get(), H5P_DEFAULT,
+                                 H5P_DEFAULT),
+                      "create attribute hash64 of " + name),
+                H5Aclose);
+    check(H5Awrite(attr.get(), H5T_NATIVE_UINT64, &total), "write attribute hash64 of " + name);
+    check(attr.close(), "close attribute hash64 of " + name);
+    // Closing writes the dataset's cached chunks: a full disk shows here.
+    check(dset.close(), "write dataset " + name);
+  });
 }
 
 template <Element T>
@@ -162,14 +270,27 @@ void File::write_from_root(const std::string& name, std::uint64_t n, const T* da
                   data);
 }
 
-void File::flush() { check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "H5Fflush " + path_); }
+void File::flush() {
+  // The file is in memory until close(): what a crash would leave is an empty file.
+  on_root("flush", [&] { check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "H5Fflush " + path_); });
+}
 
 void File::close() {
-  dxpl_.reset();
-  lcpl_.reset();
-  if (file_.valid() && H5Fclose(file_.get()) < 0) {
-    throw common::IoError("closing HDF5 file '" + path_ + "' failed");
+  if (comm_ == MPI_COMM_NULL) {  // opened for reading
+    file_ = Handle();
+    return;
   }
+  lcpl_.reset();
+  on_root("close", [&] {
+    if (!file_.valid()) return;
+    check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + path_);
+    const ssize_t n = check(H5Fget_file_image(file_.get(), nullptr, 0), "H5Fget_file_image");
+    std::string image(static_cast<std::size_t>(n), '\0');
+    check(H5Fget_file_image(file_.get(), image.data(), image.size()), "H5Fget_file_image");
+    check(file_.close(), "H5Fclose " + path_);
+    common::write_new_file(path_, image);
+  });
+  agree();
   file_ = Handle();
 }
 

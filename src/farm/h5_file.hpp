@@ -1,7 +1,8 @@
-// Typed HDF5 layer of the farm: one file, created collectively (MPI-IO) or opened read-only by one
-// process; one-dimensional datasets of double, int64 or uint8 (text) written and read as blocks
-// with the checksum built in (attribute hash64, farm/checksum.hpp); scalar attributes. It knows
-// nothing of what a checkpoint holds: farm/checkpoint.cpp keeps the format.
+// Typed HDF5 layer of the farm: one file, created collectively (rank 0 writes it, the other ranks
+// send it their pieces) or opened read-only by one process; one-dimensional datasets of double,
+// int64 or uint8 (text) written and read as blocks with the checksum built in (attribute hash64,
+// farm/checksum.hpp); scalar attributes. It knows nothing of what a checkpoint holds:
+// farm/checkpoint.cpp keeps the format.
 #pragma once
 
 #include <mpi.h>
@@ -14,6 +15,7 @@
 
 #include "farm/checksum.hpp"
 #include "farm/h5_util.hpp"
+#include "farm/mpi_util.hpp"
 
 namespace farm::h5 {
 
@@ -24,8 +26,13 @@ concept Element =
 
 class File {
  public:
-  /// Collective over `comm`: creates (truncates) `path` with the MPI-IO driver; every write call
-  /// below is then collective. Throws common::IoError when the file cannot be created.
+  /// Collective over `comm`: rank 0 creates (truncates) `path`; every write call below is then
+  /// collective, and rank 0 writes what every rank sends it. Not MPI-IO: parallel HDF5 has no
+  /// collective error handling, and a write that fails on one rank (a full disk) leaves the others
+  /// waiting forever inside H5Fclose (docs/reference/errors.md, "Storage that fails"). Rank 0
+  /// keeps its first failure and goes on with the messages, skipping HDF5; close() then throws it
+  /// on every rank (common::IoError naming the file and the system's reason) and removes the file.
+  /// Throws common::IoError on every rank when the file cannot be created.
   [[nodiscard]] static File create(MPI_Comm comm, const std::string& path);
   /// Opens `path` read-only in this process. `what` starts every error message ("checkpoint").
   /// Throws common::InputError "<what> <path>: ..." when the file does not exist, is not HDF5
@@ -58,7 +65,7 @@ class File {
   /// Writes the buffered data of every rank to the file.
   void flush();
   /// Closes the file (collective for a created file): what was written is complete on disk, up
-  /// to the operating system's cache.
+  /// to the operating system's cache; or every rank throws rank 0's first failure.
   void close();
 
   // ------------------------------------------------------------ reading (this process)
@@ -90,14 +97,20 @@ class File {
   Handle open_dataset(const std::string& name, std::uint64_t& n) const;
   [[nodiscard]] std::uint64_t stored_checksum(hid_t dset, const std::string& name) const;
   void attribute(const char* name, hid_t type, const void* value);
+  /// Runs `f` on rank 0 unless an earlier call failed there; keeps its failure.
+  template <class F>
+  void on_root(const char* what, F&& f);
+  /// Collective: every rank throws rank 0's failure, if any (its file removed first).
+  void agree();
 
   std::string path_;
   std::string what_;
   MPI_Comm comm_ = MPI_COMM_NULL;  ///< set when created collectively
   int rank_ = 0;
   Handle file_;
-  Handle lcpl_;  ///< creates intermediate groups
-  Handle dxpl_;  ///< collective MPI-IO transfers
+  Handle lcpl_;                             ///< creates intermediate groups
+  std::string error_;                       ///< rank 0's first failure while writing
+  ErrorKind error_kind_ = ErrorKind::none;  ///< its kind (common::IoError for the system's)
 };
 
 }  // namespace farm::h5

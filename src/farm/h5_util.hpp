@@ -27,9 +27,14 @@ class Handle {
     return *this;
   }
   ~Handle() { reset(); }
-  void reset() {
-    if (id_ >= 0 && closer_ != nullptr) closer_(id_);
+  void reset() { (void)close(); }
+  /// Closes now; returns the closer's status (a failed flush of what the object held), which
+  /// reset() and the destructor ignore.
+  herr_t close() {
+    herr_t status = 0;
+    if (id_ >= 0 && closer_ != nullptr) status = closer_(id_);
     id_ = -1;
+    return status;
   }
   [[nodiscard]] hid_t get() const { return id_; }
   [[nodiscard]] bool valid() const { return id_ >= 0; }
@@ -41,7 +46,11 @@ class Handle {
 
 /// Turns off HDF5's own error printing (our messages name the file and the dataset).
 void silence_errors();
-/// Throws common::InternalError("HDF5: <what> failed") when status < 0; returns status.
+/// The system's reason of the latest HDF5 failure on this thread's error stack ("No space left
+/// on device"), or "" when the failure was not a system call's.
+[[nodiscard]] std::string system_reason();
+/// When status < 0 throws common::IoError("HDF5: <what> failed: <system's reason>") if a system
+/// call failed, else common::InternalError("HDF5: <what> failed"); returns status.
 hid_t check(hid_t status, const std::string& what);
 
 template <class T>

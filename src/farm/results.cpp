@@ -272,6 +272,9 @@ void ResultsWriter::stage_row(const std::string& name, const void* data) {
 
 void ResultsWriter::write_pending() {
   if (pending_ == 0) return;
+  // HDF5 must not meet a full disk half-way (common::reserve_space): room for the rows as they
+  // are (deflate hardly grows them) and for the chunk index and metadata they add.
+  common::reserve_space(std::filesystem::path(dir_) / "results.h5", pending_bytes_ + kReserveSlack);
   const auto first = static_cast<hsize_t>(rows_);
   const auto count0 = static_cast<hsize_t>(pending_);
   for (auto& [name, sp] : series_) {
@@ -296,7 +299,7 @@ void ResultsWriter::write_pending() {
   pending_ = 0;
   pending_bytes_ = 0;
   // On disk after every block: a reader that opens the file now sees every row written so far.
-  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush results.h5");
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + dir_ + "/results.h5");
 }
 
 void ResultsWriter::append(std::int64_t step, double time,
@@ -410,7 +413,7 @@ void ResultsWriter::flush(bool indexes) {
   if (pending_ > 0) {
     write_pending();  // flushes results.h5
   } else {
-    check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush results.h5");
+    check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + dir_ + "/results.h5");
   }
   // points.xmf and means.csv are rewritten whole (atomic rename): O(rows), 0.4 s at 13,000 rows
   // on these machines. Unless asked for, at most 1 / kIndexShare times their last cost apart.
@@ -430,7 +433,8 @@ void ResultsWriter::write_csv() const {
   auto it = std::back_inserter(out);
   // The first line is the header (pandas, csv.DictReader, numpy.genfromtxt(names=True) and
   // ParaView's CSV reader take it so); units are the names' suffixes (_s, _Pa; strains are [-]).
-  // Definitions and sign conventions: the attributes of /means/* in results.h5, docs/design/farm.md.
+  // Definitions and sign conventions: the attributes of /means/* in results.h5,
+  // docs/design/farm.md.
   fmt::format_to(it, "{}\n", kMeansCsvHeader);
   for (std::size_t t = 0; t < steps_.size(); ++t) {
     const std::array<double, 4>& m = means_[t];

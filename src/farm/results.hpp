@@ -69,8 +69,11 @@ class ResultsWriter {
 
   static constexpr std::int64_t kRowsPerWrite = 64;
   static constexpr std::size_t kBytesPerWrite = 8u << 20;
+  /// Room reserved beyond a block's rows before HDF5 writes it (chunk and metadata overhead).
+  static constexpr std::size_t kReserveSlack = 1u << 20;
   static constexpr double kIndexShare = 0.005;  ///< wall-time share of index rewrites [-]
-  /// Root attributes "format" and "format_version" of results.h5 (the layout of docs/design/farm.md).
+  /// Root attributes "format" and "format_version" of results.h5 (the layout of
+  /// docs/design/farm.md).
   static constexpr const char* kFormat = "mpmxdem results";
   static constexpr std::int64_t kFormatVersion = 1;
   /// First line of means.csv: the column names, units as suffixes (strains are [-]).

@@ -359,7 +359,14 @@ void RveFarm::exec_checkpoint(const CommandHeader& h, std::string path, std::str
   d.local_states.resize(local.size());
   for (std::size_t j = 0; j < local.size(); ++j) model(local[j]).save(d.local_states[j]);
   d.mpm = mpm_state;
-  write_checkpoint(comm_, path, d, h.flag != 0);
+  try {
+    write_checkpoint(comm_, path, d, h.flag != 0);
+  } catch (...) {
+    // Its failures are thrown on every rank (agreed): the workers leave serve() with it, and
+    // rank 0 must not send them a stop they would never receive.
+    stopped_ = true;
+    throw;
+  }
 }
 
 bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Vec3>& x) {
