@@ -11,6 +11,9 @@ find_package(HDF5 1.10 REQUIRED COMPONENTS C)
 if(NOT HDF5_IS_PARALLEL)
   message(FATAL_ERROR "mpmxdem needs parallel HDF5 (Debian: libhdf5-openmpi-dev); found a serial one")
 endif()
+# The checkpoints' chunks are deflated by the ranks themselves (farm/h5_chunks.cpp); zlib1g-dev
+# comes with libhdf5-dev.
+find_package(ZLIB REQUIRED)
 
 find_path(METIS_INCLUDE_DIR metis.h REQUIRED)
 find_library(METIS_LIBRARY metis REQUIRED)

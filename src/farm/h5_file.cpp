@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <type_traits>
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "farm/h5_chunks.hpp"
 #include "farm/mpi_util.hpp"
 
 namespace farm::h5 {
@@ -191,6 +193,48 @@ std::vector<T> receive_vector(MPI_Comm comm, int from) {
 
 }  // namespace
 
+namespace {
+
+/// What one rank gives rank 0 of a dataset: the chunks its pieces cover whole, encoded (shuffled
+/// and deflated here, spreading the compression over the ranks), and the raw values of the chunks
+/// they cover in part (the ends of a rank's run), which rank 0 completes with the other ranks'.
+template <class T>
+struct Share {
+  std::vector<std::uint64_t> chunks;  ///< (chunk index, encoded bytes) pairs
+  std::string bytes;                  ///< the encoded chunks, concatenated
+  std::vector<std::uint64_t> parts;   ///< (offset, count) pairs of the raw values
+  std::vector<T> values;              ///< the raw values, concatenated
+};
+
+template <class T>
+Share<T> share_of(std::span<const Block> blocks, const T* data, std::uint64_t chunk,
+                  std::uint64_t n) {
+  Share<T> out;
+  std::uint64_t pos = 0;
+  for (const Block& b : blocks) {
+    const std::uint64_t end = b.offset + b.count;
+    for (std::uint64_t at = b.offset; at < end;) {
+      const std::uint64_t c = at / chunk;
+      const std::uint64_t c_end = std::min((c + 1) * chunk, n);
+      const std::uint64_t to = std::min(c_end, end);
+      const T* v = data + pos + (at - b.offset);
+      if (at == c * chunk && to == c_end) {  // the whole chunk
+        const std::string e = encode_chunk(std::span<const T>(v, to - at), chunk, kDeflateLevel);
+        out.chunks.insert(out.chunks.end(), {c, e.size()});
+        out.bytes += e;
+      } else {
+        out.parts.insert(out.parts.end(), {at, to - at});
+        out.values.insert(out.values.end(), v, v + (to - at));
+      }
+      at = to;
+    }
+    pos += b.count;
+  }
+  return out;
+}
+
+}  // namespace
+
 template <Element T>
 void File::write_blocks(const std::string& name, std::uint64_t global_n,
                         std::span<const Block> blocks, const T* data) {
@@ -198,58 +242,76 @@ void File::write_blocks(const std::string& name, std::uint64_t global_n,
   const std::uint64_t local = checksum(blocks, data);
   std::uint64_t total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
-  const std::vector<Block> mine = merged(blocks);
+  const std::uint64_t chunk = std::min<std::uint64_t>(std::max<std::uint64_t>(global_n, 1), kChunk);
+  Share<T> share = share_of(std::span<const Block>(merged(blocks)), data, chunk, global_n);
   int size = 1;
   MPI_Comm_size(comm_, &size);
   if (rank_ != 0) {
-    // Rank 0 writes the file: this rank's pieces go to it, whether or not its writing failed
+    // Rank 0 writes the file: this rank's share goes to it, whether or not its writing failed
     // (the messages are the same either way, so no rank can be left waiting).
-    std::vector<std::uint64_t> desc;
-    for (const Block& b : mine) desc.insert(desc.end(), {b.offset, b.count});
-    send_vector(comm_, desc);
-    send_vector(comm_, std::vector<T>(data, data + total_count(blocks)));
+    send_vector(comm_, share.chunks);
+    send_vector(comm_, std::vector<char>(share.bytes.begin(), share.bytes.end()));
+    send_vector(comm_, share.parts);
+    send_vector(comm_, share.values);
     return;
   }
   Handle dset;
-  Handle fspace;
-  const hsize_t dims[1] = {global_n};
   on_root(name.c_str(), [&] {
-    fspace = Handle(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
+    const hsize_t dims[1] = {global_n};
+    Handle fspace(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
     Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
     if (global_n > 0) {
-      const hsize_t chunk[1] = {std::min<hsize_t>(global_n, kChunk)};
-      check(H5Pset_chunk(dcpl.get(), 1, chunk), "H5Pset_chunk " + name);
+      const hsize_t dim[1] = {chunk};
+      check(H5Pset_chunk(dcpl.get(), 1, dim), "H5Pset_chunk " + name);
       check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
       check(H5Pset_deflate(dcpl.get(), kDeflateLevel), "H5Pset_deflate");
     }
-    // A chunk shared by two ranks' pieces stays in the cache between their writes.
-    Handle dapl(check(H5Pcreate(H5P_DATASET_ACCESS), "H5Pcreate"), H5Pclose);
-    check(H5Pset_chunk_cache(dapl.get(), 521, 8 * kChunk * sizeof(T), 1.0), "H5Pset_chunk_cache");
     dset = Handle(check(H5Dcreate2(file_.get(), name.c_str(), native_type<T>(), fspace.get(),
-                                   lcpl_.get(), dcpl.get(), dapl.get()),
+                                   lcpl_.get(), dcpl.get(), H5P_DEFAULT),
                         "create dataset " + name),
                   H5Dclose);
   });
-  const auto write_piece = [&](std::span<const Block> piece, const T* values) {
-    const std::uint64_t n = total_count(piece);
-    if (n == 0) return;
+  // Chunks covered in part by a rank's share, filled from every rank's raw values.
+  std::map<std::uint64_t, std::vector<T>> partial;
+  const auto store = [&](const Share<T>& sh) {
     on_root(name.c_str(), [&] {
-      const hsize_t mdims[1] = {n};
-      Handle mspace(check(H5Screate_simple(1, mdims, nullptr), "H5Screate_simple"), H5Sclose);
-      select_blocks(fspace.get(), piece);
-      check(H5Dwrite(dset.get(), native_type<T>(), mspace.get(), fspace.get(), H5P_DEFAULT, values),
-            "write dataset " + name);
+      std::uint64_t at = 0;
+      for (std::size_t i = 0; i + 1 < sh.chunks.size(); i += 2) {
+        const hsize_t offset[1] = {sh.chunks[i] * chunk};
+        check(H5Dwrite_chunk(dset.get(), H5P_DEFAULT, 0, offset, sh.chunks[i + 1],
+                             sh.bytes.data() + at),
+              "write dataset " + name);
+        at += sh.chunks[i + 1];
+      }
     });
+    std::uint64_t pos = 0;
+    for (std::size_t i = 0; i + 1 < sh.parts.size(); i += 2) {
+      const std::uint64_t c = sh.parts[i] / chunk;
+      std::vector<T>& buf = partial[c];
+      buf.resize(std::min(chunk, global_n - c * chunk));
+      std::copy_n(sh.values.begin() + static_cast<std::ptrdiff_t>(pos), sh.parts[i + 1],
+                  buf.begin() + static_cast<std::ptrdiff_t>(sh.parts[i] - c * chunk));
+      pos += sh.parts[i + 1];
+    }
   };
-  write_piece(mine, data);
+  store(share);
+  share = Share<T>();
   for (int r = 1; r < size; ++r) {
-    const auto desc = receive_vector<std::uint64_t>(comm_, r);
-    const auto values = receive_vector<T>(comm_, r);
-    std::vector<Block> piece;
-    for (std::size_t i = 0; i + 1 < desc.size(); i += 2) piece.push_back({desc[i], desc[i + 1]});
-    write_piece(piece, values.data());
+    Share<T> sh;
+    sh.chunks = receive_vector<std::uint64_t>(comm_, r);
+    const auto bytes = receive_vector<char>(comm_, r);
+    sh.bytes.assign(bytes.begin(), bytes.end());
+    sh.parts = receive_vector<std::uint64_t>(comm_, r);
+    sh.values = receive_vector<T>(comm_, r);
+    store(sh);
   }
   on_root(name.c_str(), [&] {
+    for (const auto& [c, values] : partial) {
+      const std::string e = encode_chunk(std::span<const T>(values), chunk, kDeflateLevel);
+      const hsize_t offset[1] = {c * chunk};
+      check(H5Dwrite_chunk(dset.get(), H5P_DEFAULT, 0, offset, e.size(), e.data()),
+            "write dataset " + name);
+    }
     Handle space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
     Handle attr(check(H5Acreate2(dset.get(), "hash64", H5T_NATIVE_UINT64, space.get(), H5P_DEFAULT,
                                  H5P_DEFAULT),
@@ -257,8 +319,7 @@ void File::write_blocks(const std::string& name, std::uint64_t global_n,
                 H5Aclose);
     check(H5Awrite(attr.get(), H5T_NATIVE_UINT64, &total), "write attribute hash64 of " + name);
     check(attr.close(), "close attribute hash64 of " + name);
-    // Closing writes the dataset's cached chunks: a full disk shows here.
-    check(dset.close(), "write dataset " + name);
+    check(dset.close(), "close dataset " + name);
   });
 }
 
