@@ -91,49 +91,25 @@ static mode_t mode_of(int flags, va_list ap) {
   return (flags & (O_CREAT | O_TMPFILE)) != 0 ? (mode_t)va_arg(ap, int) : 0;
 }
 
-int open(const char* path, int flags, ...) {
-  REAL(int, "open", const char*, int, ...);
-  va_list ap;
-  va_start(ap, flags);
-  const mode_t mode = mode_of(flags, ap);
-  va_end(ap);
-  const int fd = real(path, flags, mode);
-  note(fd, path, writable_flags(flags));
-  return fd;
-}
-
-int open64(const char* path, int flags, ...) {
-  REAL(int, "open64", const char*, int, ...);
-  va_list ap;
-  va_start(ap, flags);
-  const mode_t mode = mode_of(flags, ap);
-  va_end(ap);
-  const int fd = real(path, flags, mode);
-  note(fd, path, writable_flags(flags));
-  return fd;
-}
-
-int openat(int dir, const char* path, int flags, ...) {
-  REAL(int, "openat", int, const char*, int, ...);
-  va_list ap;
-  va_start(ap, flags);
-  const mode_t mode = mode_of(flags, ap);
-  va_end(ap);
-  const int fd = real(dir, path, flags, mode);
-  note(fd, path, writable_flags(flags));
-  return fd;
-}
-
-int openat64(int dir, const char* path, int flags, ...) {
-  REAL(int, "openat64", int, const char*, int, ...);
-  va_list ap;
-  va_start(ap, flags);
-  const mode_t mode = mode_of(flags, ap);
-  va_end(ap);
-  const int fd = real(dir, path, flags, mode);
-  note(fd, path, writable_flags(flags));
-  return fd;
-}
+/* open, open64, openat and openat64: the real call, then note what the descriptor is. */
+#define OPEN_LIKE(name, dir_param, dir_arg)                              \
+  int name(dir_param const char* path, int flags, ...) {                \
+    REAL(int, #name, dir_param const char*, int, ...);                   \
+    va_list ap;                                                          \
+    va_start(ap, flags);                                                 \
+    const mode_t mode = mode_of(flags, ap);                              \
+    va_end(ap);                                                          \
+    const int fd = real(dir_arg path, flags, mode);                      \
+    note(fd, path, writable_flags(flags));                               \
+    return fd;                                                           \
+  }
+#define NO_DIR
+#define DIR_PARAM int dir,
+#define DIR_ARG dir,
+OPEN_LIKE(open, NO_DIR, NO_DIR)
+OPEN_LIKE(open64, NO_DIR, NO_DIR)
+OPEN_LIKE(openat, DIR_PARAM, DIR_ARG)
+OPEN_LIKE(openat64, DIR_PARAM, DIR_ARG)
 
 int creat(const char* path, mode_t mode) { return open(path, O_WRONLY | O_CREAT | O_TRUNC, mode); }
 
