@@ -201,7 +201,7 @@ namespace {
 template <class T>
 struct Share {
   std::vector<std::uint64_t> chunks;  ///< (chunk index, encoded bytes) pairs
-  std::string bytes;                  ///< the encoded chunks, concatenated
+  std::vector<char> bytes;            ///< the encoded chunks, concatenated
   std::vector<std::uint64_t> parts;   ///< (offset, count) pairs of the raw values
   std::vector<T> values;              ///< the raw values, concatenated
 };
@@ -221,7 +221,7 @@ Share<T> share_of(std::span<const Block> blocks, const T* data, std::uint64_t ch
       if (at == c * chunk && to == c_end) {  // the whole chunk
         const std::string e = encode_chunk(std::span<const T>(v, to - at), chunk, kDeflateLevel);
         out.chunks.insert(out.chunks.end(), {c, e.size()});
-        out.bytes += e;
+        out.bytes.insert(out.bytes.end(), e.begin(), e.end());
       } else {
         out.parts.insert(out.parts.end(), {at, to - at});
         out.values.insert(out.values.end(), v, v + (to - at));
@@ -250,7 +250,7 @@ void File::write_blocks(const std::string& name, std::uint64_t global_n,
     // Rank 0 writes the file: this rank's share goes to it, whether or not its writing failed
     // (the messages are the same either way, so no rank can be left waiting).
     send_vector(comm_, share.chunks);
-    send_vector(comm_, std::vector<char>(share.bytes.begin(), share.bytes.end()));
+    send_vector(comm_, share.bytes);
     send_vector(comm_, share.parts);
     send_vector(comm_, share.values);
     return;
@@ -299,8 +299,7 @@ void File::write_blocks(const std::string& name, std::uint64_t global_n,
   for (int r = 1; r < size; ++r) {
     Share<T> sh;
     sh.chunks = receive_vector<std::uint64_t>(comm_, r);
-    const auto bytes = receive_vector<char>(comm_, r);
-    sh.bytes.assign(bytes.begin(), bytes.end());
+    sh.bytes = receive_vector<char>(comm_, r);
     sh.parts = receive_vector<std::uint64_t>(comm_, r);
     sh.values = receive_vector<T>(comm_, r);
     store(sh);
