@@ -1,0 +1,257 @@
+#!/usr/bin/python3
+"""The MPM x DEM column at the pure-DEM column's own size (L0 = 14.4 d50) against that column.
+
+docs/validation/column_collapse.md, "At the grains' own size". Three modes:
+
+  --analyse RUN_DIR STEM   runs tools/mpm_column_collapse.py on RUN_DIR and keeps its CSVs as
+                           DATA/STEM_{timeseries,profiles,summary}.csv
+  --table                  prints the Markdown table of the page from DATA and the YADE summaries
+  --figure                 writes FIG/column_grain_scale.png: final deposits and fronts against time,
+                           ours over YADE's, a = 1 and a = 2
+
+Usage: /usr/bin/python3 tools/column_grain_scale.py [--data D] [--yade Y] [--fig F] MODE
+Defaults: D = docs/data/column_collapse_mpm_grain_scale, Y = docs/data/column_collapse_yade,
+F = docs/figures. Reads only CSV files (--table: the standard library; --figure: pandas and
+matplotlib).
+"""
+import argparse
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# (a, stem of the MPM x DEM run at L0 = 14.4 d50, its label), in table order
+RUNS = [(1, "a1_1ppc", "1 point per cell"), (1, "a1_1ppc_damping0.2", "1 point per cell, RVE damping 0.2"),
+        (1, "a1_2x2", "2 x 2 points per cell"),
+        (2, "a2_1ppc", "1 point per cell"), (2, "a2_2x2", "2 x 2 points per cell")]
+YADE = {1: "dense_a1_n1500_l0.05", 2: "dense_a2_n3000_l0.05"}
+# the same jobs at L0 = 0.5 m (2500 d50), as shipped: (directory under docs/data, stem)
+LARGE = {(1, "1ppc"): ("column_collapse_mpm", "a1"), (1, "2x2"): ("column_collapse_mpm_2x2", "a1"),
+         (2, "1ppc"): ("column_collapse_mpm", "a2"), (2, "2x2"): ("column_collapse_mpm_2x2", "a2")}
+
+
+def analyse(run, stem, data):
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run([sys.executable, os.path.join(ROOT, "tools", "mpm_column_collapse.py"), run,
+                        "--data", tmp, "--fig", tmp], check=True, stdout=subprocess.DEVNULL)
+        tags = [f[: -len("_summary.csv")] for f in os.listdir(tmp)
+                if f.endswith("_summary.csv") and f != "summary.csv"]
+        if len(tags) != 1:
+            sys.exit(f"{run}: expected one run's CSVs, found {tags}")
+        os.makedirs(data, exist_ok=True)
+        for kind in ("timeseries", "profiles", "summary"):
+            shutil.copy(os.path.join(tmp, f"{tags[0]}_{kind}.csv"),
+                        os.path.join(data, f"{stem}_{kind}.csv"))
+    print(f"wrote {data}/{stem}_*.csv")
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def interp(x, xs, ys):
+    """Linear interpolation of ys(xs) at x (xs increasing; clamped at the ends)."""
+    if x <= xs[0]:
+        return ys[0]
+    for k in range(1, len(xs)):
+        if x <= xs[k]:
+            w = (x - xs[k - 1]) / (xs[k] - xs[k - 1])
+            return ys[k - 1] + w * (ys[k] - ys[k - 1])
+    return ys[-1]
+
+
+def final_profile(path):
+    """(x [m], h_vol [m]) of the "final" rows of a profiles CSV (the last time when none is)."""
+    rows_ = read_csv(path)
+    last = [r for r in rows_ if r["t_over_tstar"] == "final"]
+    if not last:
+        tmax = max(float(r["t_over_tstar"]) for r in rows_)
+        last = [r for r in rows_ if float(r["t_over_tstar"]) == tmax]
+    return [float(r["x_m"]) for r in last], [float(r["h_vol_m"]) for r in last]
+
+
+def profile_rms(ours, theirs, L0, H0, L0y, H0y):
+    """RMS of (h/H0 ours - h/H0 theirs) over x/L0 in [0, the farther end of either deposit], on
+    bins of 0.01 L0: the L2 distance of docs/validation/column_collapse_reference.md section 6."""
+    xo, ho = [x / L0 for x in ours[0]], [h / H0 for h in ours[1]]
+    xt, ht = [x / L0y for x in theirs[0]], [h / H0y for h in theirs[1]]
+
+    def h_at(x, xs, hs):
+        return 0.0 if x > xs[-1] else interp(x, xs, hs)
+
+    end = max(max((x for x, h in zip(xo, ho) if h > 0), default=0.0),
+              max((x for x, h in zip(xt, ht) if h > 0), default=0.0))
+    n = max(1, int(end / 0.01))
+    sq = [(h_at(k * 0.01, xo, ho) - h_at(k * 0.01, xt, ht)) ** 2 for k in range(n + 1)]
+    return (sum(sq) / len(sq)) ** 0.5
+
+
+def back_mass_height(profile, L0, H0):
+    """Mean of h_vol / H0 over x in [0, L0/4]: the height the material at the back wall would
+    have at its initial density (the mass kept there, whatever its dilation), on 100 samples."""
+    xs, hs = profile
+    xs = [x / L0 for x in xs]
+    vals = [interp((k + 0.5) * 0.0025, xs, hs) / H0 for k in range(100)]
+    return sum(vals) / len(vals)
+
+
+def rows(data, yade):
+    """The table's figures: YADE's from its summaries, ours from the runs' CSVs (stdlib only)."""
+    out = {}
+    for a, stem in YADE.items():
+        s = read_csv(os.path.join(yade, f"{stem}_summary.csv"))[0]
+        out[(a, "yade")] = dict(front=float(s["runout_over_L0"]), cont=float(s["runout_cont_over_L0"]),
+                                hf=float(s["Hf_over_H0"]), a_meas=float(s["a"]),
+                                L0=float(s["L0_m"]), H0=float(s["H0_m"]),
+                                prof=final_profile(os.path.join(yade, f"{stem}_profiles.csv")),
+                                back=back_mass_height(
+                                    final_profile(os.path.join(yade, f"{stem}_profiles.csv")),
+                                    float(s["L0_m"]), float(s["H0_m"])),
+                                f123=[float(s[f"front{k}_cont_over_L0"]) for k in (1, 2, 3)])
+    for a, stem, _ in RUNS:
+        path = os.path.join(data, f"{stem}_summary.csv")
+        if not os.path.exists(path):
+            continue
+        s = read_csv(path)[0]
+        ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        L0 = float(s["L0_m"])
+        t = [float(r["t_over_tstar"]) for r in ts]
+        L = [float(r["L_front_connected_m"]) for r in ts]
+        y = out[(a, "yade")]
+        prof = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
+        rms = profile_rms(prof, y["prof"], L0, float(s["H0_m"]), y["L0"], y["H0"])
+        out[(a, stem)] = dict(front=float(s["runout_over_L0"]),
+                              cont=float(s["runout_connected_over_L0"]), hf=float(s["Hf_over_H0"]),
+                              f123=[(interp(k, t, L) - L0) / L0 for k in (1, 2, 3)], rms=rms,
+                              back=back_mass_height(prof, L0, float(s["H0_m"])),
+                              rest=float(s["Ekend_motion_over_MgH0"]),
+                              t_end=float(s["t_end_over_tstar"]))
+    return out
+
+
+def table(data, yade):
+    r = rows(data, yade)
+    head = ("| a | column | runout, front | runout, continuous deposit | H_f/H0 (top) | "
+            "h_vol/H0 at the back (x < L0/4) | continuous front at 1 / 2 / 3 t* | "
+            "deposit: RMS of h_vol/H0 from the DEM's | end (t*), kinetic energy of the motion / "
+            "(M g H0) |")
+    lines = [head, "|---|---|---|---|---|---|---|---|---|"]
+
+    def pct(x, ref):
+        return f" ({100 * (x - ref) / ref:+.0f} %)"
+
+    for a in (1, 2):
+        y = r.get((a, "yade"))
+        if y is None:
+            continue
+        lines.append(f"| {a} | pure DEM (YADE), L0 = 14.4 d50, a = {y['a_meas']:.3g} | "
+                     f"{y['front']:.3f} | {y['cont']:.3f} | {y['hf']:.3f} | {y['back']:.2f} | "
+                     + " / ".join(f"{v:.2f}" for v in y["f123"]) + " | | |")
+        for aa, stem, label in RUNS:
+            if aa != a or (a, stem) not in r:
+                continue
+            m = r[(a, stem)]
+            lines.append(f"| {a} | MPM x DEM, L0 = 14.4 d50, {label} | {m['front']:.3f}{pct(m['front'], y['front'])} | "
+                         f"{m['cont']:.3f}{pct(m['cont'], y['cont'])} | {m['hf']:.3f}{pct(m['hf'], y['hf'])} | "
+                         f"{m['back']:.2f}{pct(m['back'], y['back'])} | "
+                         + " / ".join(f"{v:.2f}" for v in m["f123"])
+                         + f" | {m['rms']:.3f} | {m['t_end']:.1f}, {m['rest']:.1e} |")
+    return "\n".join(lines)
+
+
+def figure(data, yade, fig_dir):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    def final(prof):
+        last = prof[prof["t_over_tstar"].astype(str) == "final"]
+        if last.empty:
+            tt = pd.to_numeric(prof["t_over_tstar"], errors="coerce")
+            last = prof[tt == tt.max()]
+        return last
+
+    fig, axs = plt.subplots(2, 2, figsize=(12, 7.5))
+    for i, a in enumerate((1, 2)):
+        ax_p, ax_f = axs[i]
+        ys = os.path.join(yade, YADE[a])
+        s = pd.read_csv(ys + "_summary.csv").iloc[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        last = final(pd.read_csv(ys + "_profiles.csv"))
+        ax_p.plot(last["x_m"] / L0, last["h_vol_m"] / H0, color="k", lw=2.2,
+                  label="pure DEM (YADE), L0 = 14.4 d50")
+        ts = pd.read_csv(ys + "_timeseries.csv")
+        ax_f.plot(ts["t_over_tstar"], (ts["L_cont_m"] - ts["L_cont_m"].iloc[0]) / L0, color="k",
+                  lw=2.2, label="pure DEM, continuous deposit")
+        for aa, stem, label in RUNS:
+            base = os.path.join(data, stem)
+            if aa != a or not os.path.exists(base + "_summary.csv"):
+                continue
+            if "damping" in stem:
+                style = dict(color="tab:orange", ls=":")
+            elif "2x2" in stem:
+                style = dict(color="tab:red", lw=2.0)
+            else:
+                style = dict(color="tab:red", ls="--")
+            m = pd.read_csv(base + "_summary.csv").iloc[0]
+            L0m, H0m = float(m["L0_m"]), float(m["H0_m"])
+            last = final(pd.read_csv(base + "_profiles.csv"))
+            ax_p.plot(last["x_m"] / L0m, last["h_vol_m"] / H0m, label=f"MPM x DEM, 14.4 d50, {label}",
+                      **style)
+            tsm = pd.read_csv(base + "_timeseries.csv")
+            ax_f.plot(tsm["t_over_tstar"], (tsm["L_front_connected_m"] - L0m) / L0m,
+                      label=f"MPM x DEM, 14.4 d50, {label}", **style)
+        for res, style in (("2x2", dict(color="tab:blue", lw=1.2)),):
+            folder, stem = LARGE[(a, res)]
+            base = os.path.join(os.path.dirname(data), folder, stem)
+            if not os.path.exists(base + "_profiles.csv"):
+                continue
+            last = final(pd.read_csv(base + "_profiles.csv"))
+            ax_p.plot(last["x_m"] / 0.5, last["h_vol_m"] / (0.5 * a),
+                      label="MPM x DEM, 2500 d50 (shipped), 2 x 2", **style)
+        ax_p.set_xlabel("x / L0")
+        ax_p.set_ylabel("deposit height (initial density) / H0")
+        ax_p.set_xlim(0, 1 + 2.2 * a)
+        ax_p.set_ylim(0, 1.05)
+        ax_p.axvline(1.0, color="0.6", lw=0.8)
+        ax_p.set_title(f"a = {a}: final deposit")
+        ax_p.legend(fontsize=7)
+        ax_f.set_xlabel("t / t*")
+        ax_f.set_ylabel("(L - L0) / L0, continuous deposit")
+        ax_f.set_xlim(0, 10)
+        ax_f.set_title(f"a = {a}: front")
+        ax_f.legend(fontsize=7)
+    fig.tight_layout()
+    os.makedirs(fig_dir, exist_ok=True)
+    out = os.path.join(fig_dir, "column_grain_scale.png")
+    fig.savefig(out, dpi=100)
+    print("wrote", out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data",
+                                                   "column_collapse_mpm_grain_scale"))
+    ap.add_argument("--yade", default=os.path.join(ROOT, "docs", "data", "column_collapse_yade"))
+    ap.add_argument("--fig", default=os.path.join(ROOT, "docs", "figures"))
+    ap.add_argument("--analyse", nargs=2, metavar=("RUN_DIR", "STEM"))
+    ap.add_argument("--table", action="store_true")
+    ap.add_argument("--figure", action="store_true")
+    args = ap.parse_args()
+    if args.analyse:
+        analyse(args.analyse[0], args.analyse[1], args.data)
+    if args.table:
+        print(table(args.data, args.yade))
+    if args.figure:
+        figure(args.data, args.yade, args.fig)
+    if not (args.analyse or args.table or args.figure):
+        ap.error("one of --analyse, --table, --figure")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,223 @@
+#!/usr/bin/python3
+"""A column-collapse job at another size: the same material and aspect ratio, lengths scaled.
+
+A continuum has no grain size, but the RVEs have one: their inertial number I = gamma_dot d50 /
+sqrt(p / rho_s) sets the rate dependence of their friction, and in a column of length L0 under
+gravity I scales as d50 / L0 (gamma_dot ~ sqrt(g / L0), p ~ rho g L0). So an MPM x DEM column can
+be compared with a pure-DEM column of the same grains only at the same L0 / d50. This tool writes
+the job of a column at another size L0', keeping the grains, the density, gravity and the aspect
+ratio (docs/validation/column_collapse.md, "At the grains' own size"). With s = L0' / L0:
+
+- lengths x s: [mpm.grid] origin and spacing, [[mpm.body]] min, max and surface, the min, max and
+  node of [[mpm.velocity]];
+- times x sqrt(s) (t* = sqrt(H0 / g)): mpm.end_time, mpm.dt, the velocities' from and until;
+- velocities x sqrt(s): the imposed x, y, z of [[mpm.velocity]];
+- stresses x s (rho g L0): every pressure_floor;
+- [output] every x 1 / sqrt(s), rounded (the MPM step scales as the cell, s, and the run as
+  sqrt(s): the same number of rows).
+Everything else, the DEM material and sample included, is copied (--damping sets the RVEs'
+Cundall damping, to match a pure-DEM reference); comments are dropped and a
+header naming the source and the factors is written instead.
+
+Usage: /usr/bin/python3 tools/column_scale_job.py JOB --l0 METRES --out OUT.toml [--damping D]
+           [--tag TEXT]
+       /usr/bin/python3 tools/column_scale_job.py --check SCALED [SCALED ...]
+           (exit 1 when a SCALED job is not what the command in its header writes)
+       /usr/bin/python3 tools/column_scale_job.py --self-test
+"""
+import argparse
+import math
+import re
+import sys
+
+LENGTH_KEYS = {"mpm.grid": ("origin", "spacing"), "mpm.body": ("min", "max", "surface"),
+               "mpm.velocity": ("min", "max", "node")}
+TIME_KEYS = {"mpm": ("end_time", "dt"), "mpm.velocity": ("from", "until")}
+VELOCITY_KEYS = {"mpm.velocity": ("x", "y", "z")}
+NUMBER = re.compile(r'"?(-?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)(?: ([A-Za-z/^0-9]+))?"?')
+UNIT_FACTORS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "cm": 1e-2, "s": 1.0, "ms": 1e-3, "Pa": 1.0,
+                "kPa": 1e3, "MPa": 1e6, "m/s": 1.0}
+
+
+def fmt(x):
+    return f"{x:.6g}"
+
+
+def scale_values(text, factor, unit):
+    """Every number of a TOML value (a number, a quantity string or a list of them) times factor,
+    written as a quantity in `unit` when it was a quantity string, as a bare number otherwise."""
+    def one(m):
+        value = float(m.group(1))
+        given = m.group(2)
+        if given is not None:
+            if given not in UNIT_FACTORS:
+                raise ValueError(f"unit {given!r} in {text!r}: not one this tool scales")
+            return f'"{fmt(value * UNIT_FACTORS[given] * factor)} {unit}"'
+        return fmt(value * factor)
+    return NUMBER.sub(one, text)
+
+
+def column_length(text):
+    """L0 of the first [[mpm.body]]: its max x minus its min x [m]."""
+    body = text[text.index("[[mpm.body]]"):]
+    lo = re.search(r"^min\s*=\s*\[([^\]]*)\]", body, re.M).group(1).split(",")[0]
+    hi = re.search(r"^max\s*=\s*\[([^\]]*)\]", body, re.M).group(1).split(",")[0]
+    return float(scale_values(hi, 1.0, "m").strip('"').split()[0]) - \
+        float(scale_values(lo, 1.0, "m").strip('"').split()[0])
+
+
+def set_damping(text, damping):
+    """`text` with [dem.numerics] damping = damping (the section added when absent)."""
+    if re.search(r"^\[dem.numerics\]", text, re.M):
+        if re.search(r"^damping\s*=", text[text.index("[dem.numerics]"):].split("\n[")[0], re.M):
+            head, _, tail = text.partition("[dem.numerics]")
+            block, sep, rest = tail.partition("\n[")
+            block = re.sub(r"^damping\s*=.*$", f"damping = {damping:g}", block, count=1, flags=re.M)
+            return head + "[dem.numerics]" + block + sep + rest
+        return text.replace("[dem.numerics]", f"[dem.numerics]\ndamping = {damping:g}", 1)
+    return text.replace("[dem.coupling]", f"[dem.numerics]\ndamping = {damping:g}\n\n[dem.coupling]", 1)
+
+
+def scale(text, l0_new, source_name, tag="", damping=None):
+    """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping)."""
+    if damping is not None:
+        text = set_damping(text, damping)
+    s = l0_new / column_length(text)
+    st = math.sqrt(s)
+    out = []
+    section = ""
+    for raw in text.split("\n"):
+        if raw.lstrip().startswith("#"):
+            continue
+        line = raw.split("#", 1)[0].rstrip() if not raw.lstrip().startswith("title") else raw.rstrip()
+        if not line.strip():
+            if out and out[-1] != "":
+                out.append("")
+            continue
+        header = re.match(r"^\s*\[\[?([^\]]+)\]\]?\s*$", line)
+        if header:
+            section = header.group(1).strip()
+            out.append(line.strip())
+            continue
+        key, _, value = line.partition("=")
+        key = key.strip()
+        value = value.strip()
+        if key in LENGTH_KEYS.get(section, ()):
+            value = scale_values(value, s, "m")
+        elif key in TIME_KEYS.get(section, ()):
+            value = scale_values(value, st, "s")
+        elif key in VELOCITY_KEYS.get(section, ()):
+            value = scale_values(value, st, "m/s")
+        elif key == "pressure_floor":
+            value = scale_values(value, s, "Pa")
+        elif section == "output" and key == "every":
+            value = str(max(1, round(int(value) / st)))
+        elif key == "title":
+            value = value.rstrip('"') + f', L0 = {fmt(l0_new)} m{(" " + tag) if tag else ""}"'
+        out.append(f"{key} = {value}")
+    head = [f"# Generated by tools/column_scale_job.py from {source_name}: the same column at",
+            f"# L0 = {fmt(l0_new)} m (s = {fmt(s)}): lengths x s, times x sqrt(s), imposed velocities x",
+            "# sqrt(s), pressure floors x s, output.every x 1/sqrt(s); the grains, the density and gravity",
+            "# unchanged (docs/validation/column_collapse.md, \"At the grains' own size\").",
+            f"# Do not edit: /usr/bin/python3 tools/column_scale_job.py {source_name} --l0 {fmt(l0_new)}"
+            + (f" --damping {damping:g}" if damping is not None else "")
+            + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
+    while out and out[-1] == "":
+        out.pop()
+    return "\n".join(head + out) + "\n"
+
+
+def options_of_scaled(text):
+    """(source, l0, tag, damping) from the header of a scaled job; None when it has none."""
+    cmd = re.search(r"^# Do not edit: \S+ tools/column_scale_job.py (\S+) (.*) --out THIS_FILE$",
+                    text, re.M)
+    if not cmd:
+        return None
+    m = re.search(r"--l0 (\S+)", cmd.group(2))
+    t = re.search(r"--tag '([^']*)'", cmd.group(2))
+    d = re.search(r"--damping (\S+)", cmd.group(2))
+    return (cmd.group(1), float(m.group(1)), (t.group(1) if t else ""),
+            (float(d.group(1)) if d else None))
+
+
+def self_test():
+    src = """# a comment
+title = "col"
+[dem.coupling]
+pressure_floor = "500 Pa"   # floor
+[mpm]
+end_time = "2.26 s"
+dt = 1e-4
+[mpm.grid]
+origin = [0.0, 0.0, 0.0]
+spacing = [0.0625, 0.0625, 0.0625]
+cells = [32, 1, 10]
+[[mpm.body]]
+min = [0.0, 0.0, 0.0]
+max = ["500 mm", 0.0625, 0.5]
+[[mpm.velocity]]
+min = [0.5, 0.0, 0.0]
+x = 0.25
+until = "20 ms"
+[output]
+every = 50
+"""
+    out = scale(src, 0.005, "src.toml", damping=0.05)
+    expect = ['pressure_floor = "5 Pa"', 'end_time = "0.226 s"', "dt = 1e-05",
+              "spacing = [0.000625, 0.000625, 0.000625]", "cells = [32, 1, 10]",
+              'max = ["0.005 m", 0.000625, 0.005]', "min = [0.005, 0, 0]", "x = 0.025",
+              'until = "0.002 s"', "every = 500", 'title = "col, L0 = 0.005 m"',
+              "[dem.numerics]", "damping = 0.05"]
+    missing = [e for e in expect if e not in out.split("\n")]
+    if missing or "comment" in out or abs(column_length(out) - 0.005) > 1e-15:
+        print("self-test FAILED; missing:", missing, "\n" + out)
+        return 1
+    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05):
+        print("self-test FAILED: the header does not name --l0")
+        return 1
+    print("self-test passed")
+    return 0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("job", nargs="?")
+    ap.add_argument("--l0", type=float, help="column length L0 of the new job [m]")
+    ap.add_argument("--out")
+    ap.add_argument("--tag", default="", help="appended to the title")
+    ap.add_argument("--damping", type=float, default=None,
+                    help="the RVEs' Cundall damping, [dem.numerics] damping (e.g. the pure-DEM "
+                         "reference's 0.05); absent: the source's")
+    ap.add_argument("--check", nargs="+", metavar="SCALED",
+                    help="each job is what the command in its header writes (run from the "
+                         "repository root)")
+    ap.add_argument("--self-test", action="store_true")
+    args = ap.parse_args()
+    if args.self_test:
+        return self_test()
+    if args.check:
+        fails = 0
+        for scaled in args.check:
+            have = open(scaled).read()
+            options = options_of_scaled(have)
+            if options is None:
+                print(f"{scaled}: no 'Do not edit' line of tools/column_scale_job.py in its header")
+                fails += 1
+                continue
+            source, l0, tag, damping = options
+            if have != scale(open(source).read(), l0, source, tag, damping):
+                print(f"{scaled}: not what tools/column_scale_job.py writes from {source} at "
+                      f"L0 = {l0} m; regenerate it with the command in its header")
+                fails += 1
+            else:
+                print(f"{scaled}: up to date with {source}")
+        return 1 if fails else 0
+    if not (args.job and args.l0 and args.out):
+        ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
+    open(args.out, "w").write(scale(open(args.job).read(), args.l0, args.job, args.tag,
+                                    args.damping))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
