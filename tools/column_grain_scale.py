@@ -6,6 +6,7 @@ docs/validation/column_collapse.md, "At the grains' own size". Three modes:
   --analyse RUN_DIR STEM   runs tools/mpm_column_collapse.py on RUN_DIR and keeps its CSVs as
                            DATA/STEM_{timeseries,profiles,summary}.csv
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
+  --damping-table          prints the page's table of the a = 1 columns against their damping
   --figure                 writes FIG/column_grain_scale.png: final deposits and fronts against time,
                            ours over YADE's, a = 1 and a = 2
 
@@ -163,6 +164,36 @@ def table(data, yade):
     return "\n".join(lines)
 
 
+# Damping (a = 1): the YADE family at 7.2 d50 (same column, collapse damping 0 / 0.05 / 0.2) and the
+# MPM x DEM column at 14.4 d50 with the RVEs' damping 0.05 / 0.2
+YADE_DAMPING = [("0", "dense_a1_n375_l0"), ("0.05", "dense_a1_n375_l0.05"), ("0.2", "dense_a1_n375_l0.2")]
+MPM_DAMPING = [("0.05", "a1_1ppc"), ("0.2", "a1_1ppc_damping0.2")]
+
+
+def damping_table(data, yade):
+    """Markdown table: runout and fronts of the a = 1 columns against their Cundall damping."""
+    lines = ["| a = 1 column | Cundall damping | runout, front | runout, continuous deposit | "
+             "continuous front at 1 / 2 / 3 t* |", "|---|---|---|---|---|"]
+    for damping, stem in YADE_DAMPING:
+        path = os.path.join(yade, f"{stem}_summary.csv")
+        if not os.path.exists(path):
+            continue
+        s = read_csv(path)[0]
+        lines.append(f"| pure DEM (YADE), L0 = 7.2 d50, on the whole velocity | {damping} | "
+                     f"{float(s['runout_over_L0']):.3f} | {float(s['runout_cont_over_L0']):.3f} | "
+                     + " / ".join(f"{float(s[f'front{k}_cont_over_L0']):.2f}" for k in (1, 2, 3))
+                     + " |")
+    r = rows(data, yade)
+    for damping, stem in MPM_DAMPING:
+        if (1, stem) not in r:
+            continue
+        m = r[(1, stem)]
+        lines.append(f"| MPM x DEM, L0 = 14.4 d50, 1 point per cell, on the RVE's fluctuations | "
+                     f"{damping} | {m['front']:.3f} | {m['cont']:.3f} | "
+                     + " / ".join(f"{v:.2f}" for v in m["f123"]) + " |")
+    return "\n".join(lines)
+
+
 def figure(data, yade, fig_dir):
     import matplotlib
     matplotlib.use("Agg")
@@ -241,16 +272,19 @@ def main():
     ap.add_argument("--fig", default=os.path.join(ROOT, "docs", "figures"))
     ap.add_argument("--analyse", nargs=2, metavar=("RUN_DIR", "STEM"))
     ap.add_argument("--table", action="store_true")
+    ap.add_argument("--damping-table", action="store_true")
     ap.add_argument("--figure", action="store_true")
     args = ap.parse_args()
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
     if args.table:
         print(table(args.data, args.yade))
+    if args.damping_table:
+        print(damping_table(args.data, args.yade))
     if args.figure:
         figure(args.data, args.yade, args.fig)
-    if not (args.analyse or args.table or args.figure):
-        ap.error("one of --analyse, --table, --figure")
+    if not (args.analyse or args.table or args.damping_table or args.figure):
+        ap.error("one of --analyse, --table, --damping-table, --figure")
 
 
 if __name__ == "__main__":
