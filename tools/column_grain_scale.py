@@ -29,9 +29,8 @@ RUNS = [(1, "a1_1ppc", "1 point per cell"), (1, "a1_1ppc_damping0.2", "1 point p
         (1, "a1_2x2", "2 x 2 points per cell"),
         (2, "a2_1ppc", "1 point per cell"), (2, "a2_2x2", "2 x 2 points per cell")]
 YADE = {1: "dense_a1_n1500_l0.05", 2: "dense_a2_n3000_l0.05"}
-# the same jobs at L0 = 0.5 m (2500 d50), as shipped: (directory under docs/data, stem)
-LARGE = {(1, "1ppc"): ("column_collapse_mpm", "a1"), (1, "2x2"): ("column_collapse_mpm_2x2", "a1"),
-         (2, "1ppc"): ("column_collapse_mpm", "a2"), (2, "2x2"): ("column_collapse_mpm_2x2", "a2")}
+# the 2 x 2 jobs at L0 = 0.5 m (2500 d50), drawn for comparison: directory under docs/data, stem
+LARGE = {1: ("column_collapse_mpm_2x2", "a1"), 2: ("column_collapse_mpm_2x2", "a2")}
 
 
 def analyse(run, stem, data):
@@ -237,14 +236,12 @@ def figure(data, yade, fig_dir):
             tsm = pd.read_csv(base + "_timeseries.csv")
             ax_f.plot(tsm["t_over_tstar"], (tsm["L_front_connected_m"] - L0m) / L0m,
                       label=f"MPM x DEM, 14.4 d50, {label}", **style)
-        for res, style in (("2x2", dict(color="tab:blue", lw=1.2)),):
-            folder, stem = LARGE[(a, res)]
-            base = os.path.join(os.path.dirname(data), folder, stem)
-            if not os.path.exists(base + "_profiles.csv"):
-                continue
+        folder, stem = LARGE[a]
+        base = os.path.join(os.path.dirname(data), folder, stem)
+        if os.path.exists(base + "_profiles.csv"):
             last = final(pd.read_csv(base + "_profiles.csv"))
-            ax_p.plot(last["x_m"] / 0.5, last["h_vol_m"] / (0.5 * a),
-                      label="MPM x DEM, 2500 d50 (shipped), 2 x 2", **style)
+            ax_p.plot(last["x_m"] / 0.5, last["h_vol_m"] / (0.5 * a), color="tab:blue", lw=1.2,
+                      label="MPM x DEM, 2500 d50 (shipped), 2 x 2")
         ax_p.set_xlabel("x / L0")
         ax_p.set_ylabel("deposit height (initial density) / H0")
         ax_p.set_xlim(0, 1 + 2.2 * a)
