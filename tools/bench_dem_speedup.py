@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""2-thread speed-up of the DEM step (issue 17, docs/design/dem.md "Speed"): interleaved runs of one or
+"""2-thread speed-up of the DEM step (docs/design/dem.md "Speed"): interleaved runs of one or
 more bench_dem binaries on 1 and 2 threads (per round, each binary `bench_dem "" tiles 1 steps`,
 then `... 2 steps`; REPS rounds: all see the same load), printing every run's us per
 particle-step, each pair's ratio and the medians. The VM is noisy, and often runs 2 threads in a

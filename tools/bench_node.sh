@@ -1,6 +1,6 @@
 #!/bin/bash
 # Figures of one many-core node, in one run (never a test): what docs/validation/scaling.md section 5 asks
-# of a 16-core machine and the DEM thread speed-ups of issue 17 (docs/design/dem.md "Speed").
+# of a 16-core machine and the DEM thread speed-ups (docs/design/dem.md "Speed").
 #
 #   tools/bench_node.sh BIN OUT [ROUNDS]
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed against error of sparing idle RVEs (issue 17, docs/design/sparing.md).
+"""Speed against error of sparing idle RVEs (docs/design/sparing.md).
 
 Runs each scene with dem.sparing.tolerance = 0 (the reference) and several tolerances, in pairs
 alternating over the repetitions (the machine's load drifts), every run on the same number of

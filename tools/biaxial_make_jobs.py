@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Write jobs/biaxial_plane_strain_<nx>x<nz>.toml: the plane-strain biaxial test of issue 16
+"""Write jobs/biaxial_plane_strain_<nx>x<nz>.toml: the plane-strain biaxial test
 (section 2) on one mesh. The jobs in jobs/ (2 x 4 to 8 x 16) were written by this script; a
 user changes the mesh, the RVE size or the rate here, or edits a written job.
 

@@ -114,7 +114,7 @@ def check_results(path, h5py, np):
 
 
 def check_point_fields(r, np):
-    """Point fields (issue 19): velocity, displacement, F, volume, consistent with each other."""
+    """Point fields: velocity, displacement, F, volume, consistent with each other."""
     for k in ("points/velocity", "points/displacement", "points/F", "points/volume"):
         expect(k in r, f"results.h5: /{k} missing")
     nt = len(r["step"])
@@ -136,7 +136,7 @@ def check_point_fields(r, np):
 
 
 def check_grain_measures(r, np):
-    """Per-RVE grain-scale measures (issue 19): all NaN (continuum RVE) or physically sound."""
+    """Per-RVE grain-scale measures: all NaN (continuum RVE) or physically sound."""
     for k in GRAIN_MEASURES:
         expect(k in r, f"results.h5: /{k} missing")
     fab = r["rve/fabric"]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Is a [dem.coupling] option a bias or noise on a sensitive scene? (issue 17, docs/validation/speed.md)
+"""Is a [dem.coupling] option a bias or noise on a sensitive scene? (docs/validation/speed.md)
 
 A single run of an option against a single reference says little where the scene's response is
 chaotic (the biaxial's softening branch moves by several per cent under a 1e-6 perturbation of

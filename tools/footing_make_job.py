@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Write a plane-strain strip-footing job (issue 17: a boundary-value problem whose far field
+"""Write a plane-strain strip-footing job (a boundary-value problem whose far field
 idles). jobs/footing_plane_strain.toml was written by this script with its defaults; a user
 changes the layer, the mesh, the footing or the RVE size here, or edits the written job.
 
@@ -47,7 +47,7 @@ def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressur
     x0, z0 = -cell, -cell                     # one empty cell left of x = 0 and under the base
     xt, zt = width + cell, depth + 2 * cell   # one beyond the far side, two above the surface
     B_mm = 2e3 * half_width
-    return f'''# Plane-strain strip footing on a granular layer (issue 17: a scene whose far field idles).
+    return f'''# Plane-strain strip footing on a granular layer (a scene whose far field idles).
 # Written by tools/footing_make_job.py --width {width:g} --depth {depth:g} --cell {cell:g} --half-width {half_width:g}
 #   --settlement {settlement:g} --speed {speed:g} --spheres {spheres} --pressure {pressure:g} --every {every}
 #   --damping {damping:g}
@@ -91,8 +91,9 @@ inertial_number = 1e-2
 [dem.coupling]
 inertial_number = 4e-3         # I_n of eq. 11 (as the biaxial)
 pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the footing's edge)
-# dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.33x on this
-                               # footing, errors inside its sensitivity (docs/validation/speed.md)
+# dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.29x on this
+                               # footing on top of the defaults, errors inside its sensitivity
+                               # (docs/validation/speed.md, "Defaults")
 
 [mpm]
 shape_function = "ugimp"       # in the plane; linear through the thickness

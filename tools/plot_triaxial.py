@@ -38,7 +38,7 @@ def split_label(arg):
 
 def read_csv(path):
     # means.csv and dem_series.csv start with their header line (pandas.read_csv reads them as
-    # they are); '#' lines are skipped for the means.csv of runs before issue 19 and YADE's files.
+    # they are); '#' lines are skipped for the means.csv of older runs and YADE's files.
     with open(path) as f:
         rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
     head = rows[0]

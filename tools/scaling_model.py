@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scaling model of the MPM x DEM farm (docs/validation/scaling.md, issue 20).
+"""Scaling model of the MPM x DEM farm (docs/validation/scaling.md).
 
 Time per MPM step on P cores with N RVEs (one RVE per material point):
 

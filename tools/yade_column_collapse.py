@@ -1,11 +1,11 @@
-"""Quasi-2D granular column collapse in YADE: the pure-DEM reference of issue 16 (section 1, ref. a), made
-dense and run to rest for issue 38 (item 5).
+"""Quasi-2D granular column collapse in YADE: the pure-DEM reference of the column collapse
+(docs/validation/column_collapse_reference.md), dense and run to rest.
 
-Dense reference (issue 38; the defaults):
+Dense reference (the defaults):
   nice -n 5 yade -j1 -n -x tools/yade_column_collapse.py --a 2 --l0 14.4 --width 5 --phi-guess 0.585 \
       --damping 0.05 --out docs/data/column_collapse_yade --tag dense_a2_n3000_l0.05
   (3,009 grains, L0 = 14.4 d50, slab W = 5 d50; docs/data/column_collapse_yade/README_dense.md lists the runs)
-Loose, heavily damped series of issue 16 (the files a*_n1000_*, a1_n2000_* were made so):
+Loose, heavily damped series (the files a*_n1000_*, a1_n2000_* were made so):
   nice -n 10 yade -j1 -n -x tools/yade_column_collapse.py --a 1 --n 2000 --legacy --out docs/data/column_collapse_yade
   (--legacy = --width 4 --damping 0.2 --prep-damping 0.2 --prep-friction 30 --phi-guess 0.50 --rest legacy --tmax 10)
 
@@ -39,13 +39,13 @@ Set-up (docs/validation/column_collapse_reference.md says why):
   a max-min test never ends), and Ek below --rest-geom-ek (1e-2) times the energy released (without
   it, the a = 2, L0 = 7.2 d50 run stopped at 3.8 t* with grains still rolling out); "both" (default):
   the first of the two;
-  "legacy": Ek < 1e-5 M g H0 and front within 0.05 d50 over 0.5 t* (issue 16). --tmax (t/t*) and
+  "legacy": Ek < 1e-5 M g H0 and front within 0.05 d50 over 0.5 t*. --tmax (t/t*) and
   --max-wall are safeties only; every output is flushed as the run goes and the summary row is
   rewritten (end_reason "running") every 0.5 t*, so a stopped run is usable.
 
 Fronts (all three in the time series; runouts and fronts at 1, 2, 3 t* of the first two in the summary):
 - L_front: rightmost x where the equivalent height (solid volume of the d50-wide bin / (d50 W phi0))
-  is >= d50/2 (issue 16's definition; a detached cluster of a few grains can carry it);
+  is >= d50/2 (the original reference's definition; a detached cluster of a few grains can carry it);
 - L_cont: continuous deposit front: walking from the back wall, the first x where the equivalent height
   falls below one d50 (interpolated within the bin);
 - L_maxgrain: the farthest grain (x + r), noisy.
@@ -88,7 +88,7 @@ ap.add_argument("--rest-geom-ek", type=float, default=1e-2,
                 help="'geom' also needs Ek below this times the energy released (inf: no such guard)")
 ap.add_argument("--tmax", type=float, default=None, help="stop at this t/t* at the latest (safety; 20, legacy 10)")
 ap.add_argument("--max-wall", type=float, default=1e9, help="stop after this many wall seconds (safety)")
-ap.add_argument("--legacy", action="store_true", help="issue 16's loose, damped set-up (see the header)")
+ap.add_argument("--legacy", action="store_true", help="the original loose, damped set-up (see the header)")
 ap.add_argument("--seed", type=int, default=1)
 ap.add_argument("--out", default="docs/data/column_collapse_yade")
 ap.add_argument("--tag", default=None, help="file prefix (default a<a>_n<n>)")
@@ -377,7 +377,7 @@ def write_summary(reason, t, ek):
             ("end_reason", reason), ("Ek_end_over_MgH0", f"{ek / (mass * G * H0):.3e}"),
             ("prep_steps", prep_steps), ("collapse_steps", steps), ("mean_dt_s", f"{t / max(steps, 1):.4e}"),
             ("wall_s", f"{time.time() - wall0:.0f}"),
-            # issue 38 additions
+            # the dense reference's additions
             ("L0_over_d50", f"{L0 / D50:.3f}"), ("H0_over_d50", f"{H0 / D50:.3f}"), ("phi_core", f"{phi_core:.4f}"),
             ("prep_friction_deg", args.prep_friction), ("prep_damping", args.prep_damping),
             ("rest_criterion", args.rest), ("runout_cont_over_L0", f"{runout_c / L0:.4f}"),

@@ -1,5 +1,5 @@
-"""Writes a periodic YADE packing with YADE's own text export, as a YADE user would (issue 19:
-YADE's exports readable by mpmxdem), then adds the periodic cell, which yade.export.text does not
+"""Writes a periodic YADE packing with YADE's own text export, as a YADE user would (YADE's
+exports are readable by mpmxdem), then adds the periodic cell, which yade.export.text does not
 write, as '# CELL' / '# HSIZE' comment lines after its '#format x_y_z_r' line: the file stays a
 YADE text file (ymport.text skips comments) and becomes an mpmxdem [dem.sample] packing file.
 

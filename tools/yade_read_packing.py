@@ -1,4 +1,4 @@
-"""Opens an mpmxdem packing file with YADE's text import, as a YADE user would (issue 19: our
+"""Opens an mpmxdem packing file with YADE's text import, as a YADE user would (our
 packings readable by YADE as they are). Exit 0 when YADE reads every sphere line of the file.
 
   yade -n -x tools/yade_read_packing.py FILE       (Debian package yade)
