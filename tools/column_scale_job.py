@@ -15,9 +15,9 @@ ratio (docs/validation/column_collapse.md, "At the grains' own size"). With s = 
 - stresses x s (rho g L0): every pressure_floor;
 - [output] every x 1 / sqrt(s), rounded (the MPM step scales as the cell, s, and the run as
   sqrt(s): the same number of rows).
-Everything else, the DEM material and sample included, is copied (--damping sets the RVEs'
-Cundall damping, to match a pure-DEM reference); comments are dropped and a
-header naming the source and the factors is written instead.
+Everything else is copied: the DEM material and sample (the grains are the same), and a
+continuum's young_modulus. --damping sets the RVEs' Cundall damping, to match a pure-DEM
+reference. Comments are dropped and a header naming the source and the factors is written.
 
 Usage: /usr/bin/python3 tools/column_scale_job.py JOB --l0 METRES --out OUT.toml [--damping D]
            [--tag TEXT]
@@ -57,13 +57,20 @@ def scale_values(text, factor, unit):
     return NUMBER.sub(one, text)
 
 
+def si(token):
+    """The value of one TOML number or quantity string ("500 mm") in SI units."""
+    m = NUMBER.fullmatch(token.strip())
+    if m is None or (m.group(2) is not None and m.group(2) not in UNIT_FACTORS):
+        raise ValueError(f"{token!r}: not a number or a quantity this tool reads")
+    return float(m.group(1)) * (UNIT_FACTORS[m.group(2)] if m.group(2) else 1.0)
+
+
 def column_length(text):
     """L0 of the first [[mpm.body]]: its max x minus its min x [m]."""
     body = text[text.index("[[mpm.body]]"):]
     lo = re.search(r"^min\s*=\s*\[([^\]]*)\]", body, re.M).group(1).split(",")[0]
     hi = re.search(r"^max\s*=\s*\[([^\]]*)\]", body, re.M).group(1).split(",")[0]
-    return float(scale_values(hi, 1.0, "m").strip('"').split()[0]) - \
-        float(scale_values(lo, 1.0, "m").strip('"').split()[0])
+    return si(hi) - si(lo)
 
 
 def set_damping(text, damping):
