@@ -96,6 +96,7 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.stress_update =
       job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
   cfg.strain_smoothing = mpm::strain_smoothing_from_string(job.text("mpm.strain_smoothing"));
+  cfg.free_density = mpm::free_density_from_string(job.text("mpm.free_density"));
   cfg.grid_positions = job.text("mpm.position_update") == "grid";
   cfg.wall_impulse_on_points = job.text("mpm.wall_impulse") == "points";
   cfg.transfer = mpm::transfer_from_string(job.text("mpm.transfer"));

@@ -34,6 +34,16 @@ void add_mpm_sections(Schema& s) {
         "within a cell; docs/design/mpm.md, Strain smoothing). none: off.")
       .one_of({"none", "cell"})
       .or_default(std::string("none"));
+  s.add("mpm.free_density", Type::String,
+        "The dilation of a stress-free point (a disconnected material: an RVE without contacts, a "
+        "pulled-apart frictional continuum). point: its own velocity gradient's, as every other "
+        "point. grid: its own, but not beyond the density of the material around it (the mass "
+        "over the volume that the grid's nodes collect from the points near it): a point that "
+        "carries no stress has no force to resist a spurious dilation; its compression, "
+        "deviatoric rate and spin stay its own (docs/design/mpm.md, Density of stress-free "
+        "points).")
+      .one_of({"point", "grid"})
+      .or_default(std::string("point"));
   s.add("mpm.formulation", Type::String,
         "total_lagrangian: the grid is the reference configuration (needs mpm.move_points = "
         "false): L = Fdot F^-1 and internal forces from sigma F^-T, so that a single-cell sample "

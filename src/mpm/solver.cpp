@@ -282,6 +282,11 @@ void Solver::update_stress(double dt) {
       L.col(a).setZero();
     });
   }
+  if (config_.free_density == FreeDensity::grid && dt > 0.0) {
+    // The volumes are those of the step's start, the stencils those of the L just computed.
+    grid_density(config_.grid, cache_, points_, density_node_m_, density_node_v_, density_rho_);
+    limit_free_dilation(density_rho_, config_.plane_strain_axis, dt, points_);
+  }
   // Internal work: trapezoidal rule on the stress power (old and new volume and stress).
   const double power_start = stress_power(points_);
   // Kinematics: F <- (I + L dt) F, V <- det(I + L dt) V.

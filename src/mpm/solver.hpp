@@ -12,6 +12,7 @@
 #include "mpm/boundary.hpp"
 #include "mpm/energy.hpp"
 #include "mpm/formulation.hpp"
+#include "mpm/free_density.hpp"
 #include "mpm/gradient_regularisation.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/grid_solve.hpp"
@@ -85,6 +86,10 @@ struct SolverConfig {
   /// update, and the internal forces use the cell's volume-averaged stress, in USF and MUSL
   /// (docs/design/mpm.md, "Strain smoothing"). none: each point its own L and stress.
   StrainSmoothing strain_smoothing = StrainSmoothing::none;
+  /// grid: a stress-free point does not dilate beyond the density of the material around it
+  /// (mpm/free_density.hpp; docs/design/mpm.md, "Density of stress-free points"). point: its own
+  /// L's dilation, as every other point.
+  FreeDensity free_density = FreeDensity::point;
   /// total_lagrangian: the grid is the reference configuration (only with move_points = false):
   /// L = Fdot F^-1 and the internal forces use sigma F^-T, so that a single-cell sample holds
   /// its confining pressure at any strain (docs/design/mpm.md, "Total Lagrangian formulation").
@@ -241,6 +246,7 @@ class Solver {
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
   std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
+  std::vector<double> density_node_m_, density_node_v_, density_rho_;     ///< FreeDensity::grid
   std::vector<common::Mat3> force_stress_;                ///< the stress the internal forces use
   std::optional<GradientRegularisation> regularisation_;  ///< with regularisation_length > 0
 };
