@@ -2,13 +2,14 @@
 """The a = 2 column as a Drucker-Prager continuum over friction angles and resolutions.
 
 Writes variants of jobs/column_collapse_a2_frictional.toml (friction angle, points per cell, cell
-size; the grid always 3 m x 1.5 m) under OUT, runs each on one rank (`mpiexec -n 1 build/mpmxdem
+size, mpm.free_density; the grid always 3 m x 1.5 m) under OUT, runs each on one rank (`mpiexec -n 1 build/mpmxdem
 run`), analyses it with tools/mpm_column_collapse.py and writes OUT/summary.csv (one row per run:
 phi_deg, ppc, cell_m, H_f/H0, runout of the farthest point and of the continuous deposit, kinetic
 energy at the end, wall time) and OUT/<name>_timeseries.csv, OUT/<name>_profiles.csv.
 
 Usage: /usr/bin/python3 tools/column_frictional_family.py --out docs/data/column_collapse_frictional
-       [--only NAME ...]   (about 20 min on one core, 10 of them for the 0.0156 m mesh)
+       [--only NAME ...]   (about 30 min on one core, 15 of them for the 0.0156 m meshes;
+                            --only reruns those and keeps the other rows of summary.csv)
        /usr/bin/python3 tools/column_frictional_family.py --table docs/data/column_collapse_frictional/summary.csv
                            (prints the Markdown table of docs/validation/column_collapse.md)
 """
@@ -23,22 +24,28 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "jobs", "column_collapse_a2_frictional.toml")
-# name: (phi [deg], points per cell along x and z, cell size [m])
+# name: (phi [deg], points per cell along x and z, cell size [m], mpm.free_density)
 RUNS = {
-    "phi40_ppc1_h0.0625": (40, 1, 0.0625),
-    "phi40_ppc2_h0.0625": (40, 2, 0.0625),
-    "phi40_ppc3_h0.0625": (40, 3, 0.0625),
-    "phi40_ppc4_h0.0625": (40, 4, 0.0625),
-    "phi40_ppc2_h0.03125": (40, 2, 0.03125),
-    "phi40_ppc2_h0.015625": (40, 2, 0.015625),
-    "phi30_ppc2_h0.0625": (30, 2, 0.0625),
-    "phi35_ppc2_h0.0625": (35, 2, 0.0625),
-    "phi45_ppc2_h0.0625": (45, 2, 0.0625),
+    "phi40_ppc1_h0.0625": (40, 1, 0.0625, "point"),
+    "phi40_ppc2_h0.0625": (40, 2, 0.0625, "point"),
+    "phi40_ppc3_h0.0625": (40, 3, 0.0625, "point"),
+    "phi40_ppc4_h0.0625": (40, 4, 0.0625, "point"),
+    "phi40_ppc2_h0.03125": (40, 2, 0.03125, "point"),
+    "phi40_ppc2_h0.015625": (40, 2, 0.015625, "point"),
+    "phi30_ppc2_h0.0625": (30, 2, 0.0625, "point"),
+    "phi35_ppc2_h0.0625": (35, 2, 0.0625, "point"),
+    "phi45_ppc2_h0.0625": (45, 2, 0.0625, "point"),
+    "phi40_ppc2_h0.0625_grid": (40, 2, 0.0625, "grid"),
+    "phi40_ppc2_h0.03125_grid": (40, 2, 0.03125, "grid"),
+    "phi40_ppc2_h0.015625_grid": (40, 2, 0.015625, "grid"),
 }
 
 
-def variant(phi, ppc, h):
+def variant(phi, ppc, h, free_density="point"):
     text = open(BASE).read()
+    if free_density != "point":
+        text = re.sub(r'^\[mpm\]$', f'[mpm]\nfree_density = "{free_density}"', text, count=1,
+                      flags=re.M)
     text = re.sub(r'^friction_angle = .*$', f'friction_angle = "{phi} deg"', text, count=1,
                   flags=re.M)
     text = re.sub(r'^points_per_cell = .*$', f"points_per_cell = [{ppc}, 1, {ppc}]", text,
@@ -52,18 +59,20 @@ def variant(phi, ppc, h):
 def table(summary):
     """The Markdown table of a summary.csv, in the order of RUNS."""
     rows = {r["name"]: r for r in csv.DictReader(open(summary))}
-    out = ["| phi | points per cell | cell (L0 / n) | H_f/H0 | runout, farthest point | "
-           "runout, continuous deposit |",
-           "|---|---|---|---|---|---|"]
-    for name, (phi, ppc, h) in RUNS.items():
+    out = ["| phi | points per cell | cell (L0 / n) | stress-free points dilate | H_f/H0 | "
+           "runout, farthest point | runout, continuous deposit |",
+           "|---|---|---|---|---|---|---|"]
+    dilate = {"point": "freely", "grid": "up to the material around"}
+    for name, (phi, ppc, h, fd) in RUNS.items():
         if name not in rows:
             continue
         r = rows[name]
         if r["exit"] != "0":
-            out.append(f"| {phi} deg | {ppc} x {ppc} | L0/{round(0.5 / h)} | exit {r['exit']} | | |")
+            out.append(f"| {phi} deg | {ppc} x {ppc} | L0/{round(0.5 / h)} | {dilate[fd]} | "
+                       f"exit {r['exit']} | | |")
             continue
         out.append(f"| {phi} deg | {'1' if ppc == 1 else f'{ppc} x {ppc}'} | L0/{round(0.5 / h)} | "
-                   f"{float(r['Hf_over_H0']):.3f} | {float(r['runout_over_L0']):.2f} | "
+                   f"{dilate[fd]} | {float(r['Hf_over_H0']):.3f} | {float(r['runout_over_L0']):.2f} | "
                    f"{float(r['runout_connected_over_L0']):.2f} |")
     return "\n".join(out)
 
@@ -84,14 +93,14 @@ def main():
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     rows = []
-    for name, (phi, ppc, h) in RUNS.items():
+    for name, (phi, ppc, h, fd) in RUNS.items():
         if args.only and name not in args.only:
             continue
         work = os.path.join(args.out, "runs", name)
         shutil.rmtree(work, ignore_errors=True)
         os.makedirs(work)
         job = os.path.join(work, "job_in.toml")
-        open(job, "w").write(variant(phi, ppc, h))
+        open(job, "w").write(variant(phi, ppc, h, fd))
         t0 = time.time()
         rc = subprocess.run(["mpiexec", "-n", "1", "--bind-to", "none", args.exe, "run", job,
                              "--out", os.path.join(work, "run")], env=env,
@@ -116,7 +125,13 @@ def main():
         shutil.rmtree(work, ignore_errors=True)
     keys = ["name", "phi_deg", "ppc", "cell_m", "exit", "Hf_over_H0", "runout_over_L0",
             "runout_connected_over_L0", "Ekend_over_MgH0", "wall_s"]
-    with open(os.path.join(args.out, "summary.csv"), "w", newline="") as f:
+    # --only keeps the rows of the runs it did not make.
+    path = os.path.join(args.out, "summary.csv")
+    if args.only and os.path.exists(path):
+        made = {r["name"] for r in rows}
+        rows = [r for r in csv.DictReader(open(path)) if r["name"] not in made] + rows
+        rows.sort(key=lambda r: list(RUNS).index(r["name"]) if r["name"] in RUNS else len(RUNS))
+    with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
         for r in rows:

@@ -89,6 +89,9 @@ ap.add_argument("--rest-geom-ek", type=float, default=1e-2,
 ap.add_argument("--tmax", type=float, default=None, help="stop at this t/t* at the latest (safety; 20, legacy 10)")
 ap.add_argument("--max-wall", type=float, default=1e9, help="stop after this many wall seconds (safety)")
 ap.add_argument("--legacy", action="store_true", help="the original loose, damped set-up (see the header)")
+ap.add_argument("--young", type=float, default=3e8,
+                help="contact Young's modulus E [Pa] (the RVEs' 300 MPa; smaller: a softer contact, "
+                     "for the stiffness-number study of docs/validation/column_collapse.md)")
 ap.add_argument("--seed", type=int, default=1)
 ap.add_argument("--out", default="docs/data/column_collapse_yade")
 ap.add_argument("--tag", default=None, help="file prefix (default a<a>_n<n>)")
@@ -105,7 +108,7 @@ wall0 = time.time()
 
 # --- material and geometry -------------------------------------------------------------------
 G = 9.81
-RHO, E, KS_KN, PHI = 2650.0, 3e8, 0.5, 30.0
+RHO, E, KS_KN, PHI = 2650.0, args.young, 0.5, 30.0
 ALPHA_R, ETA_R = 2.0, 0.3
 D50, DMIN, DMAX = 2e-4, 1.3e-4, 2.7e-4
 W = args.width * D50

@@ -1,5 +1,6 @@
 // The dilation of a stress-free point: its own (from its velocity gradient), or no further than
-// the density of the material around it (read from the grid). docs/design/mpm.md, "Density of stress-free points".
+// the density of the material around it (read from the grid). docs/design/mpm.md, "Density of
+// stress-free points".
 #pragma once
 
 #include <string_view>
