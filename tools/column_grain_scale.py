@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """The MPM x DEM column at the pure-DEM column's own size (L0 = 14.4 d50) against that column.
 
-docs/validation/column_collapse.md, "At the grains' own size". Three modes:
+docs/validation/column_collapse.md, "At the grains' own size". Modes:
 
   --analyse RUN_DIR STEM   runs tools/mpm_column_collapse.py on RUN_DIR and keeps its CSVs as
                            DATA/STEM_{timeseries,profiles,summary}.csv
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
   --damping-table          prints the page's table of the a = 1 columns against their damping
+  --stiffness-table        prints the page's table of the columns against the grains' contact
+                           modulus (300 MPa, 3 MPa)
   --figure                 writes FIG/column_grain_scale.png: final deposits and fronts against time,
                            ours over YADE's, a = 1 and a = 2
 
@@ -99,8 +101,9 @@ def back_mass_height(profile, L0, H0):
     return sum(vals) / len(vals)
 
 
-def rows(data, yade):
-    """The table's figures: YADE's from its summaries, ours from the runs' CSVs (stdlib only)."""
+def rows(data, yade, runs=None):
+    """The table's figures: YADE's from its summaries, ours from the CSVs of `runs` (default
+    RUNS; stdlib only)."""
     out = {}
     for a, stem in YADE.items():
         s = read_csv(os.path.join(yade, f"{stem}_summary.csv"))[0]
@@ -112,7 +115,7 @@ def rows(data, yade):
                                     final_profile(os.path.join(yade, f"{stem}_profiles.csv")),
                                     float(s["L0_m"]), float(s["H0_m"])),
                                 f123=[float(s[f"front{k}_cont_over_L0"]) for k in (1, 2, 3)])
-    for a, stem, _ in RUNS:
+    for a, stem, _ in RUNS if runs is None else runs:
         path = os.path.join(data, f"{stem}_summary.csv")
         if not os.path.exists(path):
             continue
@@ -193,6 +196,53 @@ def damping_table(data, yade):
     return "\n".join(lines)
 
 
+# Stiffness number (L0 = 14.4 d50): (a, label, E, "yade" tag or "mpm" stem)
+STIFFNESS = [(1, "pure DEM (YADE)", "300 MPa", "yade", "dense_a1_n1500_l0.05"),
+             (1, "pure DEM (YADE)", "3 MPa", "yade", "dense_a1_l14.4_E3e6"),
+             (1, "MPM x DEM, 1 point per cell", "300 MPa", "mpm", "a1_1ppc"),
+             (1, "MPM x DEM, 1 point per cell", "3 MPa", "mpm", "a1_1ppc_E3MPa"),
+             (1, "MPM x DEM, 2 x 2 points per cell", "3 MPa", "mpm", "a1_2x2_E3MPa"),
+             (2, "pure DEM (YADE)", "300 MPa", "yade", "dense_a2_n3000_l0.05"),
+             (2, "pure DEM (YADE)", "3 MPa", "yade", "dense_a2_l14.4_E3e6"),
+             (2, "MPM x DEM, 1 point per cell", "300 MPa", "mpm", "a2_1ppc"),
+             (2, "MPM x DEM, 1 point per cell", "3 MPa", "mpm", "a2_1ppc_E3MPa"),
+             (2, "MPM x DEM, 2 x 2 points per cell", "300 MPa", "mpm", "a2_2x2"),
+             (2, "MPM x DEM, 2 x 2 points per cell", "3 MPa", "mpm", "a2_2x2_E3MPa")]
+
+
+def stiffness_table(data, yade):
+    """Markdown table: the columns at L0 = 14.4 d50 against the grains' contact modulus."""
+    lines = ["| a | column, L0 = 14.4 d50 | contact modulus E | runout, front | runout, continuous "
+             "deposit | H_f/H0 | h_vol/H0 at the back (x < L0/4) | continuous front at 1 / 2 / 3 t* "
+             "| RVEs without contact at 0.15 / 1 t* |", "|---|---|---|---|---|---|---|---|---|"]
+    r = rows(data, yade, [(a, stem, "") for a, _, _, kind, stem in STIFFNESS if kind == "mpm"])
+    for a, label, modulus, kind, stem in STIFFNESS:
+        if kind == "yade":
+            path = os.path.join(yade, f"{stem}_summary.csv")
+            if not os.path.exists(path):
+                continue
+            s = read_csv(path)[0]
+            prof = final_profile(os.path.join(yade, f"{stem}_profiles.csv"))
+            back = back_mass_height(prof, float(s["L0_m"]), float(s["H0_m"]))
+            lines.append(f"| {a} | {label}, a = {float(s['a']):.3g} | {modulus} | "
+                         f"{float(s['runout_over_L0']):.3f} | {float(s['runout_cont_over_L0']):.3f} | "
+                         f"{float(s['Hf_over_H0']):.3f} | {back:.2f} | "
+                         + " / ".join(f"{float(s[f'front{k}_cont_over_L0']):.2f}" for k in (1, 2, 3))
+                         + " | |")
+            continue
+        if (a, stem) not in r:
+            continue
+        m = r[(a, stem)]
+        ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        t = [float(x["t_over_tstar"]) for x in ts]
+        nc = [float(x["rves_no_contact"]) for x in ts]
+        rves = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]["rves"]
+        lines.append(f"| {a} | {label} | {modulus} | {m['front']:.3f} | {m['cont']:.3f} | {m['hf']:.3f} | "
+                     f"{m['back']:.2f} | " + " / ".join(f"{v:.2f}" for v in m["f123"])
+                     + f" | {interp(0.15, t, nc):.0f} / {interp(1.0, t, nc):.0f} of {rves} |")
+    return "\n".join(lines)
+
+
 def figure(data, yade, fig_dir):
     import matplotlib
     matplotlib.use("Agg")
@@ -270,6 +320,7 @@ def main():
     ap.add_argument("--analyse", nargs=2, metavar=("RUN_DIR", "STEM"))
     ap.add_argument("--table", action="store_true")
     ap.add_argument("--damping-table", action="store_true")
+    ap.add_argument("--stiffness-table", action="store_true")
     ap.add_argument("--figure", action="store_true")
     args = ap.parse_args()
     if args.analyse:
@@ -278,10 +329,13 @@ def main():
         print(table(args.data, args.yade))
     if args.damping_table:
         print(damping_table(args.data, args.yade))
+    if args.stiffness_table:
+        print(stiffness_table(args.data, args.yade))
     if args.figure:
         figure(args.data, args.yade, args.fig)
-    if not (args.analyse or args.table or args.damping_table or args.figure):
-        ap.error("one of --analyse, --table, --damping-table, --figure")
+    if not (args.analyse or args.table or args.damping_table or args.stiffness_table
+            or args.figure):
+        ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --figure")
 
 
 if __name__ == "__main__":

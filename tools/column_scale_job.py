@@ -17,10 +17,12 @@ ratio (docs/validation/column_collapse.md, "At the grains' own size"). With s = 
   sqrt(s): the same number of rows).
 Everything else is copied: the DEM material and sample (the grains are the same), and a
 continuum's young_modulus. --damping sets the RVEs' Cundall damping, to match a pure-DEM
-reference. Comments are dropped and a header naming the source and the factors is written.
+reference; --young-modulus sets the grains' contact modulus (dem.material.young_modulus) and
+scales dem.preparation.pressure by the same factor (the same stiffness number E / p when the RVEs
+are prepared), for the stiffness-number study of docs/validation/column_collapse.md. Comments are dropped and a header naming the source and the factors is written.
 
 Usage: /usr/bin/python3 tools/column_scale_job.py JOB --l0 METRES --out OUT.toml [--damping D]
-           [--tag TEXT]
+           [--young-modulus PA] [--tag TEXT]
        /usr/bin/python3 tools/column_scale_job.py --check SCALED [SCALED ...]
            (exit 1 when a SCALED job is not what the command in its header writes)
        /usr/bin/python3 tools/column_scale_job.py --self-test
@@ -85,10 +87,23 @@ def set_damping(text, damping):
     return text.replace("[dem.coupling]", f"[dem.numerics]\ndamping = {damping:g}\n\n[dem.coupling]", 1)
 
 
-def scale(text, l0_new, source_name, tag="", damping=None):
-    """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping)."""
+def section_value(text, section, key):
+    """The value text of `key` in [section] (None when absent)."""
+    m = re.search(r"^\[" + re.escape(section) + r"\]\s*$(.*?)(?=^\[|\Z)", text, re.M | re.S)
+    if not m:
+        return None
+    v = re.search(r"^" + re.escape(key) + r"\s*=\s*([^#\n]*)", m.group(1), re.M)
+    return v.group(1).strip() if v else None
+
+
+def scale(text, l0_new, source_name, tag="", damping=None, young=None):
+    """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
+    grains' contact modulus [Pa] with the preparation pressure scaled by the same factor)."""
     if damping is not None:
         text = set_damping(text, damping)
+    stiffness = 1.0
+    if young is not None:
+        stiffness = young / si(section_value(text, "dem.material", "young_modulus"))
     s = l0_new / column_length(text)
     st = math.sqrt(s)
     out = []
@@ -117,6 +132,10 @@ def scale(text, l0_new, source_name, tag="", damping=None):
             value = scale_values(value, st, "m/s")
         elif key == "pressure_floor":
             value = scale_values(value, s, "Pa")
+        elif young is not None and section == "dem.material" and key == "young_modulus":
+            value = f'"{fmt(young)} Pa"'
+        elif young is not None and section == "dem.preparation" and key == "pressure":
+            value = scale_values(value, stiffness, "Pa")
         elif section == "output" and key == "every":
             value = str(max(1, round(int(value) / st)))
         elif key == "title":
@@ -128,6 +147,7 @@ def scale(text, l0_new, source_name, tag="", damping=None):
             "# unchanged (docs/validation/column_collapse.md, \"At the grains' own size\").",
             f"# Do not edit: /usr/bin/python3 tools/column_scale_job.py {source_name} --l0 {fmt(l0_new)}"
             + (f" --damping {damping:g}" if damping is not None else "")
+            + (f" --young-modulus {fmt(young)}" if young is not None else "")
             + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
     while out and out[-1] == "":
         out.pop()
@@ -135,7 +155,7 @@ def scale(text, l0_new, source_name, tag="", damping=None):
 
 
 def options_of_scaled(text):
-    """(source, l0, tag, damping) from the header of a scaled job; None when it has none."""
+    """(source, l0, tag, damping, young) from the header of a scaled job; None when it has none."""
     cmd = re.search(r"^# Do not edit: \S+ tools/column_scale_job.py (\S+) (.*) --out THIS_FILE$",
                     text, re.M)
     if not cmd:
@@ -143,13 +163,18 @@ def options_of_scaled(text):
     m = re.search(r"--l0 (\S+)", cmd.group(2))
     t = re.search(r"--tag '([^']*)'", cmd.group(2))
     d = re.search(r"--damping (\S+)", cmd.group(2))
+    e = re.search(r"--young-modulus (\S+)", cmd.group(2))
     return (cmd.group(1), float(m.group(1)), (t.group(1) if t else ""),
-            (float(d.group(1)) if d else None))
+            (float(d.group(1)) if d else None), (float(e.group(1)) if e else None))
 
 
 def self_test():
     src = """# a comment
 title = "col"
+[dem.material]
+young_modulus = "300 MPa"
+[dem.preparation]
+pressure = "10 kPa"
 [dem.coupling]
 pressure_floor = "500 Pa"   # floor
 [mpm]
@@ -169,17 +194,18 @@ until = "20 ms"
 [output]
 every = 50
 """
-    out = scale(src, 0.005, "src.toml", damping=0.05)
+    out = scale(src, 0.005, "src.toml", damping=0.05, young=3e6)
     expect = ['pressure_floor = "5 Pa"', 'end_time = "0.226 s"', "dt = 1e-05",
               "spacing = [0.000625, 0.000625, 0.000625]", "cells = [32, 1, 10]",
               'max = ["0.005 m", 0.000625, 0.005]', "min = [0.005, 0, 0]", "x = 0.025",
               'until = "0.002 s"', "every = 500", 'title = "col, L0 = 0.005 m"',
-              "[dem.numerics]", "damping = 0.05"]
+              "[dem.numerics]", "damping = 0.05", 'young_modulus = "3e+06 Pa"',
+              'pressure = "100 Pa"']
     missing = [e for e in expect if e not in out.split("\n")]
     if missing or "comment" in out or abs(column_length(out) - 0.005) > 1e-15:
         print("self-test FAILED; missing:", missing, "\n" + out)
         return 1
-    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05):
+    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6):
         print("self-test FAILED: the header does not name --l0")
         return 1
     print("self-test passed")
@@ -195,6 +221,9 @@ def main():
     ap.add_argument("--damping", type=float, default=None,
                     help="the RVEs' Cundall damping, [dem.numerics] damping (e.g. the pure-DEM "
                          "reference's 0.05); absent: the source's")
+    ap.add_argument("--young-modulus", type=float, default=None, metavar="PA",
+                    help="the grains' contact modulus [Pa], dem.material.young_modulus; "
+                         "dem.preparation.pressure is scaled by the same factor")
     ap.add_argument("--check", nargs="+", metavar="SCALED",
                     help="each job is what the command in its header writes (run from the "
                          "repository root)")
@@ -211,8 +240,8 @@ def main():
                 print(f"{scaled}: no 'Do not edit' line of tools/column_scale_job.py in its header")
                 fails += 1
                 continue
-            source, l0, tag, damping = options
-            if have != scale(open(source).read(), l0, source, tag, damping):
+            source, l0, tag, damping, young = options
+            if have != scale(open(source).read(), l0, source, tag, damping, young):
                 print(f"{scaled}: not what tools/column_scale_job.py writes from {source} at "
                       f"L0 = {l0} m; regenerate it with the command in its header")
                 fails += 1
@@ -222,7 +251,7 @@ def main():
     if not (args.job and args.l0 and args.out):
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
     open(args.out, "w").write(scale(open(args.job).read(), args.l0, args.job, args.tag,
-                                    args.damping))
+                                    args.damping, args.young_modulus))
     return 0
 
 
