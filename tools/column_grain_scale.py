@@ -8,7 +8,7 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
   --damping-table          prints the page's table of the a = 1 columns against their damping
   --stiffness-table        prints the page's table of the columns against the grains' contact
-                           modulus (300 MPa, 3 MPa)
+                           modulus (300 MPa, 3 MPa) and their size (14.4, 28.8 d50)
   --figure                 writes FIG/column_grain_scale.png: final deposits and fronts against time,
                            ours over YADE's, a = 1 and a = 2
 
@@ -196,7 +196,7 @@ def damping_table(data, yade):
     return "\n".join(lines)
 
 
-# Stiffness number (L0 = 14.4 d50): (a, label, E, "yade" tag or "mpm" stem)
+# Stiffness number and size: (a, label, E, "yade" tag or "mpm" stem); L0 = 14.4 d50 unless named
 STIFFNESS = [(1, "pure DEM (YADE)", "300 MPa", "yade", "dense_a1_n1500_l0.05"),
              (1, "pure DEM (YADE)", "3 MPa", "yade", "dense_a1_l14.4_E3e6"),
              (1, "MPM x DEM, 1 point per cell", "300 MPa", "mpm", "a1_1ppc"),
@@ -204,15 +204,17 @@ STIFFNESS = [(1, "pure DEM (YADE)", "300 MPa", "yade", "dense_a1_n1500_l0.05"),
              (1, "MPM x DEM, 2 x 2 points per cell", "3 MPa", "mpm", "a1_2x2_E3MPa"),
              (2, "pure DEM (YADE)", "300 MPa", "yade", "dense_a2_n3000_l0.05"),
              (2, "pure DEM (YADE)", "3 MPa", "yade", "dense_a2_l14.4_E3e6"),
+             (2, "pure DEM (YADE), L0 = 28.8 d50", "3 MPa", "yade", "dense_a2_l28.8_E3e6"),
              (2, "MPM x DEM, 1 point per cell", "300 MPa", "mpm", "a2_1ppc"),
              (2, "MPM x DEM, 1 point per cell", "3 MPa", "mpm", "a2_1ppc_E3MPa"),
+             (2, "MPM x DEM, 1 point per cell, L0 = 28.8 d50", "3 MPa", "mpm", "a2_1ppc_L28.8_E3MPa"),
              (2, "MPM x DEM, 2 x 2 points per cell", "300 MPa", "mpm", "a2_2x2"),
              (2, "MPM x DEM, 2 x 2 points per cell", "3 MPa", "mpm", "a2_2x2_E3MPa")]
 
 
 def stiffness_table(data, yade):
-    """Markdown table: the columns at L0 = 14.4 d50 against the grains' contact modulus."""
-    lines = ["| a | column, L0 = 14.4 d50 | contact modulus E | runout, front | runout, continuous "
+    """Markdown table: the columns against the grains' contact modulus (and size)."""
+    lines = ["| a | column (L0 = 14.4 d50 unless said) | contact modulus E | runout, front | runout, continuous "
              "deposit | H_f/H0 | h_vol/H0 at the back (x < L0/4) | continuous front at 1 / 2 / 3 t* "
              "| RVEs without contact at 0.15 / 1 t* |", "|---|---|---|---|---|---|---|---|---|"]
     r = rows(data, yade, [(a, stem, "") for a, _, _, kind, stem in STIFFNESS if kind == "mpm"])
