@@ -8,24 +8,6 @@
 #include "common/errors.hpp"
 
 namespace mpm {
-namespace {
-
-/// Calls f(node, S) for the stencil nodes of point p (the cache's weights).
-template <class Fn>
-void for_each_weight(const Grid& grid, const StencilCache& c, std::size_t p, Fn&& f) {
-  const std::array<int, 3>& b = c.base[p];
-  const double* w = &c.w[p * 9];
-  for (int k = 0; k < c.width[2]; ++k) {
-    for (int j = 0; j < c.width[1]; ++j) {
-      const double wyz = w[3 + j] * w[6 + k];
-      for (int i = 0; i < c.width[0]; ++i) {
-        f(static_cast<std::size_t>(grid.node_index(b[0] + i, b[1] + j, b[2] + k)), w[i] * wyz);
-      }
-    }
-  }
-}
-
-}  // namespace
 
 FreeDensity free_density_from_string(std::string_view name) {
   if (name == "point") return FreeDensity::point;
@@ -46,7 +28,8 @@ void grid_density(const Grid& grid, const StencilCache& cache, const MaterialPoi
   for (std::size_t p = 0; p < n; ++p) {
     const double m = points.mass[p];
     const double v = points.volume[p];
-    for_each_weight(grid, cache, p, [&](std::size_t i, double S) {
+    for_each_node(grid, cache, p, [&](std::int64_t node, double S, const common::Vec3&) {
+      const auto i = static_cast<std::size_t>(node);
       node_m[i] += S * m;
       node_v[i] += S * v;
     });
@@ -55,7 +38,8 @@ void grid_density(const Grid& grid, const StencilCache& cache, const MaterialPoi
   for (std::size_t p = 0; p < n; ++p) {
     double num = 0.0;
     double den = 0.0;
-    for_each_weight(grid, cache, p, [&](std::size_t i, double S) {
+    for_each_node(grid, cache, p, [&](std::int64_t node, double S, const common::Vec3&) {
+      const auto i = static_cast<std::size_t>(node);
       if (!(node_v[i] > 0.0)) return;
       num += S * node_m[i] * (node_m[i] / node_v[i]);
       den += S * node_m[i];

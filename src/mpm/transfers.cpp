@@ -13,27 +13,6 @@
 namespace mpm {
 namespace {
 
-/// Calls f(node_i, S, grad S) for the width[0] x width[1] x width[2] nodes of point p.
-template <class Fn>
-inline void for_each_node(const Grid& grid, const StencilCache& c, std::size_t p, Fn&& f) {
-  const std::array<int, 3> ns = c.width;
-  const std::array<int, 3>& b = c.base[p];
-  const double* w = &c.w[p * 9];
-  const double* dw = &c.dw[p * 9];
-  for (int k = 0; k < ns[2]; ++k) {
-    for (int j = 0; j < ns[1]; ++j) {
-      const double wyz = w[3 + j] * w[6 + k];
-      for (int i = 0; i < ns[0]; ++i) {
-        const std::int64_t node_i = grid.node_index(b[0] + i, b[1] + j, b[2] + k);
-        const double S = w[i] * wyz;
-        const common::Vec3 grad(dw[i] * wyz, w[i] * dw[3 + j] * w[6 + k],
-                                w[i] * w[3 + j] * dw[6 + k]);
-        f(node_i, S, grad);
-      }
-    }
-  }
-}
-
 /// Runs kernel(p) for every point, colour by colour; bins of one colour in parallel. One
 /// parallel region per call; small problems run a plain loop in the same order, without a region
 /// (parallel.hpp: a region with a false if-clause still costs ~10 us here).

@@ -35,6 +35,28 @@ struct StencilCache {
   std::vector<double> dw;                ///< dS/dx, same layout [1/m]
 };
 
+/// Calls f(node_i, S, grad S) for the width[0] x width[1] x width[2] nodes of point p (the
+/// cache's weights; node_i the grid's linear node index).
+template <class Fn>
+inline void for_each_node(const Grid& grid, const StencilCache& c, std::size_t p, Fn&& f) {
+  const std::array<int, 3> ns = c.width;
+  const std::array<int, 3>& b = c.base[p];
+  const double* w = &c.w[p * 9];
+  const double* dw = &c.dw[p * 9];
+  for (int k = 0; k < ns[2]; ++k) {
+    for (int j = 0; j < ns[1]; ++j) {
+      const double wyz = w[3 + j] * w[6 + k];
+      for (int i = 0; i < ns[0]; ++i) {
+        const std::int64_t node_i = grid.node_index(b[0] + i, b[1] + j, b[2] + k);
+        const double S = w[i] * wyz;
+        const common::Vec3 grad(dw[i] * wyz, w[i] * dw[3 + j] * w[6 + k],
+                                w[i] * w[3 + j] * dw[6 + k]);
+        f(node_i, S, grad);
+      }
+    }
+  }
+}
+
 /// Points sorted by stencil base node (stable: ties keep slot order), grouped into bins, bins
 /// grouped into width[0] width[1] width[2] colours. Two bins of one colour touch disjoint nodes.
 struct PointBins {
