@@ -188,6 +188,7 @@ farm::CoupledConfig coupled_setup(const Job& job, MpmSetup setup, const RunLimit
   fill_from_job(job, farm::kBalanceOptions, c.balance);
   c.farm.wait = farm::wait_mode_from(job.text("farm.wait"));
   c.farm.rank0_rves = job.flag("farm.rank0_rves");
+  c.farm.partition = farm::parse_partition_style(job.text("farm.partition"));
   c.validate();
   return c;
 }

@@ -37,9 +37,17 @@ void add_run_sections(Schema& s) {
   s.add("farm.rank0_rves", Type::Bool,
         "Rank 0 steps RVEs besides the MPM (true), or, with more than one rank, runs only the MPM "
         "and the exchange while ranks 1.. step the RVEs (false: for many ranks, where rank 0's "
-        "MPM is on every step's critical path; give rank 0 the node's threads, docs/design/farm.md). "
+        "MPM is on every step's critical path; give rank 0 the node's threads, "
+        "docs/design/farm.md). "
         "Results are the same bits either way.")
       .or_default(true);
+  s.add("farm.partition", Type::String,
+        "How the RVEs are grouped on ranks: spread (neighbouring points on different ranks: their "
+        "step costs rise and fall together, so a rank of neighbours swings; balance 0.85-0.99 "
+        "where cells gives 0.68-0.93 on 2-16 ranks, docs/design/farm.md) or cells (METIS's "
+        "contiguous parts of the grid's cell graph). Results are the same bits either way.")
+      .one_of({"spread", "cells"})
+      .or_default(std::string("spread"));
 }
 
 }  // namespace app

@@ -230,8 +230,9 @@ void Master::balance(std::int64_t step) {
   spdlog::info(
       "farm: step {}: rebalanced with {}: imbalance {:.3f} -> {:.3f}, {} RVE(s) moved (predicted "
       "saving {:.3g} s, move {:.3g} s; {}: {:.3f}, {} RVE(s)); {} moved in total",
-      step, to_string(plan.method), plan.imbalance_now, plan.imbalance_new, plan.moves,
-      plan.saving_s, plan.move_s, metis ? "incremental" : "METIS", other.imbalance, other.moves,
+      step, metis ? fresh_name(plan.style) : to_string(plan.method), plan.imbalance_now,
+      plan.imbalance_new, plan.moves, plan.saving_s, plan.move_s,
+      metis ? "incremental" : fresh_name(plan.style), other.imbalance, other.moves,
       farm_.rves_moved());
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <random>
 #include <set>
 #include <string>
 #include <tuple>
@@ -102,6 +103,74 @@ std::vector<int> partition_metis(const RveGraph& graph, const std::vector<double
   std::vector<int> owner(part.begin(), part.end());
   refine_balance(owner, cost, nparts);
   return owner;
+}
+
+const char* to_string(PartitionStyle s) { return s == PartitionStyle::cells ? "cells" : "spread"; }
+
+PartitionStyle parse_partition_style(const std::string& s) {
+  if (s == "cells") return PartitionStyle::cells;
+  if (s == "spread") return PartitionStyle::spread;
+  throw common::InputError("partition style '" + s + "': must be cells or spread");
+}
+
+std::vector<int> partition_spread(const RveGraph& graph, const std::vector<double>& cost,
+                                  int nparts, int seed) {
+  const std::size_t n = graph.size();
+  MPMXDEM_CHECK(cost.size() == n, "one cost per RVE");
+  MPMXDEM_CHECK(nparts >= 1, "nparts >= 1");
+  if (n == 0) return {};
+  if (nparts == 1) return std::vector<int>(n, 0);
+  const auto np = static_cast<std::size_t>(nparts);
+  if (np >= n) {
+    std::vector<int> owner(n);
+    std::iota(owner.begin(), owner.end(), 0);
+    return owner;
+  }
+  for (double c : cost)
+    MPMXDEM_CHECK(std::isfinite(c) && c >= 0.0, "RVE costs must be finite and >= 0");
+  const std::size_t ntiles = (n + np - 1) / np;
+  const std::vector<int> tile = ntiles > 1 ? partition_metis(graph, std::vector<double>(n, 1.0),
+                                                             static_cast<int>(ntiles), seed)
+                                           : std::vector<int>(n, 0);
+  std::vector<std::vector<std::size_t>> members(ntiles);
+  for (std::size_t k = 0; k < n; ++k) members[static_cast<std::size_t>(tile[k])].push_back(k);
+  std::vector<int> owner(n, 0);
+  std::vector<double> load(np, 0.0);
+  std::vector<char> used(np, 0);
+  // Equal costs would otherwise send every tile's first member to part 0, its second to part 1,
+  // ...: the same position in every tile (an edge of the specimen, a row) on the same part,
+  // correlated again. A seeded shuffle of each tile first (Fisher-Yates on mt19937_64's
+  // standard-defined output: the same on every platform).
+  std::mt19937_64 rng(static_cast<std::uint64_t>(seed));
+  for (std::vector<std::size_t>& m : members) {
+    for (std::size_t i = m.size(); i > 1; --i) std::swap(m[i - 1], m[rng() % i]);
+    std::stable_sort(m.begin(), m.end(),
+                     [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
+    std::fill(used.begin(), used.end(), 0);
+    std::size_t taken = 0;
+    for (const std::size_t k : m) {
+      if (taken == np) {
+        std::fill(used.begin(), used.end(), 0);
+        taken = 0;
+      }
+      std::size_t best = np;
+      for (std::size_t p = 0; p < np; ++p) {
+        if (used[p] == 0 && (best == np || load[p] < load[best])) best = p;
+      }
+      used[best] = 1;
+      ++taken;
+      owner[k] = static_cast<int>(best);
+      load[best] += cost[k];
+    }
+  }
+  refine_balance(owner, cost, nparts);
+  return owner;
+}
+
+std::vector<int> partition_fresh(PartitionStyle style, const RveGraph& graph,
+                                 const std::vector<double>& cost, int nparts, int seed) {
+  return style == PartitionStyle::cells ? partition_metis(graph, cost, nparts, seed)
+                                        : partition_spread(graph, cost, nparts, seed);
 }
 
 std::vector<int> partition_round_robin(std::size_t n, int nparts) {

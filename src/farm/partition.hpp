@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/types.hpp"
@@ -29,6 +30,31 @@ struct RveGraph {
 [[nodiscard]] std::vector<int> partition_metis(const RveGraph& graph,
                                                const std::vector<double>& cost, int nparts,
                                                int seed = 1);
+/// How RVEs are grouped on a rank. cells: METIS's contiguous parts of the cell graph (neighbours
+/// together). spread: neighbours apart (partition_spread). An RVE's cost per MPM step follows its
+/// strain increment, which neighbouring points share (correlation 0.7 between graph neighbours
+/// in the 8 x 16 biaxial), so a contiguous part sums correlated fluctuations and its step time
+/// swings far more than a spread part's (docs/design/farm.md, "Balancing"). RVEs exchange
+/// nothing with each other: the grouping changes no result and no message size.
+enum class PartitionStyle { cells, spread };
+/// "cells" / "spread"; parse_partition_style throws common::InputError on other text.
+[[nodiscard]] const char* to_string(PartitionStyle s);
+[[nodiscard]] PartitionStyle parse_partition_style(const std::string& s);
+
+/// Balanced by cost with graph neighbours on different parts: METIS cuts the graph into
+/// ceil(n / nparts) tiles of about nparts neighbouring RVEs (equal weights), then each tile's
+/// RVEs, costliest first, go to the lightest part the tile has not used yet (ties: lowest part;
+/// a tile larger than nparts starts over), then refine_balance. Deterministic for the same
+/// input; nparts == 1 and nparts >= n as partition_metis.
+/// @pre as partition_metis
+[[nodiscard]] std::vector<int> partition_spread(const RveGraph& graph,
+                                                const std::vector<double>& cost, int nparts,
+                                                int seed = 1);
+/// A fresh partition in `style`: partition_metis (cells) or partition_spread.
+[[nodiscard]] std::vector<int> partition_fresh(PartitionStyle style, const RveGraph& graph,
+                                               const std::vector<double>& cost, int nparts,
+                                               int seed = 1);
+
 /// Greedy balance refinement after METIS (whose k-way balance slips with few heavy vertices):
 /// moves RVEs from the heaviest part to the lightest while that lowers their maximum. Only
 /// balance counts here (RVEs exchange nothing with each other; the cut is a secondary goal).
@@ -45,8 +71,8 @@ struct DescentStep {
 /// Incremental (diffusive) repartition from the current owners: moves RVEs one at a time out of
 /// the heaviest part (ties: lowest label) while a move lowers the larger of the two loads it
 /// changes, so it moves only what the balance needs (a fresh METIS partition moves 35-95 % of the
-/// RVEs for a few per cent of gain: docs/validation/scaling.md, finding 2). A move takes an RVE of the
-/// heaviest part to the lightest part or to a part owning one of its graph neighbours; the move
+/// RVEs for a few per cent of gain: docs/validation/scaling.md, finding 2). A move takes an RVE of
+/// the heaviest part to the lightest part or to a part owning one of its graph neighbours; the move
 /// chosen is the first by (1) the largest part load after it, (2) a neighbour part before the
 /// lightest, (3) the larger of the two changed loads, (4) the lowest RVE index, (5) the lowest
 /// part. When no RVE of the heaviest part fits anywhere (few RVEs per part), it swaps one with a

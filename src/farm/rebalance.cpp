@@ -36,9 +36,13 @@ const char* to_string(RebalanceMethod m) {
   return "none";
 }
 
+const char* fresh_name(PartitionStyle style) {
+  return style == PartitionStyle::cells ? "METIS" : "spread";
+}
+
 RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,
                              const std::vector<double>& cost, int nparts, double threshold,
-                             int seed, const Payback& pay) {
+                             int seed, const Payback& pay, PartitionStyle style) {
   MPMXDEM_CHECK(cost.size() == owner.size() && graph.size() == owner.size(),
                 "one cost and one owner per RVE of the graph");
   using Clock = std::chrono::steady_clock;
@@ -46,6 +50,7 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
     return std::chrono::duration<double>(Clock::now() - t0).count();
   };
   RebalancePlan plan;
+  plan.style = style;
   plan.owner = owner;
   plan.imbalance_now = imbalance(owner, cost, nparts);
   plan.imbalance_new = plan.imbalance_now;
@@ -60,8 +65,11 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   };
   const bool known = pay.step_s > 0.0 && pay.move_s_per_rve > 0.0;
   auto t0 = Clock::now();
+  RveGraph no_edges;
+  if (style == PartitionStyle::spread) no_edges.xadj.assign(graph.size() + 1, 0);
   const std::vector<DescentStep> steps =
-      incremental_descent(graph, owner, cost, nparts, 1.0 + 0.5 * kDescentSlack);
+      incremental_descent(style == PartitionStyle::spread ? no_edges : graph, owner, cost, nparts,
+                          1.0 + 0.5 * kDescentSlack);
   // Where to stop the descent: the prefix of the best net payback among those that beat the
   // margin when the pay is known, else its first within kDescentSlack / 2 of where it ended.
   const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
@@ -85,7 +93,7 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   plan.incremental.time_s = seconds(t0);
   judge(plan.incremental, incremental);
   t0 = Clock::now();
-  std::vector<int> metis = partition_metis(graph, cost, nparts, seed);
+  std::vector<int> metis = partition_fresh(style, graph, cost, nparts, seed);
   plan.metis.moves = keep_owners(owner, metis, nparts);
   plan.metis.time_s = seconds(t0);
   judge(plan.metis, metis);

@@ -75,8 +75,12 @@ struct RebalancePlan {
   double proposal_s = 0.0;     ///< wall time of both proposals (METIS dominates); 0: none made [s]
   RebalanceMethod method = RebalanceMethod::none;  ///< the chosen proposal
   RebalanceProposal incremental;                   ///< partition_incremental from the owners
-  RebalanceProposal metis;                         ///< partition_metis + keep_owners
+  RebalanceProposal metis;  ///< the fresh partition (partition_fresh) + keep_owners
+  PartitionStyle style = PartitionStyle::cells;  ///< of the fresh proposal and the descent
 };
+
+/// The name of the fresh proposal in log lines: "METIS" (cells) or "spread".
+[[nodiscard]] const char* fresh_name(PartitionStyle style);
 
 /// How close to a perfect balance plan_rebalance takes the incremental descent: it runs to
 /// imbalance 1 + kDescentSlack / 2 at most, and when the pay is unknown it is cut at its first
@@ -90,7 +94,9 @@ inline constexpr double kDescentSlack = 0.005;
 /// incremental repartition from `owner` (incremental_descent to 1 + kDescentSlack / 2, then cut
 /// where the net payback is best among its states that beat the margin when `pay` is known, else
 /// by descent_cut with kDescentSlack) and a fresh METIS partition renamed after
-/// `owner`. A proposal qualifies when it lowers the imbalance by more than the margin max(threshold
+/// `owner` (`style` spread: the descent ignores the graph, which would pull RVEs to their
+/// neighbours' parts, and the fresh partition is partition_spread). A proposal qualifies when it
+/// lowers the imbalance by more than the margin max(threshold
 /// - 1, 0.01) / 2 (a smaller gain is the noise a threshold is set against) and moves something.
 /// Where `pay` is known (step_s and move_s_per_rve > 0) the qualifying proposal with the larger net
 /// payback (saving_s - move_s) is chosen (ties: fewer moves, then incremental) and adopted only if
@@ -100,7 +106,8 @@ inline constexpr double kDescentSlack = 0.005;
 /// @pre cost.size() == owner.size() == graph.size()
 [[nodiscard]] RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,
                                            const std::vector<double>& cost, int nparts,
-                                           double threshold, int seed, const Payback& pay = {});
+                                           double threshold, int seed, const Payback& pay = {},
+                                           PartitionStyle style = PartitionStyle::cells);
 
 /// Max over mean of the part loads (>= 1; 1 when every load is zero) [-].
 [[nodiscard]] double imbalance(const std::vector<int>& owner, const std::vector<double>& cost,

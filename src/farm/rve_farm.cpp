@@ -11,6 +11,7 @@
 
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
+#include "farm/cost_trace.hpp"
 
 namespace farm {
 
@@ -169,14 +170,28 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
   wave_speed_ = n > 0 ? *std::max_element(wave_.begin(), wave_.end()) : 0.0;
   const bool measured = ledger_.reset(n, costs);
   std::vector<int> part(n, 0);
+  ErrorKind trace_err = ErrorKind::none;
+  std::string trace_msg;
   if (rank_ == 0) {
     MPMXDEM_CHECK(x.size() == n, "one position per RVE on rank 0");
     const int workers = placement_.workers();
-    part = partition_metis(cell_graph(grid_, x), measured ? ledger_.total() : est, workers,
+    const RveGraph graph = cell_graph(grid_, x);
+    if (const std::string path = cost_trace_path_from_env(); !path.empty()) {
+      try {
+        trace_ = std::make_unique<CostTrace>(path, graph, placement_.ids(),
+                                             measured ? ledger_.total() : est);
+        step_cpu_.assign(n, 0.0);
+      } catch (const std::exception& e) {
+        trace_err = current_error_kind();
+        trace_msg = std::string("farm: MPMXDEM_COST_TRACE: ") + e.what();
+      }
+    }
+    part = partition_fresh(options_.partition, graph, measured ? ledger_.total() : est, workers,
                            options_.metis_seed);
     keep_owners(placement_.parts(), part, workers);  // move as few RVEs as the partition allows
     part = placement_.owners_of(std::move(part));
   }
+  agree_on_errors(comm_, trace_err, trace_msg);
   if (n > 0) MPI_Bcast(part.data(), to_count(n), MPI_INT, 0, comm_);
   exec_migrate(std::move(part));
 }
@@ -267,9 +282,15 @@ void RveFarm::collect_records(std::span<common::Mat3> stress) {
       reports_[k] = rec.report;
       wave_[k] = rec.wave_speed;
       ledger_.add_rve(k, rec.cpu_s);
+      if (trace_) step_cpu_[k] = rec.cpu_s;
     }
   }
   ledger_.add_step(busy_max, busy_sum / placement_.workers());
+  if (trace_ && failures.empty()) {
+    std::vector<double> busy(static_cast<std::size_t>(size_));
+    for (int r = 0; r < size_; ++r) busy[static_cast<std::size_t>(r)] = exchange_.busy(r);
+    trace_->record(step_, placement_.owner(), step_cpu_, busy);
+  }
   if (!failures.empty()) {
     // Rare: fetch the texts with a command of their own (the step exchange carries none).
     CommandHeader e;
@@ -374,8 +395,9 @@ bool RveFarm::rebalance_if_needed(double threshold, const std::vector<common::Ve
   const Payback pay = ledger_.close_window(step_);
   last_plan_ = RebalancePlan{};
   if (placement_.workers() == 1 || !ledger_.average().settled()) return false;
-  last_plan_ = plan_rebalance(cell_graph(grid_, x), placement_.parts(), ledger_.average().cost(),
-                              placement_.workers(), threshold, options_.metis_seed, pay);
+  last_plan_ =
+      plan_rebalance(cell_graph(grid_, x), placement_.parts(), ledger_.average().cost(),
+                     placement_.workers(), threshold, options_.metis_seed, pay, options_.partition);
   last_plan_.owner = placement_.owners_of(std::move(last_plan_.owner));  // parts -> ranks
   if (!last_plan_.migrate) return false;
   migrate_to(last_plan_.owner);

@@ -15,6 +15,7 @@
 #include "common/state_store.hpp"
 #include "farm/checkpoint.hpp"
 #include "farm/cost_ledger.hpp"
+#include "farm/cost_trace.hpp"
 #include "farm/exchange.hpp"
 #include "farm/micro_model.hpp"
 #include "farm/mpi_util.hpp"
@@ -32,8 +33,11 @@ struct FarmOptions {
   bool omp_over_rves = true;
   int metis_seed = 1;  ///< METIS_OPTION_SEED
   /// Rank 0 owns RVEs too; false: with more than one rank, rank 0 runs only the MPM and the
-  /// exchange, the RVEs go to ranks 1.. (`farm.rank0_rves`; docs/design/farm.md, docs/validation/scaling.md).
+  /// exchange, the RVEs go to ranks 1.. (`farm.rank0_rves`; docs/design/farm.md,
+  /// docs/validation/scaling.md).
   bool rank0_rves = true;
+  /// How the RVEs are grouped on ranks (`farm.partition`; partition.hpp, PartitionStyle).
+  PartitionStyle partition = PartitionStyle::spread;
 };
 
 class RveFarm final : public mpm::MaterialModel {
@@ -174,7 +178,11 @@ class RveFarm final : public mpm::MaterialModel {
   CostLedger ledger_;
   std::int64_t step_ = 0;
   RebalancePlan last_plan_;  ///< rank 0
-  bool stopped_ = true;      ///< the workers left serve() (or never entered it)
+  /// Rank 0, with MPMXDEM_COST_TRACE set: the per-step cost trace (cost_trace.hpp) and the
+  /// step's RVE costs by index.
+  std::unique_ptr<CostTrace> trace_;
+  std::vector<double> step_cpu_;
+  bool stopped_ = true;  ///< the workers left serve() (or never entered it)
 };
 
 }  // namespace farm

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <random>
 
+#include "common/errors.hpp"
 #include "farm/partition.hpp"
 
 namespace {
@@ -259,4 +260,64 @@ TEST(Partition, IncrementalWithMorePartsThanRves) {
   EXPECT_EQ(farm::partition_incremental(g, std::vector<int>(5, 0), cost, 1),
             std::vector<int>(5, 0));
   EXPECT_TRUE(farm::partition_incremental(farm::RveGraph{{0}, {}}, {}, {}, 4).empty());
+}
+
+namespace {
+
+/// Share of the graph's edges whose two RVEs are on the same part.
+double inner_edge_share(const farm::RveGraph& g, const std::vector<int>& owner) {
+  std::size_t inner = 0;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    for (auto e = g.xadj[k]; e < g.xadj[k + 1]; ++e)
+      inner += owner[k] == owner[static_cast<std::size_t>(g.adjncy[static_cast<std::size_t>(e)])];
+  }
+  return g.adjncy.empty() ? 0.0 : static_cast<double>(inner) / static_cast<double>(g.adjncy.size());
+}
+
+}  // namespace
+
+TEST(PartitionSpread, KeepsNeighboursApartWhereMetisKeepsThemTogether) {
+  const farm::RveGraph g = lattice_graph(8);  // 512 RVEs
+  const std::vector<double> cost(g.size(), 1.0);
+  for (const int parts : {2, 4, 16}) {
+    const std::vector<int> spread = farm::partition_spread(g, cost, parts, 1);
+    const std::vector<int> cells = farm::partition_metis(g, cost, parts, 1);
+    // Equal costs: equal counts, both ways.
+    EXPECT_NEAR(farm::balance_efficiency(spread, cost, parts), 1.0, 1e-12) << parts;
+    // A random grouping keeps 1 / parts of the edges inside a part; spread keeps fewer (the
+    // cell graph's cliques of 8 leave at least 3 / 7 inside at 2 parts).
+    EXPECT_LT(inner_edge_share(g, spread), 1.0 / parts) << parts;
+    if (parts == 16) {
+      EXPECT_LT(inner_edge_share(g, spread), 0.02);
+    }
+    EXPECT_GT(inner_edge_share(g, cells), 0.5) << parts;
+  }
+}
+
+TEST(PartitionSpread, BalancesUnequalCostsDeterministically) {
+  const farm::RveGraph g = lattice_graph(6);  // 216 RVEs
+  std::vector<double> cost(g.size());
+  for (std::size_t k = 0; k < cost.size(); ++k) cost[k] = 1.0 + static_cast<double>((k * 7) % 10);
+  const double cmax = *std::max_element(cost.begin(), cost.end());
+  for (const int parts : {3, 8, 24}) {
+    const std::vector<int> a = farm::partition_spread(g, cost, parts, 1);
+    EXPECT_EQ(a, farm::partition_spread(g, cost, parts, 1));
+    const std::vector<double> load = farm::part_loads(a, cost, parts);
+    const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / parts;
+    // The greedy's bound: no part above the mean by more than the costliest RVE.
+    EXPECT_LE(*std::max_element(load.begin(), load.end()), mean + cmax) << parts;
+    for (const int o : a) EXPECT_TRUE(o >= 0 && o < parts);
+  }
+  EXPECT_EQ(farm::partition_spread(g, cost, 1, 1), std::vector<int>(g.size(), 0));
+  const farm::RveGraph small = lattice_graph(2);  // 8 RVEs on 8+ parts: one each
+  std::vector<int> one_each(8);
+  std::iota(one_each.begin(), one_each.end(), 0);
+  EXPECT_EQ(farm::partition_spread(small, std::vector<double>(8, 1.0), 9, 1), one_each);
+}
+
+TEST(PartitionStyle, NamesRoundTripAndOthersAreRefused) {
+  EXPECT_EQ(farm::parse_partition_style("spread"), farm::PartitionStyle::spread);
+  EXPECT_EQ(farm::parse_partition_style("cells"), farm::PartitionStyle::cells);
+  EXPECT_STREQ(farm::to_string(farm::PartitionStyle::spread), "spread");
+  EXPECT_THROW((void)farm::parse_partition_style("metis"), common::InputError);
 }

@@ -7,10 +7,10 @@
 //   mpiexec -n 4 --bind-to none bench_farm exchange --rves 10000 [--steps 50] [--migrate 1]
 //   bench_farm partition --rves 10000 [--parts 1024] [--bytes-per-rve 266000]
 //       [--perturb noise|overload] [--overload 0.1] [--threshold 1.0]
-// (exchange, partition, checkpoint --micro elastic: what grows with the RVE count; docs/validation/scaling.md)
-// Options: --speed <x> (platen speed in units of eq. 13), --packing <file> (DEM packing; default:
-// the 1000-sphere reference of jobs/packings),
-// --omp-over-rves 0|1, --rank0-rves 0|1 (0: rank 0 runs the MPM only),
+// (exchange, partition, checkpoint --micro elastic: what grows with the RVE count;
+// docs/validation/scaling.md) Options: --speed <x> (platen speed in units of eq. 13), --packing
+// <file> (DEM packing; default: the 1000-sphere reference of jobs/packings),
+// --omp-over-rves 0|1, --rank0-rves 0|1 (0: rank 0 runs the MPM only), --partition spread|cells,
 // --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
 // Figures and commands: docs/design/farm.md, "Benchmarks".
 #include <mpi.h>
@@ -78,6 +78,7 @@ farm::FarmOptions farm_options(const Args& a) {
   o.wait = farm::wait_mode_from(a.get("wait", "auto"));
   o.omp_over_rves = a.get("omp-over-rves", "1") == "1";
   o.rank0_rves = a.get("rank0-rves", "1") == "1";
+  o.partition = farm::parse_partition_style(a.get("partition", "spread"));
   return o;
 }
 
@@ -474,7 +475,8 @@ void partition(const Args& a) {
   } else {
     throw std::runtime_error("--perturb " + perturb + ": must be noise or overload");
   }
-  // The renaming alone (keep_owners, finding 1 of docs/validation/scaling.md) on a fresh METIS partition.
+  // The renaming alone (keep_owners, finding 1 of docs/validation/scaling.md) on a fresh METIS
+  // partition.
   std::vector<int> proposal = farm::partition_metis(g, cost, parts);
   t = now();
   const std::int64_t kept_moves = farm::keep_owners(owner, proposal, parts);
