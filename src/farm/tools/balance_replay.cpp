@@ -12,6 +12,7 @@
 // of variation to every rank's step time (the median over --jitter-seeds seeds is printed).
 // docs/design/farm.md, "Balancing", has the figures and what they mean.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -35,6 +36,50 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t m = v.size() / 2;
   return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+/// How an RVE's step cost swings (the steps after the first 5, whose start-up costs differ):
+/// the median over RVEs of its coefficient of variation, and the mean correlation of the swings
+/// of graph neighbours (the partition's concern, docs/design/farm.md "Grouping").
+void print_swings(const farm::CostTraceData& t) {
+  const std::size_t skip = std::min<std::size_t>(5, t.cpu_s.size() / 2);
+  const std::size_t m = t.cpu_s.size() - skip;
+  const std::size_t n = t.cpu_s.front().size();
+  if (m < 3) return;
+  std::vector<double> mean(n, 0.0);
+  std::vector<double> sd(n, 0.0);
+  for (std::size_t s = skip; s < t.cpu_s.size(); ++s)
+    for (std::size_t k = 0; k < n; ++k) mean[k] += t.cpu_s[s][k] / static_cast<double>(m);
+  for (std::size_t s = skip; s < t.cpu_s.size(); ++s)
+    for (std::size_t k = 0; k < n; ++k) {
+      const double d = t.cpu_s[s][k] - mean[k];
+      sd[k] += d * d / static_cast<double>(m - 1);
+    }
+  std::vector<double> cv;
+  for (std::size_t k = 0; k < n; ++k) {
+    sd[k] = std::sqrt(sd[k]);
+    if (mean[k] > 0.0) cv.push_back(sd[k] / mean[k]);
+  }
+  double corr = 0.0;
+  std::size_t pairs = 0;
+  for (std::size_t a = 0; a < t.graph.size(); ++a) {
+    for (auto e = t.graph.xadj[a]; e < t.graph.xadj[a + 1]; ++e) {
+      const auto b = static_cast<std::size_t>(t.graph.adjncy[static_cast<std::size_t>(e)]);
+      if (!(sd[a] > 0.0 && sd[b] > 0.0)) continue;
+      double c = 0.0;
+      for (std::size_t s = skip; s < t.cpu_s.size(); ++s)
+        c += (t.cpu_s[s][a] - mean[a]) * (t.cpu_s[s][b] - mean[b]);
+      corr += c / (static_cast<double>(m - 1) * sd[a] * sd[b]);
+      ++pairs;
+    }
+  }
+  double sum = 0.0;
+  for (const double v : mean) sum += v;
+  std::printf(
+      "RVE step cost: mean %.3g ms; swings (steps %zu on): median coefficient of variation %.3f, "
+      "correlation of graph neighbours %s\n",
+      1e3 * sum / static_cast<double>(n), skip + 1, cv.empty() ? 0.0 : median(cv),
+      pairs > 0 ? std::to_string(corr / static_cast<double>(pairs)).c_str() : "(no edges)");
 }
 
 }  // namespace
@@ -83,6 +128,7 @@ int main(int argc, char** argv) {
                 static_cast<long long>(trace.steps.back()), total);
     std::printf("recorded on %zu rank(s): balance (mean/max busy, wall) %.3f\n", rec_ranks,
                 rec_max > 0.0 ? rec_mean / rec_max : 1.0);
+    print_swings(trace);
     farm::ReplayOptions o;
     o.threshold = std::stod(get("threshold", "1.2"));
     o.check_every = std::stoll(get("check-every", "20"));
