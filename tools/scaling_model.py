@@ -3,16 +3,21 @@
 
 Time per MPM step on P cores with N RVEs (one RVE per material point):
 
-    T(P, N) = t_rve * ceil-ish(N / W) / eff(N / W)          slowest rank's RVE work
+    T(P, N) = t_rve * ceil-ish(N / W) / eff(N / W) * swing   slowest rank's RVE work
             + N * (s_mpm / speedup0 + s_farm + s_out)        rank 0: MPM, bookkeeping, results rows
             + 2 * alpha * R + N * b_step / beta              scatter of L + gather of records
 
 W: cores that step RVEs; R: MPI ranks (messages per collective); eff: mean/max of the rank
-loads of a METIS partition at N / W RVEs per core (measured, bench_farm partition).
+loads of a METIS partition at N / W RVEs per core (measured, bench_farm partition); swing: the
+slowest of the R_w ranks that step RVEs in one step, when every RVE's step cost swings with a
+coefficient of variation cv independently of the others (the spread grouping), k = N / R_w RVEs
+per rank: 1 + z(R_w) cv / sqrt(k), z(R) the expected largest of R standard normal draws (cv from
+recorded cost traces, docs/design/farm.md "Grouping").
 Efficiency E = T(1, N) / (P * T(P, N)), with T(1, N) = N * (t_rve + s_mpm + s_farm + s_out).
 
 Reads docs/data/scaling/constants.json; prints the tables; writes docs/figures/scaling_*.png
 (when matplotlib is present). Usage: /usr/bin/python3 tools/scaling_model.py [--no-figures]
+       /usr/bin/python3 tools/scaling_model.py --doc-table   (the table of scaling.md, stdlib only)
 """
 import json
 import math
@@ -44,13 +49,42 @@ def balance(c, k):
     return pts[-1][1]
 
 
+def expected_max_normal(R):
+    """E[max of R independent standard normal draws] (0 for R = 1), by quadrature."""
+    if R <= 1:
+        return 0.0
+    h = 1e-3
+    total = 0.0
+    x = -8.0
+    while x < 8.0:
+        phi = math.exp(-0.5 * x * x) / math.sqrt(2.0 * math.pi)
+        cdf = 0.5 * (1.0 + math.erf(x / math.sqrt(2.0)))
+        total += x * R * phi * cdf ** (R - 1) * h
+        x += h
+    return total
+
+
+_ZCACHE = {}
+
+
+def swing(c, ranks_w, k_rank, cv=None):
+    """1 + z(R_w) cv / sqrt(k): the slowest rank's step over the mean, from the RVEs' swings."""
+    if ranks_w <= 1:
+        return 1.0
+    cv = c["cost_swing_cv"]["value"] if cv is None else cv
+    if ranks_w not in _ZCACHE:
+        _ZCACHE[ranks_w] = expected_max_normal(ranks_w)
+    return 1.0 + _ZCACHE[ranks_w] * cv / math.sqrt(max(k_rank, 1.0))
+
+
 def layouts(c):
     """The designs compared: how P cores are used."""
     return c["layouts"]
 
 
-def step_time(c, lay, P, N):
-    """Seconds per MPM step and its parts on P cores with N RVEs for layout `lay`."""
+def step_time(c, lay, P, N, cv=None):
+    """Seconds per MPM step and its parts on P cores with N RVEs for layout `lay` (cv: the RVE
+    cost swings; None: the constants' central value)."""
     t = lay["threads_per_rank"]
     ranks = max(1, P // t)
     # Cores that step RVEs: all, or all but those reserved for rank 0's MPM (it owns no RVEs);
@@ -60,7 +94,8 @@ def step_time(c, lay, P, N):
     speedup = max(1.0, lay["mpm_speedup"] * reserved / lay["rank0_cores"]) if reserved else 1.0
     k = N / W
     # With fewer RVEs than cores the slowest core still steps one whole RVE.
-    work = c["t_rve_s"] * max(k, 1.0) / balance(c, k)
+    ranks_w = max(1, W // t)
+    work = c["t_rve_s"] * max(k, 1.0) / balance(c, k) * swing(c, ranks_w, N / ranks_w, cv)
     s_mpm = c["s_mpm_s"] / speedup
     rank0 = N * (s_mpm + c["s_farm_s"] + c["s_out_s"])
     if ranks > 1:
@@ -71,9 +106,9 @@ def step_time(c, lay, P, N):
     return work + rank0 + exch, work, rank0, exch
 
 
-def efficiency(c, lay, P, N):
+def efficiency(c, lay, P, N, cv=None):
     t1 = N * (c["t_rve_s"] + c["s_mpm_s"] + c["s_farm_s"] + c["s_out_s"])
-    return t1 / (P * step_time(c, lay, P, N)[0])
+    return t1 / (P * step_time(c, lay, P, N, cv)[0])
 
 
 def rank0_bound(c, lay):
@@ -96,9 +131,13 @@ def tables(c):
         for N in Ns:
             out.append(f"{N:<8d}" + "".join(f"{100 * efficiency(c, lay, P, N):7.1f}" for P in Ps))
         T, w, r0, ex = step_time(c, lay, 1024, 10000)
+        sw = c["cost_swing_cv"]
+        lo = 100 * efficiency(c, lay, 1024, 10000, sw["high"])
+        hi = 100 * efficiency(c, lay, 1024, 10000, sw["low"])
         out.append(
             f"1024 cores, 10^4 RVEs: {1e3 * T:.2f} ms/step = RVE work {1e3 * w:.2f} + rank 0 "
             f"{1e3 * r0:.2f} + exchange {1e3 * ex:.2f} ms; E = {100 * efficiency(c, lay, 1024, 10000):.1f} %"
+            f" ({lo:.1f}-{hi:.1f} % for cost swings cv {sw['high']:g}-{sw['low']:g})"
         )
         out.append("weak scaling, 10 RVEs per core: E [%] = T(1 core, 10 RVEs) / T(P, 10 P)")
         out.append("P       " + "".join(f"{P:>7d}" for P in Ps))
@@ -173,11 +212,42 @@ def figures(c):
     print("figures: docs/figures/scaling_strong.png, scaling_weak.png, scaling_parts.png")
 
 
+def swing_check(c):
+    """The swing term against the balance replay of the biaxial trace (spread grouping)."""
+    out = ["swing term against the replay of the 8 x 16 biaxial trace (512 RVEs, cv 0.57, spread):"]
+    for R, replay in ((2, 0.991), (4, 0.976), (8, 0.925), (16, 0.854)):
+        out.append(f"  {R:2d} ranks: model {1 / swing(c, R, 512 / R, 0.57):.3f}, replay {replay:.3f}")
+    return "\n".join(out)
+
+
+def doc_table(c):
+    """The strong-scaling table of docs/validation/scaling.md (10^4 RVEs, with the cv band)."""
+    Ps = [128, 256, 512, 1024, 2048, 4096]
+    sw = c["cost_swing_cv"]
+    rows = ["| layout | " + " | ".join(f"{P} cores" for P in Ps) + " |",
+            "|---|" + "---|" * len(Ps)]
+    for name, lay in layouts(c).items():
+        cells = []
+        for P in Ps:
+            e = 100 * efficiency(c, lay, P, 10000)
+            lo = 100 * efficiency(c, lay, P, 10000, sw["high"])
+            hi = 100 * efficiency(c, lay, P, 10000, sw["low"])
+            cells.append(f"{e:.1f} ({lo:.1f}-{hi:.1f})")
+        rows.append(f"| {name} | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
+
+
 def main():
     c = load()
+    if "--doc-table" in sys.argv:
+        print(doc_table(c))
+        return
     print("constants:", CONSTANTS.relative_to(ROOT))
     for k in ("t_rve_s", "s_mpm_s", "s_farm_s", "s_out_s", "alpha_s", "beta_Bps"):
         print(f"  {k} = {c[k]:g}   ({c['notes'][k]})")
+    sw = c["cost_swing_cv"]
+    print(f"  cost_swing_cv = {sw['value']:g} ({sw['low']:g}-{sw['high']:g}: {sw['note']})")
+    print(swing_check(c))
     print(tables(c))
     if "--no-figures" not in sys.argv:
         figures(c)
