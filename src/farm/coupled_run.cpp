@@ -187,6 +187,13 @@ void Master::run(RunSummary& sum) {
                    ? fmt::format(", at most {:.3g} after the first {:.0f} % of the end time",
                                  quasi_static_.max_ratio(), 100.0 * mpm::QuasiStaticWatch::kWarmUp)
                    : std::string());
+  if (const mpm::EnergyGuard& g = solver_.energy_guard(); g.enabled()) {
+    spdlog::info(
+        "energy guard: the steps created at most {:.3g} of the energy scale (now {:.4g} J created "
+        "of {:.4g} J; work of gravity, loads and walls {:.4g} J); it stops a run beyond "
+        "mpm.energy_guard = {:.3g}",
+        g.max_share(), g.created(), g.scale(), g.external_work(), g.share());
+  }
   if (output_.due_at_end(solver_.step_count(), results_.rows())) output();
   if (grains_.due_at_end(solver_.step_count())) {
     grains_.write(farm_, solver_.step_count(), solver_.time());

@@ -85,6 +85,7 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
     : config_(std::move(config)), points_(std::move(points)), materials_(std::move(materials)) {
   config_.validate();
   points_.validate();
+  guard_ = EnergyGuard(config_.energy_guard);
   if (materials_.empty()) throw common::InputError("mpm solver: no material model given");
   for (std::size_t k = 0; k < materials_.size(); ++k) {
     if (materials_[k] == nullptr) {
@@ -210,11 +211,96 @@ void Solver::prepare_grid(std::int64_t step, double t) {
   scale_inertia(true);  // after P2G: the gravity force above keeps the real mass
   threshold_ = config_.mass_threshold * typical_nodal_mass(fields_);
   compute_nodal_velocity(threshold_, fields_);
+  // The walls' momentum stage changes the grid's kinetic energy: their work (energy guard), where
+  // it is an impulse on the points (wall_impulse_on_points); otherwise it is only the step's
+  // kinematics, the points keep their velocity, and the same energy would be "removed" again
+  // at every step.
+  const bool wall_work = guard_.enabled() && config_.wall_impulse_on_points;
+  const double ke_before = wall_work ? grid_kinetic_energy() : 0.0;
   // Plane strain holds the thickness component before the constraints too: a frictional wall then
   // sees no slip through the thickness (it would resist it and report it as its reaction).
   hold_thickness_velocity();
   apply_velocity_constraints(config_.grid, constraints_, t, fields_);
   hold_thickness_velocity();
+  w_ext_step_ = wall_work ? grid_kinetic_energy() - ke_before : 0.0;
+}
+
+double Solver::grid_kinetic_energy() const {
+  thread_local std::vector<double> terms;
+  const std::vector<std::int64_t>& active = fields_.active;
+  compute_terms(static_cast<std::int64_t>(active.size()), terms, [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
+    return fields_.mass[u] * fields_.velocity[u].squaredNorm();
+  });
+  double sum = 0.0;
+  for (const double x : terms) sum += x;  // slot order: the same bits on any number of threads
+  return 0.5 * sum;
+}
+
+void Solver::internal_force_tracked() {
+  if (!guard_.enabled()) {
+    internal_force();
+    return;
+  }
+  const std::vector<std::int64_t>& active = fields_.active;
+  if (f_internal_.size() < fields_.force.size()) f_internal_.resize(fields_.force.size());
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
+    f_internal_[u] = fields_.force[u];
+  });
+  internal_force();
+  for_each_index(static_cast<std::int64_t>(active.size()), [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
+    f_internal_[u] = fields_.force[u] - f_internal_[u];
+  });
+}
+
+double Solver::grid_external_work(double dt) const {
+  // On the velocity the materials' L comes from, so that the forces' work and the materials'
+  // stress power pair up: V(t) in USF, V(t) + a dt (what the points carry into the re-projected
+  // L) in MUSL. The step's kinetic energy change then differs from the net work by
+  // dt^2 / 2 sum m |a|^2 (USF; minus that in MUSL): negligible in a stable step, the growth
+  // itself in an unstable one.
+  const double w = config_.stress_update == StressUpdate::usf ? 0.0 : 1.0;
+  thread_local std::vector<double> terms;
+  const std::vector<std::int64_t>& active = fields_.active;
+  compute_terms(static_cast<std::int64_t>(active.size()), terms, [&](std::int64_t k) {
+    const auto u = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
+    const common::Vec3& a = fields_.acceleration[u];
+    const common::Vec3 f_ext = fields_.mass[u] * a - f_internal_[u];
+    return f_ext.dot(fields_.velocity[u] + w * dt * a);
+  });
+  double sum = 0.0;
+  for (const double x : terms) sum += x;
+  return dt * sum;
+}
+
+void Solver::observe_energy(double t_end) {
+  const double kin = kinetic_energy(points_, config_.mass_scaling);
+  if (!guard_.observe(kin, internal_work_, w_ext_step_)) return;
+  std::size_t fast = 0;
+  double e_max = -1.0;
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const double e = points_.mass[p] * points_.v[p].squaredNorm();
+    if (e > e_max) {
+      e_max = e;
+      fast = p;
+    }
+  }
+  throw common::NumericalError(
+      "mpm step " + std::to_string(step_) + " (t = " + num_str(t_end) +
+      " s): the energy grows without a source: the steps created " + num_str(guard_.created()) +
+      " J since the start (kinetic energy " + num_str(kin) + " J, internal work " +
+      num_str(internal_work_) + " J, work of gravity, loads and walls " +
+      num_str(guard_.external_work()) + " J), more than " + num_str(guard_.share()) +
+      " of the scene's energy scale " + num_str(guard_.scale()) + " J for " +
+      std::to_string(EnergyGuard::kPersist) + " steps in a row; the fastest point is id " +
+      std::to_string(points_.id.empty() ? -1 : points_.id[fast]) +
+      " at x = " + (points_.x.empty() ? std::string("-") : vec_str(points_.x[fast])) +
+      " m, |v| = " + (points_.v.empty() ? std::string("-") : num_str(points_.v[fast].norm())) +
+      " m/s. An unstable step (a time step above the stability limit, mpm.dt) or a material "
+      "update that returns more work than it took; mpm.energy_guard = 0 turns the guard off "
+      "(docs/design/mpm.md, Energy-growth guard)");
 }
 
 void Solver::project_wall_trial(double dt) {
@@ -441,6 +527,8 @@ void Solver::update_points(double dt) {
 void Solver::step() {
   const double dt = next_dt();
   const double t = time_;
+  if (guard_.enabled() && !guard_.started())
+    guard_.start(kinetic_energy(points_, config_.mass_scaling), internal_work_);
   prepare_grid(step_, t);
   const Grid& grid = config_.grid;
   if (config_.stress_update == StressUpdate::usf) {
@@ -448,24 +536,26 @@ void Solver::step() {
     g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
     update_stress(dt);
     check_points(t + dt);
-    internal_force();
+    internal_force_tracked();
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     project_wall_trial(dt);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
+    if (guard_.enabled()) w_ext_step_ += grid_external_work(dt);
     update_points(dt);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
-    internal_force();
+    internal_force_tracked();
     add_external_loads();
     compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
     hold_thickness_acceleration();  // before the walls: no reaction through the thickness
     project_wall_trial(dt);
     apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
     hold_thickness_acceleration();
+    if (guard_.enabled()) w_ext_step_ += grid_external_work(dt);
     update_points(dt);
     p2g_momentum(grid, cache_, bins_, points_, fields_, config_.transfer == Transfer::apic);
     scale_inertia(false);
@@ -480,6 +570,7 @@ void Solver::step() {
   advance_displacements(t, dt);
   time_ = t + dt;
   ++step_;
+  if (guard_.enabled()) observe_energy(time_);
 }
 
 void Solver::run(std::int64_t n) {

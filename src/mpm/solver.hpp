@@ -11,6 +11,7 @@
 #include "common/state_io.hpp"
 #include "mpm/boundary.hpp"
 #include "mpm/energy.hpp"
+#include "mpm/energy_guard.hpp"
 #include "mpm/formulation.hpp"
 #include "mpm/free_density.hpp"
 #include "mpm/gradient_regularisation.hpp"
@@ -99,6 +100,10 @@ struct SolverConfig {
   double regularisation_length = 0.0;
   /// Its modulus H [Pa]: the stiffness of the energy on a point's strain minus its average.
   double regularisation_modulus = 0.0;
+  /// Energy-growth guard (mpm/energy_guard.hpp): the share of the scene's energy scale that the
+  /// energy created by the steps may exceed, 10 steps in a row with a growing kinetic energy,
+  /// before the run stops (common::NumericalError) [-]; 0 = off.
+  double energy_guard = 0.5;
   /// Throws common::InputError naming the job key (kSolverConfig), its value and the rule.
   void validate() const;
 };
@@ -141,7 +146,15 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
      {"regularisation.modulus", &SolverConfig::regularisation_modulus, common::Unit::Pressure,
       common::ge(0), common::Source::job_default,
       "Modulus H of that energy, given with the length: of the order of the material's shear "
-      "modulus (docs/design/mpm.md, Regularisation); 0 = off."}});
+      "modulus (docs/design/mpm.md, Regularisation); 0 = off."},
+     {"energy_guard", &SolverConfig::energy_guard, common::Unit::Dimensionless, common::ge(0),
+      common::Source::job_default,
+      "Energy-growth guard: the run stops (exit 3, naming the step, the time and the fastest "
+      "point) when the energy its steps create (kinetic energy + internal work - the work of "
+      "gravity, loads, walls and damping since the start) exceeds this share of the scene's "
+      "energy scale 10 steps in a row while the kinetic energy grows: a time step above the "
+      "stability limit, an unstable material update. 0 = off, for a scene that injects energy "
+      "the balance does not see (docs/design/mpm.md, Energy-growth guard)."}});
 
 /// Owns the points and the grid fields; materials are not owned and must outlive the solver.
 class Solver {
@@ -224,6 +237,16 @@ class Solver {
   void project_wall_trial(double dt);
   /// Mass scaling: multiplies the nodal momenta (and masses when `with_mass`) by s.
   void scale_inertia(bool with_mass);
+  /// Energy guard: the grid's kinetic energy 1/2 sum m_v |V_v|^2 over the active nodes [J].
+  [[nodiscard]] double grid_kinetic_energy() const;
+  /// Energy guard: internal_force() with the internal part of the nodal forces kept apart.
+  void internal_force_tracked();
+  /// Energy guard: the step's work of every nodal force but the internal one, from the final
+  /// accelerations: dt sum (m_v a_v - f_int,v) . V_v, V_v the velocity the materials' L is
+  /// taken from (V(t) in USF, V(t) + a dt in MUSL) [J].
+  [[nodiscard]] double grid_external_work(double dt) const;
+  /// Energy guard: observe the step; throws common::NumericalError when it trips.
+  void observe_energy(double t_end);
 
   SolverConfig config_;
   MaterialPoints points_;
@@ -249,6 +272,13 @@ class Solver {
   std::vector<double> density_node_m_, density_node_v_, density_rho_;     ///< FreeDensity::grid
   std::vector<common::Mat3> force_stress_;                ///< the stress the internal forces use
   std::optional<GradientRegularisation> regularisation_;  ///< with regularisation_length > 0
+  EnergyGuard guard_{0.0};                ///< energy-growth guard (config_.energy_guard)
+  std::vector<common::Vec3> f_internal_;  ///< guard: f_int by node, this step [N]
+  double w_ext_step_ = 0.0;               ///< guard: the step's external work so far [J]
+
+ public:
+  /// The energy guard's state (its balance and the largest share seen, for the log).
+  [[nodiscard]] const EnergyGuard& energy_guard() const { return guard_; }
 };
 
 }  // namespace mpm
