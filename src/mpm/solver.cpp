@@ -277,6 +277,8 @@ double Solver::grid_external_work(double dt) const {
 
 void Solver::observe_energy(double t_end) {
   const double kin = kinetic_energy(points_, config_.mass_scaling);
+  kinetic_step_ = step_;  // energies() of this step reuses it
+  kinetic_ = kin;
   if (!guard_.observe(kin, internal_work_, w_ext_step_)) return;
   std::size_t fast = 0;
   double e_max = -1.0;
@@ -400,7 +402,9 @@ void Solver::update_stress(double dt) {
 }
 
 Energies Solver::energies() const {
-  return {kinetic_energy(points_, config_.mass_scaling), internal_work_};
+  const double kin =
+      kinetic_step_ == step_ ? kinetic_ : kinetic_energy(points_, config_.mass_scaling);
+  return {kin, internal_work_};
 }
 
 void Solver::update_material_stress(double dt) {

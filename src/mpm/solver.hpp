@@ -182,7 +182,10 @@ class Solver {
 
   [[nodiscard]] const MaterialPoints& points() const { return points_; }
   /// Mutable access, e.g. to set initial velocities or stresses before the first step.
-  [[nodiscard]] MaterialPoints& points() { return points_; }
+  [[nodiscard]] MaterialPoints& points() {
+    kinetic_step_ = -1;  // the points may change: no cached kinetic energy
+    return points_;
+  }
   [[nodiscard]] const GridFields& grid_fields() const { return fields_; }
   [[nodiscard]] const SolverConfig& config() const { return config_; }
   [[nodiscard]] double time() const { return time_; }  ///< [s]
@@ -275,6 +278,8 @@ class Solver {
   EnergyGuard guard_{0.0};                ///< energy-growth guard (config_.energy_guard)
   std::vector<common::Vec3> f_internal_;  ///< guard: f_int by node, this step [N]
   double w_ext_step_ = 0.0;               ///< guard: the step's external work so far [J]
+  std::int64_t kinetic_step_ = -1;        ///< the step whose kinetic energy the guard summed
+  double kinetic_ = 0.0;                  ///< that kinetic energy [J]
 
  public:
   /// The energy guard's state (its balance and the largest share seen, for the log).

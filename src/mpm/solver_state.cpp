@@ -156,6 +156,7 @@ void Solver::load(const common::StateReader& r) {
   if (regularisation_) regularisation_->set_strain(std::move(reg_strain));
   points_ = std::move(pts);
   step_ = step[0];
+  kinetic_step_ = -1;
   time_ = time[0];
   internal_work_ = work;
   displacements_ = std::move(disp);

@@ -11,8 +11,7 @@
 // docs/validation/scaling.md) Options: --speed <x> (platen speed in units of eq. 13), --packing
 // <file> (DEM packing; default: the 1000-sphere reference of jobs/packings),
 // --omp-over-rves 0|1, --rank0-rves 0|1 (0: rank 0 runs the MPM only), --partition spread|cells,
-// --wait auto|spin|sleep (auto: spin unless the node's threads share cores).
-// Figures and commands: docs/design/farm.md, "Benchmarks".
+// --wait auto|spin|sleep (auto: spin unless threads share cores). docs/design/farm.md, Benchmarks.
 #include <mpi.h>
 
 #include <algorithm>
