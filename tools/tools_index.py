@@ -25,12 +25,13 @@ KIND = {
     "footing_curves.py": 2, "footing_sparing_map.py": 2, "mpm_column_collapse.py": 2,
     "plot_column_collapse.py": 2, "plot_triaxial.py": 2, "render_column_collapse.py": 2,
     "render_points.py": 2, "render_rve.py": 2, "triaxial_errors.py": 2, "scaling_model.py": 2,
-    "balance_table.py": 2,
+    "balance_table.py": 2, "dem_against_yade.py": 2,
     "yade_column_collapse.py": 3, "yade_column_collapse_partial.py": 3,
-    "yade_export_packing.py": 3, "yade_read_packing.py": 3,
+    "yade_export_packing.py": 3, "yade_read_packing.py": 3, "yade_hertz_mindlin_pair.py": 3,
+    "yade_triax_hertz_mindlin.py": 3,
     "check_grain_vtk.py": 4, "check_outputs.py": 4,
     "bench_coupling.py": 5, "bench_dem_pairs.py": 5, "bench_dem_speedup.py": 5, "bench_node.sh": 5,
-    "bench_sparing.py": 5, "bench_speed_error.py": 5, "coupling_bias.py": 5,
+    "bench_sparing.py": 5, "bench_contact_laws.py": 5, "bench_speed_error.py": 5, "coupling_bias.py": 5,
 }
 
 

@@ -492,6 +492,13 @@ std::string Job::missing_message(const std::string& path, const std::string& rul
   return fmt::format("{}: {} is missing: {}", where, path, rule);
 }
 
+std::string Job::section_message(const std::string& path, const std::string& rule) const {
+  auto it = sections_.find(path);
+  const int line = it == sections_.end() ? 0 : it->second;
+  const std::string where = line > 0 ? fmt::format("{}:{}", file_, line) : file_;
+  return fmt::format("{}: [{}]: {}", where, path, rule);
+}
+
 std::string Job::directory() const { return std::filesystem::path(file_).parent_path().string(); }
 
 namespace {

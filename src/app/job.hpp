@@ -50,6 +50,8 @@ class Job {
   [[nodiscard]] std::string message(const std::string& path, const std::string& rule) const;
   /// A message for a key that should be present but is not.
   [[nodiscard]] std::string missing_message(const std::string& path, const std::string& rule) const;
+  /// "file:line: [path]: rule" for a table of the job (its header's line).
+  [[nodiscard]] std::string section_message(const std::string& path, const std::string& rule) const;
 
   /// The resolved job as TOML, defaults included and marked, canonical units.
   [[nodiscard]] std::string resolved_toml() const;

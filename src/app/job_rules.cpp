@@ -35,6 +35,9 @@ class Rules {
   void fail_missing(const std::string& path, const std::string& rule) {
     errors_.push_back(job_.missing_message(path, rule));
   }
+  void fail_section(const std::string& path, const std::string& rule) {
+    errors_.push_back(job_.section_message(path, rule));
+  }
   void add(const std::string& message) { errors_.push_back(message); }
   [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
 
@@ -105,6 +108,35 @@ void sample_rules(const Job& job, Rules& r) {
   }
   if (f.front() != 0.0 || f.back() != 1.0)
     r.fail("dem.sample.psd_passing", "must start at 0 and end at 1");
+}
+
+// The keys of one contact law are required with it and refused with another.
+void material_rules(const Job& job, Rules& r) {
+  if (!job.has_section("dem.material")) return;
+  const std::string law =
+      job.has("dem.material.contact_law") ? job.text("dem.material.contact_law") : "cohfrict";
+  const std::string why = fmt::format("with dem.material.contact_law = \"{}\"", law);
+  const std::string refuse = fmt::format("not used {}: remove it or change the law", why);
+  if (law == "cohfrict") {
+    for (const auto& p : dem::kCohFrict) {
+      // The rows of the optional [dem.material.twisting] table are required by the schema.
+      if (p.key.find('.') == std::string_view::npos) r.require(dem::kCohFrict.name(p), why);
+    }
+    if (job.has_section("dem.material.hertz_mindlin")) {
+      r.fail_section("dem.material.hertz_mindlin", refuse);
+    }
+    return;
+  }
+  if (!job.has_section("dem.material.hertz_mindlin")) {
+    std::string keys;
+    for (const auto& p : dem::kHertzMindlin) keys += (keys.empty() ? "" : ", ") + std::string(p.key);
+    r.fail("dem.material.contact_law",
+           fmt::format("needs the table [dem.material.hertz_mindlin] ({})", keys));
+  }  // present: the schema requires its keys
+  for (const auto& p : dem::kCohFrict) {
+    if (job.has(dem::kCohFrict.name(p))) r.fail(dem::kCohFrict.name(p), refuse);
+  }
+  if (job.has_section("dem.material.twisting")) r.fail_section("dem.material.twisting", refuse);
 }
 
 void loading_rules(const Job& job, Rules& r) {
@@ -385,6 +417,7 @@ void stress_level_rules(const Job& job, Rules& r) {
 void check_job_rules(const Job& job) {
   Rules r(job);
   sample_rules(job, r);
+  material_rules(job, r);
   loading_rules(job, r);
   numerics_rules(job, r);
   mpm_rules(job, r);

@@ -17,12 +17,26 @@ void add_dem_sections(Schema& s) {
         "The discrete-element model: of every RVE in `run`, of the sample in `dem`.");
 
   s.add("dem.material", Type::Table,
-        "Grain and contact parameters (YADE CohFrictMat with rolling resistance, Aboul Hosn et al. "
-        "2017).")
+        "Grain and contact parameters: the linear CohFrict law with rolling resistance (YADE "
+        "CohFrictMat, Aboul Hosn et al. 2017) or Hertz-Mindlin (YADE's Mindlin law).")
       .need();
+  s.add("dem.material.contact_law", Type::String,
+        "The contact law: \"cohfrict\" (YADE Law2_ScGeom6D_CohFrictPhys_CohesionMoment, linear, "
+        "with rolling resistance: the keys below marked cohfrict) or \"hertz_mindlin\" (YADE "
+        "Law2_ScGeom_MindlinPhys_Mindlin with its moments: [dem.material.hertz_mindlin]); "
+        "docs/design/dem.md \"Contact laws\".")
+      .one_of({"cohfrict", "hertz_mindlin"})
+      .or_default(std::string("cohfrict"));
   add_params(s, dem::kMaterial);
-  s.add("dem.material.twisting", Type::Table, "Twisting resistance; absent: no twisting moment.");
-  add_params(s, dem::kMaterial, "twisting");
+  constexpr std::string_view kWithCohFrict = "with contact_law = \"cohfrict\"";
+  add_params(s, dem::kCohFrict, {}, kWithCohFrict);
+  s.add("dem.material.twisting", Type::Table,
+        "cohfrict: twisting resistance; absent: no twisting moment.");
+  add_params(s, dem::kCohFrict, "twisting");
+  s.add("dem.material.hertz_mindlin", Type::Table,
+        "Hertz-Mindlin parameters (YADE FrictMat and Ip2_FrictMat_FrictMat_MindlinPhys). Required "
+        "with contact_law = \"hertz_mindlin\", refused with another law.");
+  add_params(s, dem::kHertzMindlin);
 
   s.add("dem.sample", Type::Table,
         "The sphere sample: loaded from a packing file, or generated as a cloud.")

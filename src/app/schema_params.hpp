@@ -14,9 +14,13 @@ namespace app {
 
 /// Adds the job rows of `table` whose key lies in sub-table `sub` of the table's section ("" for
 /// the section itself, "twisting" for "twisting.stiffness") as schema keys, in table order. The
-/// caller adds the section (and sub-table) keys themselves, with their documentation.
+/// caller adds the section (and sub-table) keys themselves, with their documentation. With
+/// `required_when` (e.g. "with contact_law = \"cohfrict\""), the required rows are required by a
+/// job rule (app/job_rules.cpp) under that condition, not by the schema, and their documentation
+/// says when.
 template <class S, std::size_t N>
-void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_view sub = {}) {
+void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_view sub = {},
+                std::string_view required_when = {}) {
   for (const auto& p : table) {
     if (!p.in_job()) continue;
     const auto dot = p.key.rfind('.');
@@ -25,7 +29,9 @@ void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_vi
     Key& k = s.add(table.name(p), p.is_integer() ? Type::Int : Type::Float, std::string(p.doc))
                  .unit(p.unit)
                  .in(p.range.lo, p.range.hi, p.range.lo_open, p.range.hi_open);
-    if (p.source == common::Source::job_required) {
+    if (p.source == common::Source::job_required && !required_when.empty()) {
+      k.doc += " Required " + std::string(required_when) + ".";
+    } else if (p.source == common::Source::job_required) {
       k.need();
     } else if (p.source == common::Source::job_optional) {
       continue;  // absent: the struct keeps its "not set" value

@@ -39,6 +39,9 @@ constexpr std::array kUnits{
     UnitDef{Quantity::Acceleration, "m/s^2", 1.0},
     UnitDef{Quantity::Acceleration, "m/s2", 1.0},
     UnitDef{Quantity::Rate, "1/s", 1.0},
+    UnitDef{Quantity::RotationalStiffness, "N m/rad", 1.0},
+    UnitDef{Quantity::RotationalStiffness, "N*m/rad", 1.0},
+    UnitDef{Quantity::RotationalStiffness, "uN m/rad", 1e-6},
 };
 
 std::string_view trim(std::string_view s) {
@@ -70,6 +73,8 @@ std::string_view quantity_name(Quantity q) {
       return "an acceleration";
     case Quantity::Rate:
       return "a rate";
+    case Quantity::RotationalStiffness:
+      return "a rotational stiffness";
   }
   return "";
 }

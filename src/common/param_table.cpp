@@ -10,8 +10,8 @@ namespace common {
 
 std::string_view unit_symbol(Unit u) {
   // Indexed by Unit, in its order.
-  constexpr std::array<std::string_view, 9> kSymbols{"",       "m",   "Pa",    "deg", "s",
-                                                     "kg/m^3", "m/s", "m/s^2", "1/s"};
+  constexpr std::array<std::string_view, 10> kSymbols{"",       "m",   "Pa",    "deg", "s",
+                                                      "kg/m^3", "m/s", "m/s^2", "1/s", "N m/rad"};
   return kSymbols.at(static_cast<std::size_t>(u));
 }
 

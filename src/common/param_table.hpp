@@ -33,9 +33,10 @@ enum class Unit {
   Velocity,      ///< m/s
   Acceleration,  ///< m/s^2
   Rate,          ///< 1/s
+  RotationalStiffness,  ///< N m/rad (a moment per radian of relative rotation)
 };
 
-/// "m", "Pa", "deg", "s", "kg/m^3", "m/s", "m/s^2", "1/s"; "" for none.
+/// "m", "Pa", "deg", "s", "kg/m^3", "m/s", "m/s^2", "1/s", "N m/rad"; "" for none.
 [[nodiscard]] std::string_view unit_symbol(Unit u);
 
 /// An interval of allowed values; an absent bound is unbounded. NaN and infinities are outside

@@ -1,5 +1,8 @@
 // bench_dem: standalone run of dem::run_benchmark.
-// Usage: bench_dem [packing.txt] [tiles=1] [threads=1] [steps=3000]
+// Usage: bench_dem [packing.txt] [tiles=1] [threads=1] [steps=3000] [law=cohfrict]
+// law: cohfrict (the reference material) or hertz_mindlin (the material of
+// jobs/triaxial_dem_hertz_mindlin.toml; an empty packing then means its packing,
+// jobs/packings/packing_N1000_hertz_mindlin.txt).
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -10,13 +13,28 @@
 
 int main(int argc, char** argv) {
   try {
-    const std::string path =
-        (argc > 1 && argv[1][0] != 0) ? argv[1] : dem::reference_packing_path();
+    const std::string law = argc > 5 ? argv[5] : "cohfrict";
+    if (law != "cohfrict" && law != "hertz_mindlin") {
+      std::fprintf(stderr, "bench_dem: law '%s': must be cohfrict or hertz_mindlin\n", law.c_str());
+      return 2;
+    }
+    dem::Material mat = dem::reference_material();
+    std::string fallback = dem::reference_packing_path();
+    if (law == "hertz_mindlin") {
+      mat.law = dem::ContactLawKind::hertz_mindlin;
+      mat.young = 3e9;
+      mat.hm.poisson = 0.25;
+      mat.hm.krot = 1e-4;
+      mat.hm.ktwist = 0.0;
+      mat.hm.eta = 0.3;
+      fallback = fallback.substr(0, fallback.rfind('/')) + "/packing_N1000_hertz_mindlin.txt";
+    }
+    const std::string path = (argc > 1 && argv[1][0] != 0) ? argv[1] : fallback;
     dem::BenchmarkConfig cfg;
     cfg.tiles = argc > 2 ? std::atoi(argv[2]) : 1;
     cfg.threads = argc > 3 ? std::atoi(argv[3]) : 1;
     cfg.steps = argc > 4 ? std::atoll(argv[4]) : 3000;
-    const auto r = dem::run_benchmark(dem::read_packing(path), dem::reference_material(),
+    const auto r = dem::run_benchmark(dem::read_packing(path), mat,
                                       dem::benchmark_numerics(), cfg);
     std::printf("spheres %lld threads %d team %d steps %lld wall %.3f s cpu %.3f s\n",
                 static_cast<long long>(r.spheres), r.threads, r.team,

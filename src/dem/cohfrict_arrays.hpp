@@ -15,7 +15,7 @@ namespace dem {
 
 /// Properties of one contact: tan_phi is fixed when it is created (the friction angle may change
 /// between creations); the others are functions of the radii and the material (cohfrict_stiffness).
-struct CohFrictProps {
+struct ContactProps {
   double kn = 0.0;          ///< normal stiffness [N/m]
   double ks = 0.0;          ///< shear stiffness [N/m]
   double kr = 0.0;          ///< rolling stiffness [N m/rad]

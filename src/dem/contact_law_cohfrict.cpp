@@ -1,5 +1,6 @@
 // CohFrictLaw: YADE's CohFrictPhys creation and CohesionMoment incremental law (no cohesion).
 #include "dem/contact_law_cohfrict.hpp"
+#include "dem/lane_math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,59 +23,7 @@ void CohFrictLaw::set_friction_deg(double phi_deg) {
 // Branches of apply() become selects: both sides are computed, one is kept.
 namespace {
 
-struct V3 {
-  double x, y, z;
-};
-
-inline V3 cross(const V3& a, const V3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double dot(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
-inline V3 sub(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 scale(double s, const V3& a) { return {s * a.x, s * a.y, s * a.z}; }
-
-// v <- v - v x orth, then v <- v - v x twist_axis (ScGeom::precompute / rotate).
-inline V3 carry(const V3& v, const V3& orth, const V3& twist_axis) {
-  const V3 v1 = sub(v, cross(v, orth));
-  return sub(v1, cross(v1, twist_axis));
-}
-
-// c ? a : b, component by component (a select the vectoriser turns into a blend).
-inline V3 select(bool c, const V3& a, const V3& b) {
-  return {c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
-}
-
-// detail::radial_return as a select.
-inline V3 radial_return(const V3& v, double cap) {
-  const double n2 = dot(v, v);
-  return select(n2 > cap * cap, scale(cap / std::sqrt(n2), v), v);
-}
-
-inline V3 select(bool c, const V3& a, double b) { return {c ? a.x : b, c ? a.y : b, c ? a.z : b}; }
-
-// Lane q of a batch is pair first + q of the contacts' arrays: pointers shifted to the batch's
-// first pair.
-struct Vec3At {
-  double *x, *y, *z;
-  Vec3At(std::array<std::vector<double>, 3>& a, std::size_t f)
-      : x(a[0].data() + f), y(a[1].data() + f), z(a[2].data() + f) {}
-  [[nodiscard]] V3 load(int q) const { return {x[q], y[q], z[q]}; }
-  // Lanes not touching keep their value: v where c, else the old one.
-  void store_if(bool c, int q, const V3& v) const {
-    x[q] = c ? v.x : x[q];
-    y[q] = c ? v.y : y[q];
-    z[q] = c ? v.z : z[q];
-  }
-};
-
-inline V3 load(const double (&a)[3][CohFrictBatch::kLanes], int q) {
-  return {a[0][q], a[1][q], a[2][q]};
-}
-inline void store(double (&a)[3][CohFrictBatch::kLanes], int q, const V3& v) {
-  a[0][q] = v.x;
-  a[1][q] = v.y;
-  a[2][q] = v.z;
-}
+using namespace lane;  // V3 and its operations: dem/lane_math.hpp
 
 template <bool kTwist>
 [[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const Material& material,
@@ -169,24 +118,6 @@ template <bool kTwist>
   }
 }
 
-// Whether some lane has a twisting moment: else (and when the material has no twisting
-// stiffness) the twisting part is skipped (the twist of every lane is +0 and stays so, as apply()
-// keeps it). Lanes not touching may turn it on: the twisting part then leaves a zero twist +0,
-// the same bits.
-bool twist_on(const CohFrictBatch& b, const CohFrictHistoryArrays& ha) {
-  const double* tx = ha.twist[0].data() + b.first;
-  const double* ty = ha.twist[1].data() + b.first;
-  const double* tz = ha.twist[2].data() + b.first;
-  int on = 0;
-  const int nl = b.n;
-#pragma omp simd reduction(| : on)
-  for (int q = 0; q < nl; ++q) {
-    on |= static_cast<int>(tx[q] != 0.0) | static_cast<int>(ty[q] != 0.0) |
-          static_cast<int>(tz[q] != 0.0);
-  }
-  return on != 0;
-}
-
 // One clone per instruction set, chosen once at load time by the processor (GCC function
 // multi-versioning): the same operations, 2, 4 or 8 lanes at a time. Lanes are independent and
 // IEEE operations are exact per lane, and no clone may fuse a multiply and an add
@@ -201,7 +132,7 @@ MPMXDEM_LANE_CLONES void run_lanes(CohFrictBatch& b, const Material& mat, const 
                                    CohFrictHistoryArrays& ha, const common::Mat3& l, double dt,
                                    bool twist_possible) {
   // kt = alpha_t ks R1 R2 is +0 for every lane when alpha_t = 0.
-  if (twist_possible && (mat.alpha_t != 0.0 || twist_on(b, ha))) {
+  if (twist_possible && (mat.alpha_t != 0.0 || twist_on(ha, b.first, b.n))) {
     apply_lanes<true>(b, mat, tan_phi, ha, l, dt);
   } else {
     apply_lanes<false>(b, mat, tan_phi, ha, l, dt);

@@ -91,9 +91,9 @@ class CohFrictLaw {
   explicit CohFrictLaw(const Material& mat);
 
   /// Properties of a new contact between radii r1, r2 [m] (the current friction angle).
-  [[nodiscard]] CohFrictProps create(double r1, double r2) const { return props(r1, r2, tan_phi_); }
+  [[nodiscard]] ContactProps create(double r1, double r2) const { return props(r1, r2, tan_phi_); }
   /// Properties of a contact between radii r1, r2 [m] created with friction coefficient tan_phi.
-  [[nodiscard]] CohFrictProps props(double r1, double r2, double tan_phi) const {
+  [[nodiscard]] ContactProps props(double r1, double r2, double tan_phi) const {
     const CohFrictStiffness k = cohfrict_stiffness(mat_, r1, r2);
     return {k.kn, k.ks, k.kr, k.kt, tan_phi, k.roll_cap, k.twist_cap};
   }
@@ -103,7 +103,7 @@ class CohFrictLaw {
   /// One step of the law for a contact in overlap (delta = r1 + r2 - |d| > 0).
   /// @param is_new  true on the step the contact is created (history is reset, no rotation)
   /// @param dt      time step [s]
-  void apply(const CohFrictProps& props, CohFrictHistory& hist, const ContactKinematics& kin,
+  void apply(const ContactProps& props, CohFrictHistory& hist, const ContactKinematics& kin,
              bool is_new, double dt, ContactResult& out) const;
 
   /// The same law for the b.n lanes of a batch, lane by lane the same floating-point operations
@@ -135,6 +135,8 @@ struct StiffnessLanes {
   static constexpr int kLanes = 64;
   int n = 0;
   alignas(64) double r1[kLanes], r2[kLanes], n0[kLanes], n1[kLanes], n2[kLanes];
+  /// Overlap r1 + r2 - |d| [m]: read only by laws whose stiffness depends on it (Hertz-Mindlin).
+  alignas(64) double delta[kLanes];
   alignas(64) double kt[3][kLanes], kr1[3][kLanes], kr2[3][kLanes];
 };
 void stiffness_lanes(const Material& m, StiffnessLanes& b);
@@ -150,7 +152,7 @@ inline void radial_return(common::Vec3& v, double cap) {
 }
 }  // namespace detail
 
-inline void CohFrictLaw::apply(const CohFrictProps& p, CohFrictHistory& h,
+inline void CohFrictLaw::apply(const ContactProps& p, CohFrictHistory& h,
                                const ContactKinematics& k, bool is_new, double dt,
                                ContactResult& out) const {
   const double l = k.d.norm();

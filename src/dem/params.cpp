@@ -7,7 +7,23 @@
 
 namespace dem {
 
-void Material::validate() const { common::check_ranges(kMaterial, *this); }
+void Material::validate() const {
+  common::check_ranges(kMaterial, *this);
+  switch (law) {
+    case ContactLawKind::cohfrict:
+      common::check_ranges(kCohFrict, *this);
+      return;
+    case ContactLawKind::hertz_mindlin:
+      common::check_ranges(kHertzMindlin, hm);
+      return;
+  }
+  throw common::InputError("dem.material.contact_law: unknown law " +
+                           std::to_string(static_cast<int>(law)));
+}
+
+const char* contact_law_name(ContactLawKind k) {
+  return k == ContactLawKind::hertz_mindlin ? "hertz_mindlin" : "cohfrict";
+}
 
 void Numerics::validate() const {
   common::check_ranges(kNumerics, *this);

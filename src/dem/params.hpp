@@ -10,21 +10,46 @@
 
 namespace dem {
 
-/// One material for all spheres (CohFrictMat without cohesion, YADE terms in brackets). The
-/// defaults are placeholders: the job file must give every entry (kMaterial).
+/// The contact law of a material: the linear CohFrict law (YADE
+/// Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Aboul Hosn et al. 2017) or Hertz-Mindlin (YADE
+/// Law2_ScGeom_MindlinPhys_Mindlin with its moments). Job key dem.material.contact_law.
+enum class ContactLawKind : std::int8_t { cohfrict = 0, hertz_mindlin = 1 };
+
+/// Hertz-Mindlin parameters (YADE FrictMat and Ip2_FrictMat_FrictMat_MindlinPhys, one material):
+/// kno = 4/3 E* sqrt(R*), kso = 2 sqrt(4 R*) G / (2 - nu) with E* = E / (2 (1 - nu^2)),
+/// G = E / (2 (1 + nu)), R* = R1 R2 / (R1 + R2); Fn = kno delta^1.5, tangent ks = kso delta^0.5.
+/// The defaults are placeholders: a job gives every entry (kHertzMindlin).
+struct HertzMindlinMaterial {
+  double poisson = -1.0;  ///< Poisson's ratio nu of the grains [-], in [0, 0.5)
+  double krot = 0.0;      ///< rolling stiffness kr [N m/rad] (YADE krot), the same for every pair
+  double ktwist = 0.0;    ///< twisting stiffness [N m/rad] (YADE ktwist); no cap
+  double eta = 0.0;       ///< rolling strength: |Mb| <= eta (R1 + R2)/2 Fn; 0: no cap (YADE)
+};
+
+/// One material for all spheres (YADE terms in brackets): the CohFrictMat without cohesion of
+/// Aboul Hosn et al. 2017 (the default), or Hertz-Mindlin (`law`, `hm`). The defaults are
+/// placeholders: the job file must give every entry of the law's tables (kMaterial, and kCohFrict
+/// or kHertzMindlin).
 struct Material {
   double density = 0.0;       ///< rho [kg/m^3]
-  double young = 0.0;         ///< E [Pa]; k_n = 2 E R1 R2 / (R1 + R2) [N/m]
-  double ks_over_kn = 0.0;    ///< k_s / k_n [-] (YADE `poisson`)
+  double young = 0.0;         ///< E [Pa]; CohFrict: k_n = 2 E R1 R2 / (R1 + R2) [N/m]; Hertz: grains' E
   double friction_deg = 0.0;  ///< inter-particle friction angle phi [deg], in [0, 90)
+  // CohFrict only (kCohFrict).
+  double ks_over_kn = 0.0;    ///< k_s / k_n [-] (YADE `poisson`)
   double alpha_r = 0.0;       ///< rolling stiffness coefficient [-]: k_r = alpha_r k_s R1 R2
   double eta_r = -1.0;        ///< rolling strength coefficient [-]; < 0: no cap
   double alpha_t = 0.0;       ///< twisting stiffness coefficient [-]: k_t = alpha_t k_s R1 R2
   double eta_t = -1.0;        ///< twisting strength coefficient [-]; < 0: no cap
+  ContactLawKind law = ContactLawKind::cohfrict;
+  HertzMindlinMaterial hm;    ///< Hertz-Mindlin only (kHertzMindlin)
 
-  /// Throws common::InputError naming the job key of the first invalid entry (kMaterial).
+  /// Throws common::InputError naming the job key of the first invalid entry (kMaterial, then
+  /// the law's table).
   void validate() const;
 };
+
+/// "cohfrict", "hertz_mindlin": the job file's names of the laws.
+[[nodiscard]] const char* contact_law_name(ContactLawKind k);
 
 /// Numerical parameters of the integrator and neighbour search. The member initializers are the
 /// defaults of the job keys too (kNumerics).
@@ -43,26 +68,52 @@ struct Numerics {
 using common::Source;
 using common::Unit;
 
-/// [dem.material]: YADE CohFrictMat with rolling resistance, Aboul Hosn et al. 2017.
+/// [dem.material]: the rows of every law.
 inline constexpr auto kMaterial = common::make_table<Material>(
     "dem::Material", "dem.material",
     {{"density", &Material::density, Unit::Density, common::gt(0), Source::job_required,
       "Grain density rho."},
      {"young_modulus", &Material::young, Unit::Pressure, common::gt(0), Source::job_required,
-      "Contact modulus E: kn = 2 E R1 R2 / (R1 + R2)."},
-     {"stiffness_ratio", &Material::ks_over_kn, Unit::Dimensionless, common::gt(0),
-      Source::job_required, "ks / kn (YADE's `poisson`)."},
+      "cohfrict: the contact modulus E, kn = 2 E R1 R2 / (R1 + R2). hertz_mindlin: the grains' "
+      "Young modulus E."},
      {"friction_angle", &Material::friction_deg, Unit::Angle, common::in_co(0, 90),
-      Source::job_required, "Inter-particle friction angle phi."},
+      Source::job_required, "Inter-particle friction angle phi."}});
+
+/// [dem.material], contact_law = "cohfrict": YADE CohFrictMat with rolling resistance, Aboul Hosn
+/// et al. 2017. Required with that law (a job rule), refused with another.
+inline constexpr auto kCohFrict = common::make_table<Material>(
+    "dem::Material", "dem.material",
+    {{"stiffness_ratio", &Material::ks_over_kn, Unit::Dimensionless, common::gt(0),
+      Source::job_required, "cohfrict: ks / kn (YADE's `poisson`)."},
      {"rolling_stiffness", &Material::alpha_r, Unit::Dimensionless, common::ge(0),
-      Source::job_required, "alpha_r: kr = alpha_r ks R1 R2."},
+      Source::job_required, "cohfrict: alpha_r, kr = alpha_r ks R1 R2."},
      {"rolling_strength", &Material::eta_r, Unit::Dimensionless, common::any(),
       Source::job_required,
-      "eta_r: |Mr| <= eta_r min(R1, R2) Fn; a negative value means no cap (purely elastic)."},
+      "cohfrict: eta_r, |Mr| <= eta_r min(R1, R2) Fn; a negative value means no cap (purely "
+      "elastic)."},
      {"twisting.stiffness", &Material::alpha_t, Unit::Dimensionless, common::ge(0),
       Source::job_required, "alpha_t: kt = alpha_t ks R1 R2."},
      {"twisting.strength", &Material::eta_t, Unit::Dimensionless, common::any(),
       Source::job_required, "eta_t: twisting cap coefficient; negative: no cap."}});
+
+/// [dem.material.hertz_mindlin]: YADE's Hertz-Mindlin law with its moments (contact_law =
+/// "hertz_mindlin").
+inline constexpr auto kHertzMindlin = common::make_table<HertzMindlinMaterial>(
+    "dem::HertzMindlinMaterial", "dem.material.hertz_mindlin",
+    {{"poisson_ratio", &HertzMindlinMaterial::poisson, Unit::Dimensionless, common::in_co(0, 0.5),
+      Source::job_required,
+      "Poisson's ratio nu of the grains: kno = 4/3 E/(2 (1 - nu^2)) sqrt(R*), kso = 2 sqrt(4 R*) "
+      "G / (2 - nu), G = E / (2 (1 + nu)), R* = R1 R2 / (R1 + R2)."},
+     {"rolling_stiffness", &HertzMindlinMaterial::krot, Unit::RotationalStiffness, common::ge(0),
+      Source::job_required,
+      "kr, the same for every pair (YADE's krot): the bending moment grows by kr times the "
+      "relative rolling rotation; 0: no rolling moment."},
+     {"rolling_strength", &HertzMindlinMaterial::eta, Unit::Dimensionless, common::ge(0),
+      Source::job_required,
+      "eta: |Mb| <= eta (R1 + R2) / 2 Fn (YADE's eta); 0: no cap, as in YADE."},
+     {"twisting_stiffness", &HertzMindlinMaterial::ktwist, Unit::RotationalStiffness,
+      common::ge(0), Source::job_required,
+      "kt, the same for every pair (YADE's ktwist); the twisting moment has no cap. 0: none."}});
 
 /// [dem.numerics]: the defaults are the member initializers of Numerics.
 inline constexpr auto kNumerics = common::make_table<Numerics>(

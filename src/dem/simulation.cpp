@@ -111,7 +111,7 @@ Simulation::Simulation(Spheres spheres, const PeriodicCell& cell, const Material
 void Simulation::set_friction_deg(double phi_deg, bool existing) {
   law_.set_friction_deg(phi_deg);
   if (existing) {
-    const double t = law_.create(1.0, 1.0).tan_phi;
+    const double t = law_.tan_phi();
     for (double& p : contacts_.tan_phi) p = t;
   }
 }
@@ -234,7 +234,7 @@ void Simulation::pair_block(std::int64_t b, CohFrictBatch& batch) {
         batch.fresh[q] = touching && !was ? 1 : 0;
         if (touching != was) {
           c.active[p] = touching ? 1 : 0;
-          if (touching) c.tan_phi[p] = law_.create(ri, rj).tan_phi;
+          if (touching) c.tan_phi[p] = law_.tan_phi();
         }
       }
       law_.apply_batch(batch, c.tan_phi, c.hist, l, dt, c.twist != Contacts::Twist::none);
@@ -516,6 +516,7 @@ double Simulation::critical_dt() const {
   static thread_local StiffnessLanes lanes;
   sums.assign(ns, Sums{});
   const Material& mat = law_.material();
+  const bool overlap = law_.stiffness_uses_overlap();
   std::array<std::size_t, StiffnessLanes::kLanes> idx{};
   for (std::size_t p = 0; p < np;) {
     int n = 0;
@@ -531,8 +532,11 @@ double Simulation::critical_dt() const {
       lanes.n0[q] = c.hist.normal[0][pq];
       lanes.n1[q] = c.hist.normal[1][pq];
       lanes.n2[q] = c.hist.normal[2][pq];
+      if (overlap) {
+        lanes.delta[q] = (lanes.r1[q] + lanes.r2[q]) - std::sqrt(c.branch[pq].squaredNorm());
+      }
     }
-    stiffness_lanes(mat, lanes);
+    law_.stiffness_lanes(lanes);
     for (int q = 0; q < n; ++q) {
       const std::size_t pq = idx[static_cast<std::size_t>(q)];
       Sums& a = sums[static_cast<std::size_t>(c.i[pq])];

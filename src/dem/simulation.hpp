@@ -9,7 +9,7 @@
 
 #include "common/types.hpp"
 #include "dem/adaptive_skin.hpp"
-#include "dem/contact_law_cohfrict.hpp"
+#include "dem/contact_law.hpp"
 #include "dem/contacts.hpp"
 #include "dem/neighbor_search.hpp"
 #include "dem/params.hpp"
@@ -71,19 +71,25 @@ class Simulation {
     return verlet_;
   }
   [[nodiscard]] const VerletState& verlet() const { return verlet_; }
-  [[nodiscard]] const CohFrictLaw& law() const { return law_; }
-  /// Normal force magnitude of pair p in the last force computation [N]: kn times the overlap of
-  /// its branch, the law's operations (the same bits); 0 for a pair out of contact.
+  [[nodiscard]] const ContactLaw& law() const { return law_; }
+  /// Normal force magnitude of pair p in the last force computation [N]: the law's normal force
+  /// at the overlap of its branch, its operations (the same bits); 0 for a pair out of contact.
   [[nodiscard]] double normal_force(std::size_t p) const {
     if (contacts_.active[p] == 0) return 0.0;
     const double ri = spheres_.r[static_cast<std::size_t>(contacts_.i[p])];
     const double rj = spheres_.r[static_cast<std::size_t>(contacts_.j[p])];
-    return law_.props(ri, rj, 0.0).kn * ((ri + rj) - std::sqrt(contacts_.branch[p].squaredNorm()));
+    return law_.normal_force(ri, rj,
+                             (ri + rj) - std::sqrt(contacts_.branch[p].squaredNorm()));
   }
-  /// Properties of pair p (its stiffnesses from the radii, its stored friction coefficient).
-  [[nodiscard]] CohFrictProps contact_props(std::size_t p) const {
-    return law_.props(spheres_.r[static_cast<std::size_t>(contacts_.i[p])],
-                      spheres_.r[static_cast<std::size_t>(contacts_.j[p])], contacts_.tan_phi[p]);
+  /// Properties of pair p: its stiffnesses (from the radii; for Hertz-Mindlin the tangent ones at
+  /// the overlap of its last branch), its stored friction coefficient.
+  [[nodiscard]] ContactProps contact_props(std::size_t p) const {
+    const double ri = spheres_.r[static_cast<std::size_t>(contacts_.i[p])];
+    const double rj = spheres_.r[static_cast<std::size_t>(contacts_.j[p])];
+    const double delta = law_.stiffness_uses_overlap()
+                             ? (ri + rj) - std::sqrt(contacts_.branch[p].squaredNorm())
+                             : 0.0;
+    return law_.props(ri, rj, delta, contacts_.tan_phi[p]);
   }
   [[nodiscard]] const Numerics& numerics() const { return num_; }
 
@@ -146,7 +152,7 @@ class Simulation {
 
   Spheres spheres_;
   PeriodicCell cell_;
-  CohFrictLaw law_;
+  ContactLaw law_;
   Numerics num_;
   Contacts contacts_;
   VerletState verlet_;

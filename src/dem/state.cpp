@@ -29,6 +29,12 @@ constexpr Member<Material> kMaterialFields[] = {
     {"alpha_r", &Material::alpha_r},       {"eta_r", &Material::eta_r},
     {"alpha_t", &Material::alpha_t},       {"eta_t", &Material::eta_t},
 };
+constexpr Member<HertzMindlinMaterial> kHertzMindlinFields[] = {
+    {"poisson", &HertzMindlinMaterial::poisson},
+    {"krot", &HertzMindlinMaterial::krot},
+    {"ktwist", &HertzMindlinMaterial::ktwist},
+    {"eta", &HertzMindlinMaterial::eta},
+};
 constexpr Member<Numerics> kNumericsFields[] = {
     {"damping", &Numerics::damping},
     {"dt_safety", &Numerics::dt_safety},
@@ -99,8 +105,9 @@ struct Reader {
 std::int64_t check_state_version(const common::StateReader& r, const std::string& pre) {
   const std::string name = pre + "dem/version";
   const std::int64_t version = common::read_scalar_i64(r, name);
-  if (version == kStateVersion || version == 2) return version;
-  std::string why = "this build reads versions 2 and " + std::to_string(kStateVersion) + " only";
+  if (version == kStateVersion || version == 2 || version == kStateVersionOtherLaw) return version;
+  std::string why = "this build reads versions 2, " + std::to_string(kStateVersion) + " and " +
+                    std::to_string(kStateVersionOtherLaw) + " only";
   if (version == 1) {
     why += " (version 1 stored the parameters as positional arrays such as 'params/material'; " +
            std::to_string(kStateVersion) + " stores named fields such as 'params/material/young')";
@@ -115,9 +122,15 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   const VerletState& vs = sim.verlet();
   const Material& mat = sim.law().material();
   const Numerics& num = sim.numerics();
-  common::write_scalar(w, pre + "dem/version", kStateVersion);
+  const bool cohfrict = mat.law == ContactLawKind::cohfrict;
+  common::write_scalar(w, pre + "dem/version", cohfrict ? kStateVersion : kStateVersionOtherLaw);
   for (const auto& f : kMaterialFields)
     common::write_scalar(w, pre + "params/material/" + f.name, mat.*f.member);
+  if (!cohfrict) {
+    common::write_scalar(w, pre + "params/material/contact_law", static_cast<std::int64_t>(mat.law));
+    for (const auto& f : kHertzMindlinFields)
+      common::write_scalar(w, pre + "params/material/hertz_mindlin/" + f.name, mat.hm.*f.member);
+  }
   for (const auto& f : kNumericsFields)
     common::write_scalar(w, pre + "params/numerics/" + f.name, num.*f.member);
   common::write_scalar(w, pre + "params/numerics/dt_refresh", num.dt_refresh);
@@ -182,10 +195,22 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
 
 Simulation load_simulation(const common::StateReader& r, const std::string& pre) {
   const Reader rd{r, pre};
-  check_state_version(r, pre);
+  const std::int64_t version = check_state_version(r, pre);
   Material mat;
   for (const auto& f : kMaterialFields)
     mat.*f.member = rd.scalar(std::string("params/material/") + f.name);
+  if (version == kStateVersionOtherLaw) {
+    const std::string name = pre + "params/material/contact_law";
+    const std::int64_t law = common::read_scalar_i64(r, name);
+    if (law != static_cast<std::int64_t>(ContactLawKind::hertz_mindlin)) {
+      throw common::InputError("dem state: field '" + name + "' = " + std::to_string(law) +
+                               ": must be 1 (hertz_mindlin) in a version " +
+                               std::to_string(kStateVersionOtherLaw) + " state");
+    }
+    mat.law = ContactLawKind::hertz_mindlin;
+    for (const auto& f : kHertzMindlinFields)
+      mat.hm.*f.member = rd.scalar(std::string("params/material/hertz_mindlin/") + f.name);
+  }
   Numerics num;
   for (const auto& f : kNumericsFields)
     num.*f.member = rd.scalar(std::string("params/numerics/") + f.name);

@@ -12,8 +12,12 @@ namespace dem {
 
 /// Version of the named-field state of a Simulation and of an Rve (field dem/version; history in
 /// docs/reference/checkpoint.md). 1: positional parameter arrays; 2: one named field per parameter; 3: of
-/// the contact properties only tan_phi (the others follow from the radii). Written: 3; read: 2, 3.
+/// the contact properties only tan_phi (the others follow from the radii); 4: 3 with another contact
+/// law than CohFrict (params/material/contact_law and the law's parameters), so that a build
+/// that knows only CohFrict refuses it by its version. Written: 3 (CohFrict), 4 (another law);
+/// read: 2, 3, 4.
 inline constexpr std::int64_t kStateVersion = 3;
+inline constexpr std::int64_t kStateVersionOtherLaw = 4;
 
 /// The version of the state under `prefix`. Throws common::InputError naming the field
 /// `prefix`dem/version, the version found and the ones this build reads when it reads not that

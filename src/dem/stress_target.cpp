@@ -20,7 +20,7 @@ Mat3 affine_modulus(const Simulation& sim) {
     if (!c.active[p]) continue;
     const double d2 = c.branch[p].squaredNorm();
     const Vec3 n = at(c.hist.normal, p);
-    const CohFrictProps pr = sim.contact_props(p);
+    const ContactProps pr = sim.contact_props(p);
     const double kn = pr.kn;
     const double ks = pr.ks;
     for (int a = 0; a < 3; ++a) {

@@ -29,7 +29,7 @@ Tangent contact_stiffness_tangent(const Simulation& sim) {
     const Vec3 n = d / len;
     const double shear_factor =
         (s.r[static_cast<std::size_t>(c.i[p])] + s.r[static_cast<std::size_t>(c.j[p])]) / len;
-    const CohFrictProps pr = sim.contact_props(p);
+    const ContactProps pr = sim.contact_props(p);
     const double kt = shear_factor * pr.ks;
     const Mat3 k = (pr.kn - kt) * (n * n.transpose()) + kt * Mat3::Identity();
     const Mat3 dd = d * d.transpose();

@@ -122,6 +122,56 @@ TEST(Job, OptionalPhysicsNeedsAllItsParametersOnceSwitchedOn) {
       << err;
 }
 
+// The keys of a contact law are required with it and refused with another, each error naming the
+// file, the line, the key and the law; a complete Hertz-Mindlin material is valid.
+TEST(Job, ContactLawKeysAreRequiredWithTheLawAndRefusedWithAnother) {
+  // The CohFrict law (the default) without one of its keys.
+  const std::string err = error_of(replace(kDemJob, "stiffness_ratio = 0.5\n", ""));
+  EXPECT_NE(err.find("dem.material.stiffness_ratio is missing: required with "
+                     "dem.material.contact_law = \"cohfrict\""),
+            std::string::npos)
+      << err;
+  // Hertz-Mindlin: the CohFrict keys are refused, its own table is required.
+  const std::string hm = replace(kDemJob, "[dem.material]\n", "[dem.material]\ncontact_law = \"hertz_mindlin\"\n");
+  const std::string err2 = error_of(hm);
+  EXPECT_NE(err2.find("job.toml:6: dem.material.stiffness_ratio = 0.5: not used with "
+                      "dem.material.contact_law = \"hertz_mindlin\": remove it or change the law"),
+            std::string::npos)
+      << err2;
+  EXPECT_NE(err2.find("job.toml:3: dem.material.contact_law = \"hertz_mindlin\": needs the table "
+                      "[dem.material.hertz_mindlin] (poisson_ratio, rolling_stiffness, "
+                      "rolling_strength, twisting_stiffness)"),
+            std::string::npos)
+      << err2;
+  std::string ok = hm;
+  for (const char* k : {"stiffness_ratio = 0.5\n", "rolling_stiffness = 2.0\n",
+                        "rolling_strength = 0.3\n"}) {
+    ok = replace(ok, k, "");
+  }
+  const std::string table =
+      "\n[dem.material.hertz_mindlin]\npoisson_ratio = 0.25\nrolling_stiffness = \"2e-5 N m/rad\"\n"
+      "rolling_strength = 0.3\ntwisting_stiffness = 0.0\n";
+  EXPECT_EQ(error_of(ok + table), "(no error)");
+  // Its table with a missing key, an out-of-range value, the wrong unit.
+  EXPECT_NE(error_of(ok + replace(table, "twisting_stiffness = 0.0\n", ""))
+                .find("dem.material.hertz_mindlin.twisting_stiffness is missing: required"),
+            std::string::npos);
+  EXPECT_NE(error_of(ok + replace(table, "poisson_ratio = 0.25", "poisson_ratio = 0.5"))
+                .find("dem.material.hertz_mindlin.poisson_ratio = 0.5: must be in [0, 0.5)"),
+            std::string::npos);
+  EXPECT_NE(error_of(ok + replace(table, "\"2e-5 N m/rad\"", "\"2e-5 Pa\""))
+                .find("dem.material.hertz_mindlin.rolling_stiffness"),
+            std::string::npos);
+  // The Hertz-Mindlin table with the CohFrict law is refused.
+  EXPECT_NE(error_of(std::string(kDemJob) + table)
+                .find("job.toml:19: [dem.material.hertz_mindlin]: not used with "
+                      "dem.material.contact_law = \"cohfrict\""),
+            std::string::npos);
+  // An unknown law names the ones there are.
+  EXPECT_NE(error_of(replace(hm, "hertz_mindlin", "hertz")).find("hertz_mindlin"),
+            std::string::npos);
+}
+
 TEST(Job, MissingFileIsAnInputError) {
   EXPECT_THROW((void)app::Job::load("/nonexistent/job.toml"), common::InputError);
 }

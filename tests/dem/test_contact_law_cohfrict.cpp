@@ -154,7 +154,7 @@ TEST(ContactLaw, YadeTwoSphereTrajectory) {
       got[8] = c.hist.roll[2][p];
       got[9] = dem::at(c.hist.roll, p).norm();
       got[10] = dem::at(c.hist.twist, p).norm();
-      const dem::CohFrictProps pr = sim.contact_props(p);
+      const dem::ContactProps pr = sim.contact_props(p);
       got[11] = pr.kn;
       got[12] = pr.ks;
       got[13] = pr.kr;
@@ -214,7 +214,7 @@ TEST(ContactLaw, BatchIsBitIdenticalToApply) {
     dem::CohFrictHistoryArrays hist;
     hist.resize(first + static_cast<std::size_t>(n));
     std::vector<double> r1(n), r2(n);
-    std::vector<dem::CohFrictProps> props(n);
+    std::vector<dem::ContactProps> props(n);
     for (int q = 0; q < n; ++q) {
       r1[q] = 1e-4 * (0.5 + u01(gen));
       r2[q] = 1e-4 * (0.5 + u01(gen));

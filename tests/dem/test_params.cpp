@@ -80,6 +80,8 @@ void expect_defaults_in_range(const common::ParamTable<S, N>& table) {
 
 TEST(Params, DefaultsLieInTheirRanges) {
   expect_defaults_in_range(dem::kMaterial);
+  expect_defaults_in_range(dem::kCohFrict);
+  expect_defaults_in_range(dem::kHertzMindlin);
   expect_defaults_in_range(dem::kNumerics);
   expect_defaults_in_range(dem::kRveParams);
 }

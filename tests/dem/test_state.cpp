@@ -16,6 +16,8 @@
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
+#include "dem/loading.hpp"
+#include "dem/packing_io.hpp"
 #include "dem/rve.hpp"
 #include "dem_test_util.hpp"
 
@@ -153,7 +155,7 @@ TEST(State, OtherVersionIsRefusedNamingFieldAndVersions) {
     } catch (const common::InputError& e) {
       const std::string m = e.what();
       for (const char* needle :
-           {"'dem/version' = 1", "reads versions 2 and 3 only", "params/material"}) {
+           {"'dem/version' = 1", "reads versions 2, 3 and 4 only", "params/material"}) {
         EXPECT_NE(m.find(needle), std::string::npos) << m;
       }
     }
@@ -190,6 +192,52 @@ TEST(State, Version2IsReadAndContinuesAsVersion3) {
   dem::save_simulation(b, sb);
   EXPECT_TRUE(sa.fields() == sb.fields());
   EXPECT_EQ(sb.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
+}
+
+// A Hertz-Mindlin state is version 4 (a build that knows only the CohFrict law refuses it by its
+// version), carries the law and its parameters by name, and continues bit for bit after a load;
+// a version-4 state naming another law is refused, naming the field.
+TEST(State, HertzMindlinStateIsVersion4AndContinuesBitForBit) {
+  dem::Material m;
+  m.law = dem::ContactLawKind::hertz_mindlin;
+  m.density = 2650.0;
+  m.young = 3e9;
+  m.friction_deg = 30.0;
+  m.hm.poisson = 0.25;
+  m.hm.krot = 1e-4;
+  m.hm.ktwist = 2e-5;
+  m.hm.eta = 0.3;
+  dem::Simulation a = dem::make_simulation(
+      dem::read_packing(std::string(MPMXDEM_SOURCE_DIR) +
+                        "/jobs/packings/packing_N1000_hertz_mindlin.txt"),
+      m, dem::Numerics{});
+  a.cell().l(2, 2) = -5.0;  // compress, so that contacts slide, roll and twist
+  a.refresh_dt();
+  for (int k = 0; k < 100; ++k) a.step();
+  common::StateStore s;
+  dem::save_simulation(a, s);
+  EXPECT_EQ(s.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersionOtherLaw});
+  EXPECT_EQ(s.read_i64("params/material/contact_law"), std::vector<std::int64_t>{1});
+  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/krot"), std::vector<double>{1e-4});
+  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/ktwist"), std::vector<double>{2e-5});
+  dem::Simulation b = dem::load_simulation(s);
+  EXPECT_EQ(b.law().kind(), dem::ContactLawKind::hertz_mindlin);
+  for (int k = 0; k < 200; ++k) {
+    a.step();
+    b.step();
+  }
+  common::StateStore sa;
+  common::StateStore sb;
+  dem::save_simulation(a, sa);
+  dem::save_simulation(b, sb);
+  EXPECT_TRUE(sa.fields() == sb.fields());
+  try {
+    (void)dem::load_simulation(with_field(s, "params/material/contact_law", {7}));
+    ADD_FAILURE() << "a version-4 state of an unknown law was read";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'params/material/contact_law' = 7"), std::string::npos)
+        << e.what();
+  }
 }
 
 // A state is checkpoint input: values that would let a run go on wrongly instead of failing (a
