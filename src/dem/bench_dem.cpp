@@ -21,12 +21,7 @@ int main(int argc, char** argv) {
     dem::Material mat = dem::reference_material();
     std::string fallback = dem::reference_packing_path();
     if (law == "hertz_mindlin") {
-      mat.law = dem::ContactLawKind::hertz_mindlin;
-      mat.young = 3e9;
-      mat.hm.poisson = 0.25;
-      mat.hm.krot = 1e-4;
-      mat.hm.ktwist = 0.0;
-      mat.hm.eta = 0.3;
+      mat = dem::hertz_mindlin_reference_material();
       fallback = fallback.substr(0, fallback.rfind('/')) + "/packing_N1000_hertz_mindlin.txt";
     }
     const std::string path = (argc > 1 && argv[1][0] != 0) ? argv[1] : fallback;

@@ -22,4 +22,20 @@ inline Material reference_material() {
   return m;
 }
 
+/// The Hertz-Mindlin material of the YADE comparisons (jobs/triaxial_dem_hertz_mindlin.toml,
+/// tools/yade_triax_hertz_mindlin.py): rho 2650 kg/m^3, grains' E 3 GPa, nu 0.25, friction 30 deg,
+/// kr 1e-4 N m/rad, eta 0.3, no twisting.
+inline Material hertz_mindlin_reference_material() {
+  Material m;
+  m.law = ContactLawKind::hertz_mindlin;
+  m.density = 2650.0;
+  m.young = 3e9;
+  m.friction_deg = 30.0;
+  m.hm.poisson = 0.25;
+  m.hm.krot = 1e-4;
+  m.hm.ktwist = 0.0;
+  m.hm.eta = 0.3;
+  return m;
+}
+
 }  // namespace dem

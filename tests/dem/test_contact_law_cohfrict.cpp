@@ -22,30 +22,7 @@ namespace {
 using common::Vec3;
 using dem_test::reference_material;
 
-struct Row {
-  long step;
-  std::string phase;
-  std::vector<double> v;  // x2 .. maxRollPl (15 numbers)
-};
-
-std::vector<Row> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  std::vector<Row> rows;
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string tok;
-    Row r;
-    std::getline(ss, tok, ',');
-    r.step = std::stol(tok);
-    std::getline(ss, r.phase, ',');
-    while (std::getline(ss, tok, ',')) r.v.push_back(std::stod(tok));
-    rows.push_back(r);
-  }
-  return rows;
-}
+using Row = dem_test::TrajectoryRow;
 
 TEST(ContactLaw, StiffnessesOfReferencePair) {
   const dem::CohFrictLaw law(reference_material());
@@ -78,7 +55,7 @@ TEST(ContactLaw, CoulombAndRollingCaps) {
 // The YADE trajectory: both spheres have prescribed velocities. Row n holds the contact state
 // computed from the positions after step n-1 and the positions after step n.
 TEST(ContactLaw, YadeTwoSphereTrajectory) {
-  const auto rows = read_csv(dem_test::data_path("yade_two_sphere_contact.csv"));
+  const auto rows = dem_test::read_trajectory(dem_test::data_path("yade_two_sphere_contact.csv"));
   ASSERT_EQ(rows.back().step, 73100);
   const double r1 = 1e-4;
   const double r2 = 0.7e-4;

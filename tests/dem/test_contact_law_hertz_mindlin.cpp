@@ -37,30 +37,7 @@ dem::Material yade_pair_material() {
   return m;
 }
 
-struct Row {
-  long step;
-  std::string phase;
-  std::vector<double> v;  // x2 .. ks (13 numbers)
-};
-
-std::vector<Row> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  std::vector<Row> rows;
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string tok;
-    Row r;
-    std::getline(ss, tok, ',');
-    r.step = std::stol(tok);
-    std::getline(ss, r.phase, ',');
-    while (std::getline(ss, tok, ',')) r.v.push_back(std::stod(tok));
-    rows.push_back(r);
-  }
-  return rows;
-}
+using Row = dem_test::TrajectoryRow;
 
 // Ip2_FrictMat_FrictMat_MindlinPhys by hand for R1 = 1e-4, R2 = 0.7e-4, E = 3e8, nu = 0.25:
 // E* = E / (2 (1 - nu^2)) = 1.6e8, R* = 4.1176e-5, kno = 4/3 E* sqrt(R*); G = 1.2e8,
@@ -91,7 +68,7 @@ TEST(ContactLawHertzMindlin, CoefficientsOfTheYadePair) {
 // computes delta^1.5 with pow and the shear increment as (v_s dt / dt) dt; we compute delta
 // sqrt(delta) and v_s dt: round-off apart (about 1e-12 here), the same law.
 TEST(ContactLawHertzMindlin, YadeTwoSphereTrajectory) {
-  const auto rows = read_csv(dem_test::data_path("yade_hertz_mindlin_pair.csv"));
+  const auto rows = dem_test::read_trajectory(dem_test::data_path("yade_hertz_mindlin_pair.csv"));
   ASSERT_EQ(rows.back().step, 93100);
   const double r1 = 1e-4;
   const double r2 = 0.7e-4;
@@ -185,13 +162,12 @@ TEST(ContactLawHertzMindlin, YadeTwoSphereTrajectory) {
   }
 }
 
-// A packing of the reference spheres with the Hertz-Mindlin law: steps run, contacts carry
+// YADE's Hertz-Mindlin packing with its material: steps run, contacts carry
 // Hertzian forces (Simulation::normal_force = kno delta^1.5), the critical time step comes from
 // the tangent stiffnesses (finite, positive) and the results do not depend on the thread count.
 TEST(ContactLawHertzMindlin, PackingStepsAndThreadCountInvariance) {
-  const dem::Packing pk = dem_test::reference_packing();
-  dem::Material m = yade_pair_material();
-  m.young = 7e10;  // a stiff grain: overlaps of the reference stress stay small
+  const dem::Packing pk = dem_test::hertz_mindlin_packing();
+  const dem::Material m = dem::hertz_mindlin_reference_material();
   const int saved = omp_get_max_threads();
   const auto run = [&](int threads) {
     omp_set_num_threads(threads);

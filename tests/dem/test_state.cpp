@@ -17,7 +17,6 @@
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
 #include "dem/loading.hpp"
-#include "dem/packing_io.hpp"
 #include "dem/rve.hpp"
 #include "dem_test_util.hpp"
 
@@ -198,19 +197,9 @@ TEST(State, Version2IsReadAndContinuesAsVersion3) {
 // version), carries the law and its parameters by name, and continues bit for bit after a load;
 // a version-4 state naming another law is refused, naming the field.
 TEST(State, HertzMindlinStateIsVersion4AndContinuesBitForBit) {
-  dem::Material m;
-  m.law = dem::ContactLawKind::hertz_mindlin;
-  m.density = 2650.0;
-  m.young = 3e9;
-  m.friction_deg = 30.0;
-  m.hm.poisson = 0.25;
-  m.hm.krot = 1e-4;
+  dem::Material m = dem::hertz_mindlin_reference_material();
   m.hm.ktwist = 2e-5;
-  m.hm.eta = 0.3;
-  dem::Simulation a = dem::make_simulation(
-      dem::read_packing(std::string(MPMXDEM_SOURCE_DIR) +
-                        "/jobs/packings/packing_N1000_hertz_mindlin.txt"),
-      m, dem::Numerics{});
+  dem::Simulation a = dem::make_simulation(dem_test::hertz_mindlin_packing(), m, dem::Numerics{});
   a.cell().l(2, 2) = -5.0;  // compress, so that contacts slide, roll and twist
   a.refresh_dt();
   for (int k = 0; k < 100; ++k) a.step();
