@@ -29,9 +29,7 @@ template <bool kTwist>
 [[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const Material& material,
                                                const double* tan_phi_all, CohFrictHistoryArrays& ha,
                                                const common::Mat3& lm, double dt) {
-  const double l00 = lm(0, 0), l01 = lm(0, 1), l02 = lm(0, 2);
-  const double l10 = lm(1, 0), l11 = lm(1, 1), l12 = lm(1, 2);
-  const double l20 = lm(2, 0), l21 = lm(2, 1), l22 = lm(2, 2);
+  const Gradient g = gradient_of(lm);
   // A local copy: the stores to the history arrays cannot alias it (its fields stay in registers).
   const Material mat = material;
   const double* const tan_phi = tan_phi_all + b.first;
@@ -59,24 +57,15 @@ template <bool kTwist>
 
     // Carry the tangential vectors with the contact frame.
     const V3 h = select(fresh, zero, hn.load(q));
-    const V3 orth = cross(h, n);
-    const V3 ws{w1.x + w2.x, w1.y + w2.y, w1.z + w2.z};
-    const V3 twist_axis = scale(dt * 0.5 * dot(h, ws), h);
+    const FrameMotion fm = frame_motion(h, n, w1, w2, dt);
+    const V3& orth = fm.orth;
+    const V3& twist_axis = fm.twist_axis;
     V3 shear = carry(select(fresh, zero, hs.load(q)), orth, twist_axis);
     V3 roll = carry(select(fresh, zero, hr.load(q)), orth, twist_axis);
     hn.store_if(touch, q, n);
 
-    // Relative velocity at the contact: a (u2 - u1 + L d) + w2 x (-r2 n) - w1 x (r1 n).
-    const double a = (r1 + r2) / ((r1 + r2) - delta);
-    const V3 du = load(b.du, q);
-    const V3 dv{du.x + ((l00 * d.x + l01 * d.y) + l02 * d.z),
-                du.y + ((l10 * d.x + l11 * d.y) + l12 * d.z),
-                du.z + (l20 * d.x + (l21 * d.y + l22 * d.z))};
-    const V3 c2 = cross(w2, scale(-r2, n));
-    const V3 c1 = cross(w1, scale(r1, n));
-    const V3 vrel{(a * dv.x + c2.x) - c1.x, (a * dv.y + c2.y) - c1.y, (a * dv.z + c2.z) - c1.z};
-    const double nv = dot(n, vrel);
-    const V3 dus{dt * (vrel.x - nv * n.x), dt * (vrel.y - nv * n.y), dt * (vrel.z - nv * n.z)};
+    // The shear increment from the relative velocity at the contact.
+    const V3 dus = shear_increment(d, n, load(b.du, q), w1, w2, r1, r2, delta, g, dt);
 
     const double fn = k.kn * delta;
     shear = sub(shear, scale(k.ks, dus));

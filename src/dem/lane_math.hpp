@@ -70,6 +70,46 @@ inline void store(double (&a)[3][N], int q, const V3& v) {
   a[2][q] = v.z;
 }
 
+// The velocity gradient of the cell, its nine entries row by row (locals the vectoriser keeps in
+// registers).
+struct Gradient {
+  double l00, l01, l02, l10, l11, l12, l20, l21, l22;
+};
+template <class M>
+inline Gradient gradient_of(const M& l) {
+  return {l(0, 0), l(0, 1), l(0, 2), l(1, 0), l(1, 1), l(1, 2), l(2, 0), l(2, 1), l(2, 2)};
+}
+
+// The contact frame's motion over the step (ScGeom::precompute): the tangential vectors are
+// carried by carry(v, orth, twist_axis) with orth = h x n and twist_axis = dt/2 (h . (w1 + w2)) h,
+// h the stored normal of the previous step (zero for a new contact: no rotation).
+struct FrameMotion {
+  V3 orth, twist_axis;
+};
+[[gnu::always_inline]] inline FrameMotion frame_motion(const V3& h, const V3& n, const V3& w1,
+                                                       const V3& w2, double dt) {
+  const V3 ws{w1.x + w2.x, w1.y + w2.y, w1.z + w2.z};
+  return {cross(h, n), scale(dt * 0.5 * dot(h, ws), h)};
+}
+
+// The shear displacement increment dt (v_rel - (n . v_rel) n) of a contact with branch d, unit
+// normal n, overlap delta, fluctuating velocity difference du and spins w1, w2: YADE's
+// ratcheting-free relative velocity v_rel = a (du + L d) + w2 x (-r2 n) - w1 x (r1 n),
+// a = (r1 + r2) / ((r1 + r2) - delta).
+[[gnu::always_inline]] inline V3 shear_increment(const V3& d, const V3& n, const V3& du,
+                                                 const V3& w1, const V3& w2, double r1, double r2,
+                                                 double delta, const Gradient& g, double dt) {
+  const double a = (r1 + r2) / ((r1 + r2) - delta);
+  const V3 dv{du.x + ((g.l00 * d.x + g.l01 * d.y) + g.l02 * d.z),
+              du.y + ((g.l10 * d.x + g.l11 * d.y) + g.l12 * d.z),
+              du.z + (g.l20 * d.x + (g.l21 * d.y + g.l22 * d.z))};
+  const V3 c2 = cross(w2, scale(-r2, n));
+  const V3 c1 = cross(w1, scale(r1, n));
+  const V3 vrel{(a * dv.x + c2.x) - c1.x, (a * dv.y + c2.y) - c1.y, (a * dv.z + c2.z) - c1.z};
+  const double nv = dot(n, vrel);
+  return {dt * (vrel.x - nv * n.x), dt * (vrel.y - nv * n.y), dt * (vrel.z - nv * n.z)};
+}
+
 // Whether one of the n pairs from `first` on has a twisting moment: else (and when the material
 // has no twisting stiffness) a law skips its twisting part (the twist of every lane is +0 and
 // stays so). Lanes not touching may turn it on: the twisting part then leaves a zero twist +0,
