@@ -72,6 +72,20 @@ std::vector<T> changed(const common::StateStore& s, const std::string& name, std
   return out;
 }
 
+/// Steps a and b `steps` times; expects their saved states to be the same bits and returns b's.
+common::StateStore continue_both(dem::Simulation& a, dem::Simulation& b, int steps) {
+  for (int k = 0; k < steps; ++k) {
+    a.step();
+    b.step();
+  }
+  common::StateStore sa;
+  common::StateStore sb;
+  dem::save_simulation(a, sa);
+  dem::save_simulation(b, sb);
+  EXPECT_TRUE(sa.fields() == sb.fields());
+  return sb;
+}
+
 }  // namespace
 
 // Each name holds the member it names (written out here, not taken from the code's own table).
@@ -181,15 +195,7 @@ TEST(State, Version2IsReadAndContinuesAsVersion3) {
   std::int64_t touching = 0;
   for (std::size_t p = 0; p < np; ++p) touching += a.contacts().active[p];
   ASSERT_GT(touching, 0);
-  for (int k = 0; k < 300; ++k) {
-    a.step();
-    b.step();
-  }
-  common::StateStore sa;
-  common::StateStore sb;
-  dem::save_simulation(a, sa);
-  dem::save_simulation(b, sb);
-  EXPECT_TRUE(sa.fields() == sb.fields());
+  const common::StateStore sb = continue_both(a, b, 300);
   EXPECT_EQ(sb.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
 }
 
@@ -211,15 +217,7 @@ TEST(State, HertzMindlinStateIsVersion4AndContinuesBitForBit) {
   EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/ktwist"), std::vector<double>{2e-5});
   dem::Simulation b = dem::load_simulation(s);
   EXPECT_EQ(b.law().kind(), dem::ContactLawKind::hertz_mindlin);
-  for (int k = 0; k < 200; ++k) {
-    a.step();
-    b.step();
-  }
-  common::StateStore sa;
-  common::StateStore sb;
-  dem::save_simulation(a, sa);
-  dem::save_simulation(b, sb);
-  EXPECT_TRUE(sa.fields() == sb.fields());
+  (void)continue_both(a, b, 200);
   try {
     (void)dem::load_simulation(with_field(s, "params/material/contact_law", {7}));
     ADD_FAILURE() << "a version-4 state of an unknown law was read";
