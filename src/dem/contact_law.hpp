@@ -31,7 +31,7 @@ class ContactLaw {
   /// The material, with the current friction angle.
   [[nodiscard]] const Material& material() const { return cohfrict_.material(); }
   /// Friction coefficient of a contact created now.
-  [[nodiscard]] double tan_phi() const { return cohfrict_.create(1.0, 1.0).tan_phi; }
+  [[nodiscard]] double tan_phi() const { return cohfrict_.tan_phi(); }
   /// Change the friction angle used for new contacts [deg].
   /// (Every law reads the coefficient of a contact from Contacts::tan_phi.)
   void set_friction_deg(double phi_deg) { cohfrict_.set_friction_deg(phi_deg); }

@@ -97,6 +97,8 @@ class CohFrictLaw {
     const CohFrictStiffness k = cohfrict_stiffness(mat_, r1, r2);
     return {k.kn, k.ks, k.kr, k.kt, tan_phi, k.roll_cap, k.twist_cap};
   }
+  /// Friction coefficient of a contact created now: tan of the current friction angle.
+  [[nodiscard]] double tan_phi() const { return tan_phi_; }
   /// Whether contacts may have twisting stiffness (kt = alpha_t ks R1 R2 is zero when not).
   [[nodiscard]] bool twists() const { return mat_.alpha_t != 0.0; }
 
