@@ -11,6 +11,10 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            modulus (300 MPa, 3 MPa) and their size (14.4, 28.8 d50)
   --figure                 writes FIG/column_grain_scale.png: final deposits and fronts against time,
                            ours over YADE's, a = 1 and a = 2
+  --deposit-table          prints the page's table of the a = 2 deposits measured without a grain
+                           size (runout to a height of 0.05 and 0.02 H0, centre of mass)
+  --size-figure            writes FIG/column_size_a2.png: the a = 2 columns with E = 3 MPa at
+                           L0 = 14.4 and 28.8 d50, MPM x DEM (one point per cell) over YADE
 
 Usage: /usr/bin/python3 tools/column_grain_scale.py [--data D] [--yade Y] [--fig F] MODE
 Defaults: D = docs/data/column_collapse_mpm_grain_scale, Y = docs/data/column_collapse_yade,
@@ -313,6 +317,107 @@ def figure(data, yade, fig_dir):
     print("wrote", out)
 
 
+# The size pair (a = 2, E = 3 MPa): (L0 / d50, YADE tag, MPM x DEM stem)
+SIZES = [(14.4, "dense_a2_l14.4_E3e6", "a2_1ppc_E3MPa"), (28.8, "dense_a2_l28.8_E3e6", "a2_1ppc_L28.8_E3MPa")]
+
+
+def size_figure(data, yade, fig_dir):
+    """Final deposits and continuous fronts of the a = 2 columns at two sizes, ours over YADE's."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax_p, ax_f) = plt.subplots(1, 2, figsize=(12, 4.2))
+    for (size, tag, stem), width in zip(SIZES, (1.2, 2.2)):
+        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        xs, hs = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
+        ax_p.plot([x / L0 for x in xs], [h / H0 for h in hs], color="k",
+                  lw=width, label=f"pure DEM (YADE), {size:g} d50")
+        ts = read_csv(os.path.join(yade, f"{tag}_timeseries.csv"))
+        c0 = float(ts[0]["L_cont_m"])
+        ax_f.plot([float(r["t_over_tstar"]) for r in ts], [(float(r["L_cont_m"]) - c0) / L0 for r in ts],
+                  color="k", lw=width, label=f"pure DEM (YADE), {size:g} d50")
+        m = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
+        L0m, H0m = float(m["L0_m"]), float(m["H0_m"])
+        xs, hs = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
+        ax_p.plot([x / L0m for x in xs], [h / H0m for h in hs],
+                  color="tab:red", lw=width, ls="--", label=f"MPM x DEM, 1 point per cell, {size:g} d50")
+        tsm = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        ax_f.plot([float(r["t_over_tstar"]) for r in tsm],
+                  [(float(r["L_front_connected_m"]) - L0m) / L0m for r in tsm], color="tab:red", lw=width,
+                  ls="--", label=f"MPM x DEM, 1 point per cell, {size:g} d50")
+    ax_p.set_xlabel("x / L0")
+    ax_p.set_ylabel("deposit height (initial density) / H0")
+    ax_p.set_xlim(0, 3.2)
+    ax_p.set_ylim(0, 1.05)
+    ax_p.axvline(1.0, color="0.6", lw=0.8)
+    ax_p.set_title("a = 2, E = 3 MPa: final deposit")
+    ax_p.legend(fontsize=7)
+    ax_f.set_xlabel("t / t*")
+    ax_f.set_ylabel("(L - L0) / L0, continuous deposit")
+    ax_f.set_xlim(0, 10)
+    ax_f.set_title("a = 2, E = 3 MPa: front")
+    ax_f.legend(fontsize=7)
+    fig.tight_layout()
+    os.makedirs(fig_dir, exist_ok=True)
+    out = os.path.join(fig_dir, "column_size_a2.png")
+    fig.savefig(out, dpi=100)
+    print("wrote", out)
+
+
+# The deposit in continuum terms: (a, label, E, "yade" tag or "mpm" stem)
+DEPOSIT = [(2, "pure DEM (YADE), L0 = 14.4 d50", "300 MPa", "yade", "dense_a2_n3000_l0.05"),
+           (2, "pure DEM (YADE), L0 = 14.4 d50", "3 MPa", "yade", "dense_a2_l14.4_E3e6"),
+           (2, "pure DEM (YADE), L0 = 28.8 d50", "3 MPa", "yade", "dense_a2_l28.8_E3e6"),
+           (2, "MPM x DEM, 1 point per cell, L0 = 14.4 d50", "3 MPa", "mpm", "a2_1ppc_E3MPa"),
+           (2, "MPM x DEM, 1 point per cell, L0 = 28.8 d50", "3 MPa", "mpm", "a2_1ppc_L28.8_E3MPa"),
+           (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "3 MPa", "mpm", "a2_2x2_E3MPa"),
+           (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "300 MPa", "mpm", "a2_2x2")]
+
+
+def deposit_end(xs, hs, level):
+    """Walking from the back wall, the first x where the deposit height falls below level
+    (linear between bin centres); the last bin's centre if it never does."""
+    for k, (x, h) in enumerate(zip(xs, hs)):
+        if h < level:
+            if k == 0:
+                return 0.0
+            x0, h0 = xs[k - 1], hs[k - 1]
+            return x0 + (x - x0) * (h0 - level) / max(h0 - h, 1e-300)
+    return xs[-1]
+
+
+def deposit_measures(xs, hs, L0, H0):
+    """(runout where the deposit falls below 0.05 H0, the same below 0.02 H0, centre of mass x / L0,
+    mass within the column's footprint x < L0 as a fraction of the whole) of a final profile."""
+    total = sum(hs)
+    return ((deposit_end(xs, hs, 0.05 * H0) - L0) / L0, (deposit_end(xs, hs, 0.02 * H0) - L0) / L0,
+            sum(x * h for x, h in zip(xs, hs)) / total / L0, sum(h for x, h in zip(xs, hs) if x < L0) / total)
+
+
+def deposit_table(data, yade):
+    """Markdown table: the a = 2 deposits measured as a continuum sees them (no grain size)."""
+    lines = ["| column | contact modulus E | runout, continuous deposit (to h < d50) | runout to h < 0.05 H0 "
+             "| runout to h < 0.02 H0 | centre of mass x / L0 (column: 0.5) | mass left over the column's "
+             "footprint (x < L0) |", "|---|---|---|---|---|---|---|"]
+    for a, label, modulus, kind, stem in DEPOSIT:
+        folder = yade if kind == "yade" else data
+        path = os.path.join(folder, f"{stem}_summary.csv")
+        if not os.path.exists(path):
+            continue
+        s = read_csv(path)[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        if kind == "yade":
+            cont = float(s["runout_cont_over_L0"])
+            label = f"{label}, a = {float(s['a']):.3g}"
+        else:
+            cont = rows(data, yade, [(a, stem, "")])[(a, stem)]["cont"]
+        r5, r2, xc, kept = deposit_measures(*final_profile(os.path.join(folder, f"{stem}_profiles.csv")), L0, H0)
+        lines.append(f"| {label} | {modulus} | {cont:.3f} | {r5:.3f} | {r2:.3f} | {xc:.3f} | {kept:.2f} |")
+    return "\n".join(lines)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data",
@@ -324,6 +429,8 @@ def main():
     ap.add_argument("--damping-table", action="store_true")
     ap.add_argument("--stiffness-table", action="store_true")
     ap.add_argument("--figure", action="store_true")
+    ap.add_argument("--size-figure", action="store_true")
+    ap.add_argument("--deposit-table", action="store_true")
     args = ap.parse_args()
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
@@ -335,9 +442,14 @@ def main():
         print(stiffness_table(args.data, args.yade))
     if args.figure:
         figure(args.data, args.yade, args.fig)
+    if args.size_figure:
+        size_figure(args.data, args.yade, args.fig)
+    if args.deposit_table:
+        print(deposit_table(args.data, args.yade))
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table
-            or args.figure):
-        ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --figure")
+            or args.figure or args.size_figure or args.deposit_table):
+        ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
+                 "--size-figure")
 
 
 if __name__ == "__main__":
