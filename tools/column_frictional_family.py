@@ -2,7 +2,7 @@
 """The a = 2 column as a Drucker-Prager continuum over friction angles and resolutions.
 
 Writes variants of jobs/column_collapse_a2_frictional.toml (friction angle, points per cell, cell
-size, mpm.free_density; the grid always 3 m x 1.5 m) under OUT, runs each on one rank (`mpiexec -n 1 build/mpmxdem
+size, mpm.free_density, the FLIP share of the transfer; the grid always 3 m x 1.5 m) under OUT, runs each on one rank (`mpiexec -n 1 build/mpmxdem
 run`), analyses it with tools/mpm_column_collapse.py and writes OUT/summary.csv (one row per run:
 phi_deg, ppc, cell_m, H_f/H0, runout of the farthest point and of the continuous deposit, kinetic
 energy at the end, wall time) and OUT/<name>_timeseries.csv, OUT/<name>_profiles.csv.
@@ -22,30 +22,43 @@ import subprocess
 import sys
 import time
 
+from column_grain_scale import deposit_measures, final_profile
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = os.path.join(ROOT, "jobs", "column_collapse_a2_frictional.toml")
-# name: (phi [deg], points per cell along x and z, cell size [m], mpm.free_density)
+L0, H0 = 0.5, 1.0  # the column of BASE [m]
+# name: (phi [deg], points per cell along x and z, cell size [m], mpm.free_density, extra [mpm] keys)
 RUNS = {
-    "phi40_ppc1_h0.0625": (40, 1, 0.0625, "point"),
-    "phi40_ppc2_h0.0625": (40, 2, 0.0625, "point"),
-    "phi40_ppc3_h0.0625": (40, 3, 0.0625, "point"),
-    "phi40_ppc4_h0.0625": (40, 4, 0.0625, "point"),
-    "phi40_ppc2_h0.03125": (40, 2, 0.03125, "point"),
-    "phi40_ppc2_h0.015625": (40, 2, 0.015625, "point"),
-    "phi30_ppc2_h0.0625": (30, 2, 0.0625, "point"),
-    "phi35_ppc2_h0.0625": (35, 2, 0.0625, "point"),
-    "phi45_ppc2_h0.0625": (45, 2, 0.0625, "point"),
-    "phi40_ppc2_h0.0625_grid": (40, 2, 0.0625, "grid"),
-    "phi40_ppc2_h0.03125_grid": (40, 2, 0.03125, "grid"),
-    "phi40_ppc2_h0.015625_grid": (40, 2, 0.015625, "grid"),
+    "phi40_ppc1_h0.0625": (40, 1, 0.0625, "point", ""),
+    "phi40_ppc2_h0.0625": (40, 2, 0.0625, "point", ""),
+    "phi40_ppc3_h0.0625": (40, 3, 0.0625, "point", ""),
+    "phi40_ppc4_h0.0625": (40, 4, 0.0625, "point", ""),
+    "phi40_ppc2_h0.03125": (40, 2, 0.03125, "point", ""),
+    "phi40_ppc2_h0.015625": (40, 2, 0.015625, "point", ""),
+    "phi30_ppc2_h0.0625": (30, 2, 0.0625, "point", ""),
+    "phi35_ppc2_h0.0625": (35, 2, 0.0625, "point", ""),
+    "phi45_ppc2_h0.0625": (45, 2, 0.0625, "point", ""),
+    "phi50_ppc2_h0.0625": (50, 2, 0.0625, "point", ""),
+    "phi55_ppc2_h0.0625": (55, 2, 0.0625, "point", ""),
+    "phi60_ppc2_h0.0625": (60, 2, 0.0625, "point", ""),
+    "phi50_ppc2_h0.03125": (50, 2, 0.03125, "point", ""),
+    "phi55_ppc2_h0.03125": (55, 2, 0.03125, "point", ""),
+    "phi60_ppc4_h0.0625": (60, 4, 0.0625, "point", ""),
+    "phi60_ppc2_h0.0625_flip0.99": (60, 2, 0.0625, "point", "flip = 0.99"),
+    "phi60_ppc2_h0.0625_pic": (60, 2, 0.0625, "point", "flip = 0.0"),
+    "phi40_ppc2_h0.0625_grid": (40, 2, 0.0625, "grid", ""),
+    "phi40_ppc2_h0.03125_grid": (40, 2, 0.03125, "grid", ""),
+    "phi40_ppc2_h0.015625_grid": (40, 2, 0.015625, "grid", ""),
 }
 
 
-def variant(phi, ppc, h, free_density="point"):
+def variant(phi, ppc, h, free_density="point", extra=""):
     text = open(BASE).read()
     if free_density != "point":
         text = re.sub(r'^\[mpm\]$', f'[mpm]\nfree_density = "{free_density}"', text, count=1,
                       flags=re.M)
+    if extra:
+        text = re.sub(r'^\[mpm\]$', f'[mpm]\n{extra}', text, count=1, flags=re.M)
     text = re.sub(r'^friction_angle = .*$', f'friction_angle = "{phi} deg"', text, count=1,
                   flags=re.M)
     text = re.sub(r'^points_per_cell = .*$', f"points_per_cell = [{ppc}, 1, {ppc}]", text,
@@ -57,23 +70,27 @@ def variant(phi, ppc, h, free_density="point"):
 
 
 def table(summary):
-    """The Markdown table of a summary.csv, in the order of RUNS."""
+    """The Markdown table of a summary.csv, in the order of RUNS; the deposit's runout to 0.05 H0
+    and centre of mass (column_grain_scale.deposit_measures) from the profiles beside it."""
+    folder = os.path.dirname(summary)
     rows = {r["name"]: r for r in csv.DictReader(open(summary))}
-    out = ["| phi | points per cell | cell (L0 / n) | stress-free points dilate | H_f/H0 | "
-           "runout, farthest point | runout, continuous deposit |",
-           "|---|---|---|---|---|---|---|"]
+    out = ["| phi | points per cell | cell (L0 / n) | stress-free points dilate | transfer | H_f/H0 | "
+           "runout, farthest point | runout, continuous deposit | runout to h < 0.05 H0 | centre of mass x / L0 |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
     dilate = {"point": "freely", "grid": "up to the material around"}
-    for name, (phi, ppc, h, fd) in RUNS.items():
+    transfer = {"": "FLIP", "flip = 0.99": "FLIP 0.99", "flip = 0.0": "PIC"}
+    for name, (phi, ppc, h, fd, extra) in RUNS.items():
         if name not in rows:
             continue
         r = rows[name]
+        head = (f"| {phi} deg | {'1' if ppc == 1 else f'{ppc} x {ppc}'} | L0/{round(0.5 / h)} | {dilate[fd]} | "
+                f"{transfer[extra]} |")
         if r["exit"] != "0":
-            out.append(f"| {phi} deg | {ppc} x {ppc} | L0/{round(0.5 / h)} | {dilate[fd]} | "
-                       f"exit {r['exit']} | | |")
+            out.append(f"{head} exit {r['exit']} | | | | |")
             continue
-        out.append(f"| {phi} deg | {'1' if ppc == 1 else f'{ppc} x {ppc}'} | L0/{round(0.5 / h)} | "
-                   f"{dilate[fd]} | {float(r['Hf_over_H0']):.3f} | {float(r['runout_over_L0']):.2f} | "
-                   f"{float(r['runout_connected_over_L0']):.2f} |")
+        r5, _, xc, _ = deposit_measures(*final_profile(os.path.join(folder, f"{name}_profiles.csv")), L0, H0)
+        out.append(f"{head} {float(r['Hf_over_H0']):.3f} | {float(r['runout_over_L0']):.2f} | "
+                   f"{float(r['runout_connected_over_L0']):.2f} | {r5:.2f} | {xc:.2f} |")
     return "\n".join(out)
 
 
@@ -93,14 +110,14 @@ def main():
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     rows = []
-    for name, (phi, ppc, h, fd) in RUNS.items():
+    for name, (phi, ppc, h, fd, extra) in RUNS.items():
         if args.only and name not in args.only:
             continue
         work = os.path.join(args.out, "runs", name)
         shutil.rmtree(work, ignore_errors=True)
         os.makedirs(work)
         job = os.path.join(work, "job_in.toml")
-        open(job, "w").write(variant(phi, ppc, h, fd))
+        open(job, "w").write(variant(phi, ppc, h, fd, extra))
         t0 = time.time()
         rc = subprocess.run(["mpiexec", "-n", "1", "--bind-to", "none", args.exe, "run", job,
                              "--out", os.path.join(work, "run")], env=env,

@@ -4,7 +4,10 @@
 docs/validation/column_collapse.md, "At the grains' own size". Modes:
 
   --analyse RUN_DIR STEM   runs tools/mpm_column_collapse.py on RUN_DIR and keeps its CSVs as
-                           DATA/STEM_{timeseries,profiles,summary}.csv
+                           DATA/STEM_{timeseries,profiles,summary}.csv; writes
+                           DATA/STEM_mobilised.csv (the RVEs' mobilised friction angle and void
+                           ratio per output row, from RUN_DIR/results.h5)
+  --mobilised-table STEM   prints the page's table of DATA/STEM_mobilised.csv
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
   --damping-table          prints the page's table of the a = 1 columns against their damping
   --stiffness-table        prints the page's table of the columns against the grains' contact
@@ -51,7 +54,49 @@ def analyse(run, stem, data):
         for kind in ("timeseries", "profiles", "summary"):
             shutil.copy(os.path.join(tmp, f"{tags[0]}_{kind}.csv"),
                         os.path.join(data, f"{stem}_{kind}.csv"))
+    H0 = float(read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]["H0_m"])
+    mobilised_series(os.path.join(run, "results.h5"), H0, os.path.join(data, f"{stem}_mobilised.csv"))
     print(f"wrote {data}/{stem}_*.csv")
+
+
+def mobilised_series(results, H0, out):
+    """Per output row of a run's results.h5: the RVEs' mobilised in-plane friction angle
+    asin(radius / centre of the x-z Mohr circle, compression positive) over the RVEs with contacts
+    (median, 90th percentile) and their void ratio (median, 90th percentile), into the CSV `out`."""
+    import h5py
+    import numpy as np
+    with h5py.File(results, "r") as f:
+        stress = f["rve/stress"][:]  # rows x RVEs x 9, tension positive
+        e = f["rve/void_ratio"][:]
+        z = f["rve/z"][:]
+        t = f["time"][:]
+    sxx, szz, sxz = -stress[:, :, 0], -stress[:, :, 8], -stress[:, :, 2]
+    centre = (sxx + szz) / 2
+    radius = np.sqrt(((sxx - szz) / 2) ** 2 + sxz ** 2)
+    tstar = (H0 / 9.81) ** 0.5
+    with open(out, "w", newline="") as fo:
+        w = csv.writer(fo)
+        w.writerow(["t_over_tstar", "rves", "rves_with_contacts", "angle_median_deg", "angle_p90_deg",
+                    "void_ratio_median", "void_ratio_p90"])
+        for i in range(len(t)):
+            ok = (z[i] > 0) & (centre[i] > 0)
+            ang = np.degrees(np.arcsin(np.clip(radius[i][ok] / centre[i][ok], 0.0, 1.0)))
+            med, p90 = (np.median(ang), np.percentile(ang, 90)) if ok.any() else (float("nan"),) * 2
+            w.writerow([f"{t[i] / tstar:.3f}", e.shape[1], int(ok.sum()), f"{med:.1f}", f"{p90:.1f}",
+                        f"{np.median(e[i]):.4f}", f"{np.percentile(e[i], 90):.4f}"])
+
+
+def mobilised_table(data, stem):
+    """Markdown table of STEM_mobilised.csv at 0.15, 0.5, 1, 2, 3 and 5 t*."""
+    rows = read_csv(os.path.join(data, f"{stem}_mobilised.csv"))
+    lines = ["| t / t* | RVEs with contacts | mobilised friction angle, median / 90th percentile | "
+             "void ratio, median / 90th percentile |", "|---|---|---|---|"]
+    for tt in (0.15, 0.5, 1, 2, 3, 5):
+        r = min(rows, key=lambda r: abs(float(r["t_over_tstar"]) - tt))
+        lines.append(f"| {float(r['t_over_tstar']):.2f} | {r['rves_with_contacts']} of {r['rves']} | "
+                     f"{float(r['angle_median_deg']):.0f} / {float(r['angle_p90_deg']):.0f} deg | "
+                     f"{float(r['void_ratio_median']):.2f} / {float(r['void_ratio_p90']):.2f} |")
+    return "\n".join(lines)
 
 
 def read_csv(path):
@@ -372,7 +417,11 @@ DEPOSIT = [(2, "pure DEM (YADE), L0 = 14.4 d50", "300 MPa", "yade", "dense_a2_n3
            (2, "pure DEM (YADE), L0 = 28.8 d50", "3 MPa", "yade", "dense_a2_l28.8_E3e6"),
            (2, "MPM x DEM, 1 point per cell, L0 = 14.4 d50", "3 MPa", "mpm", "a2_1ppc_E3MPa"),
            (2, "MPM x DEM, 1 point per cell, L0 = 28.8 d50", "3 MPa", "mpm", "a2_1ppc_L28.8_E3MPa"),
+           (2, "MPM x DEM, 1 point per cell, L0 = 14.4 d50, wall impulse on the points", "3 MPa", "mpm",
+            "a2_1ppc_E3MPa_wallpts"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "3 MPa", "mpm", "a2_2x2_E3MPa"),
+           (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points", "3 MPa", "mpm",
+            "a2_2x2_E3MPa_wallpts"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "300 MPa", "mpm", "a2_2x2")]
 
 
@@ -431,6 +480,7 @@ def main():
     ap.add_argument("--figure", action="store_true")
     ap.add_argument("--size-figure", action="store_true")
     ap.add_argument("--deposit-table", action="store_true")
+    ap.add_argument("--mobilised-table", metavar="STEM")
     args = ap.parse_args()
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
@@ -446,8 +496,10 @@ def main():
         size_figure(args.data, args.yade, args.fig)
     if args.deposit_table:
         print(deposit_table(args.data, args.yade))
+    if args.mobilised_table:
+        print(mobilised_table(args.data, args.mobilised_table))
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table
-            or args.figure or args.size_figure or args.deposit_table):
+            or args.figure or args.size_figure or args.deposit_table or args.mobilised_table):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 

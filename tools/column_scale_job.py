@@ -19,10 +19,12 @@ Everything else is copied: the DEM material and sample (the grains are the same)
 continuum's young_modulus. --damping sets the RVEs' Cundall damping, to match a pure-DEM
 reference; --young-modulus sets the grains' contact modulus (dem.material.young_modulus) and
 scales dem.preparation.pressure by the same factor (the same stiffness number E / p when the RVEs
-are prepared), for the stiffness-number study of docs/validation/column_collapse.md. Comments are dropped and a header naming the source and the factors is written.
+are prepared), for the stiffness-number study of docs/validation/column_collapse.md; --mpm adds
+[mpm] lines (a transfer or wall option of a variant). Comments are dropped and a header naming the
+source and the factors is written.
 
 Usage: /usr/bin/python3 tools/column_scale_job.py JOB --l0 METRES --out OUT.toml [--damping D]
-           [--young-modulus PA] [--tag TEXT]
+           [--young-modulus PA] [--mpm 'KEY = VALUE' ...] [--tag TEXT]
        /usr/bin/python3 tools/column_scale_job.py --check SCALED [SCALED ...]
            (exit 1 when a SCALED job is not what the command in its header writes)
        /usr/bin/python3 tools/column_scale_job.py --self-test
@@ -96,11 +98,14 @@ def section_value(text, section, key):
     return v.group(1).strip() if v else None
 
 
-def scale(text, l0_new, source_name, tag="", damping=None, young=None):
+def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=()):
     """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
-    grains' contact modulus [Pa] with the preparation pressure scaled by the same factor)."""
+    grains' contact modulus [Pa] with the preparation pressure scaled by the same factor, and the
+    [mpm] lines `mpm` ("key = value", dimensionless or names: not scaled) added first in [mpm])."""
     if damping is not None:
         text = set_damping(text, damping)
+    if mpm:
+        text = re.sub(r"^\[mpm\]\s*$", "[mpm]\n" + "\n".join(mpm), text, count=1, flags=re.M)
     stiffness = 1.0
     if young is not None:
         stiffness = young / si(section_value(text, "dem.material", "young_modulus"))
@@ -148,6 +153,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None):
             f"# Do not edit: /usr/bin/python3 tools/column_scale_job.py {source_name} --l0 {fmt(l0_new)}"
             + (f" --damping {damping:g}" if damping is not None else "")
             + (f" --young-modulus {fmt(young)}" if young is not None else "")
+            + "".join(f" --mpm '{line}'" for line in mpm)
             + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
     while out and out[-1] == "":
         out.pop()
@@ -155,7 +161,8 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None):
 
 
 def options_of_scaled(text):
-    """(source, l0, tag, damping, young) from the header of a scaled job; None when it has none."""
+    """(source, l0, tag, damping, young, mpm lines) from the header of a scaled job; None when it
+    has none."""
     cmd = re.search(r"^# Do not edit: \S+ tools/column_scale_job.py (\S+) (.*) --out THIS_FILE$",
                     text, re.M)
     if not cmd:
@@ -165,7 +172,8 @@ def options_of_scaled(text):
     d = re.search(r"--damping (\S+)", cmd.group(2))
     e = re.search(r"--young-modulus (\S+)", cmd.group(2))
     return (cmd.group(1), float(m.group(1)), (t.group(1) if t else ""),
-            (float(d.group(1)) if d else None), (float(e.group(1)) if e else None))
+            (float(d.group(1)) if d else None), (float(e.group(1)) if e else None),
+            tuple(re.findall(r"--mpm '([^']*)'", cmd.group(2))))
 
 
 def self_test():
@@ -194,18 +202,18 @@ until = "20 ms"
 [output]
 every = 50
 """
-    out = scale(src, 0.005, "src.toml", damping=0.05, young=3e6)
+    out = scale(src, 0.005, "src.toml", damping=0.05, young=3e6, mpm=('wall_impulse = "points"',))
     expect = ['pressure_floor = "5 Pa"', 'end_time = "0.226 s"', "dt = 1e-05",
               "spacing = [0.000625, 0.000625, 0.000625]", "cells = [32, 1, 10]",
               'max = ["0.005 m", 0.000625, 0.005]', "min = [0.005, 0, 0]", "x = 0.025",
               'until = "0.002 s"', "every = 500", 'title = "col, L0 = 0.005 m"',
               "[dem.numerics]", "damping = 0.05", 'young_modulus = "3e+06 Pa"',
-              'pressure = "100 Pa"']
+              'pressure = "100 Pa"', 'wall_impulse = "points"']
     missing = [e for e in expect if e not in out.split("\n")]
     if missing or "comment" in out or abs(column_length(out) - 0.005) > 1e-15:
         print("self-test FAILED; missing:", missing, "\n" + out)
         return 1
-    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6):
+    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6, ('wall_impulse = "points"',)):
         print("self-test FAILED: the header does not name --l0")
         return 1
     print("self-test passed")
@@ -224,6 +232,9 @@ def main():
     ap.add_argument("--young-modulus", type=float, default=None, metavar="PA",
                     help="the grains' contact modulus [Pa], dem.material.young_modulus; "
                          "dem.preparation.pressure is scaled by the same factor")
+    ap.add_argument("--mpm", action="append", default=[], metavar="'KEY = VALUE'",
+                    help="a line added first to [mpm], not scaled (a name or a dimensionless "
+                         "value, e.g. 'wall_impulse = \"points\"'); repeat for several")
     ap.add_argument("--check", nargs="+", metavar="SCALED",
                     help="each job is what the command in its header writes (run from the "
                          "repository root)")
@@ -240,8 +251,8 @@ def main():
                 print(f"{scaled}: no 'Do not edit' line of tools/column_scale_job.py in its header")
                 fails += 1
                 continue
-            source, l0, tag, damping, young = options
-            if have != scale(open(source).read(), l0, source, tag, damping, young):
+            source, l0, tag, damping, young, mpm = options
+            if have != scale(open(source).read(), l0, source, tag, damping, young, mpm):
                 print(f"{scaled}: not what tools/column_scale_job.py writes from {source} at "
                       f"L0 = {l0} m; regenerate it with the command in its header")
                 fails += 1
@@ -251,7 +262,7 @@ def main():
     if not (args.job and args.l0 and args.out):
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
     open(args.out, "w").write(scale(open(args.job).read(), args.l0, args.job, args.tag,
-                                    args.damping, args.young_modulus))
+                                    args.damping, args.young_modulus, tuple(args.mpm)))
     return 0
 
 

@@ -25,7 +25,7 @@ KIND = {
     "footing_curves.py": 2, "footing_sparing_map.py": 2, "mpm_column_collapse.py": 2,
     "plot_column_collapse.py": 2, "plot_triaxial.py": 2, "render_column_collapse.py": 2,
     "render_points.py": 2, "render_rve.py": 2, "triaxial_errors.py": 2, "scaling_model.py": 2,
-    "balance_table.py": 2, "dem_against_yade.py": 2,
+    "balance_table.py": 2, "dem_against_yade.py": 2, "rve_low_pressure_strength.py": 2,
     "yade_column_collapse.py": 3, "yade_column_collapse_partial.py": 3,
     "yade_export_packing.py": 3, "yade_read_packing.py": 3, "yade_hertz_mindlin_pair.py": 3,
     "yade_triax_hertz_mindlin.py": 3,

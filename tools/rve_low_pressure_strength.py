@@ -1,0 +1,100 @@
+#!/usr/bin/python3
+"""The column RVEs' strength at the column's own pressure: plane-strain biaxial tests of the
+column's grains (contact modulus 3 MPa, prepared at 100 Pa) at 30 Pa, 100 and 1000 spheres.
+
+docs/validation/column_collapse.md, "What friction the column needs". Modes:
+
+  --run DIR     runs every job docs/data/column_collapse_rve_strength/*.toml with
+                `build/mpmxdem dem JOB --out DIR/<stem>` (one thread each; about a minute in all;
+                DIR/<stem>.log is each run's log)
+                and copies each run's dem_series.csv to DATA/<stem>_series.csv
+  --table       prints the page's table from DATA/*_series.csv (standard library only)
+
+Usage: /usr/bin/python3 tools/rve_low_pressure_strength.py [--data D] [--exe E] (--run DIR | --table)
+Defaults: D = docs/data/column_collapse_rve_strength, E = build/mpmxdem.
+
+The mobilised friction angle of a plane-strain test is asin((s1 - s3) / (s1 + s3)), s1 the axial
+and s3 the lateral (x) stress, compression positive. Peak: the largest mean over 5 consecutive
+rows (about 0.6 % of axial strain: a 100-sphere RVE's single rows are noisy); critical state: the
+mean over axial strains above 15 %, with its standard deviation over the rows.
+"""
+import argparse
+import csv
+import glob
+import math
+import os
+import shutil
+import subprocess
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WINDOW = 5  # rows of the peak's running mean
+
+
+def mobilised(series_path):
+    """(peak angle [deg], critical angle [deg], its standard deviation [deg], void ratio at the end,
+    coordination at the end) of one dem_series.csv."""
+    rows = list(csv.DictReader(open(series_path)))
+    eps = [float(r["eps_a"]) for r in rows]
+    s = []
+    for r in rows:
+        s1, s3 = -float(r["szz"]), -float(r["sxx"])
+        s.append((s1 - s3) / (s1 + s3))
+    runs = [sum(s[i:i + WINDOW]) / WINDOW for i in range(len(s) - WINDOW + 1)]
+    late = [x for x, e in zip(s, eps) if e > 0.15]
+    mean = sum(late) / len(late)
+    sd = (sum((x - mean) ** 2 for x in late) / len(late)) ** 0.5
+    crit = math.degrees(math.asin(mean))
+    sd_deg = math.degrees(math.asin(min(mean + sd, 1.0))) - crit
+    return (math.degrees(math.asin(max(runs))), crit, sd_deg, float(rows[-1]["e"]),
+            float(rows[-1]["Z"]))
+
+
+def stems(data):
+    return sorted((os.path.basename(p)[:-len(".toml")] for p in glob.glob(os.path.join(data, "*.toml"))),
+                  key=lambda n: (int(n.split("_")[0][1:]), n))
+
+
+def table(data):
+    lines = ["| RVE | spheres | peak friction angle | critical-state friction angle (axial strain > 15 %) "
+             "| void ratio at 30 % | coordination at 30 % |", "|---|---|---|---|---|---|"]
+    for stem in stems(data):
+        path = os.path.join(data, f"{stem}_series.csv")
+        if not os.path.exists(path):
+            continue
+        peak, crit, sd, e, z = mobilised(path)
+        n, seed = stem.split("_")
+        lines.append(f"| seed {seed[len('seed'):]} | {n[1:]} | {peak:.1f} deg | {crit:.1f} +- {sd:.1f} deg | "
+                     f"{e:.3f} | {z:.2f} |")
+    return "\n".join(lines)
+
+
+def run(data, exe, out):
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    for stem in stems(data):
+        work = os.path.join(out, stem)
+        shutil.rmtree(work, ignore_errors=True)
+        os.makedirs(out, exist_ok=True)
+        with open(os.path.join(out, f"{stem}.log"), "w") as log:  # the run's log beside its folder
+            subprocess.run([exe, "dem", os.path.join(data, f"{stem}.toml"), "--out", work], env=env,
+                           check=True, stdout=log, stderr=subprocess.STDOUT)
+        shutil.copy(os.path.join(work, "dem_series.csv"), os.path.join(data, f"{stem}_series.csv"))
+        print("ran", stem, flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data", "column_collapse_rve_strength"))
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "mpmxdem"))
+    ap.add_argument("--run", metavar="DIR")
+    ap.add_argument("--table", action="store_true")
+    args = ap.parse_args()
+    if args.run:
+        run(args.data, args.exe, args.run)
+    if args.table:
+        print(table(args.data))
+    if not (args.run or args.table):
+        ap.error("one of --run DIR, --table")
+
+
+if __name__ == "__main__":
+    main()
