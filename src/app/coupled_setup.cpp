@@ -162,7 +162,7 @@ farm::CoupledConfig coupled_setup(const Job& job, MpmSetup setup, const RunLimit
     // Only DEM RVEs have grains: an id of another material, or of no point, is refused here
     // with the job's line, before anything is written.
     c.grains.rves = job.integers("output.grains.rves");
-    c.grains.every = job.integer("output.grains.every");
+    fill_from_job(job, farm::kGrainViewOptions, c.grains);
     std::set<std::int64_t> seen;
     for (std::int64_t id : c.grains.rves) {
       std::string rule;

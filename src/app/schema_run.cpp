@@ -2,6 +2,7 @@
 // [output] and [farm] are the rows of the farm's run option tables (farm/run_options.hpp).
 #include "app/schema.hpp"
 #include "app/schema_params.hpp"
+#include "farm/grain_views.hpp"
 #include "farm/run_options.hpp"
 
 namespace app {
@@ -22,10 +23,7 @@ void add_run_sections(Schema& s) {
       .in(0, std::nullopt)
       .len(1, 4096)
       .need();
-  s.add("output.grains.every", Type::Int,
-        "MPM steps between two views; step 0 and the last step are drawn too.")
-      .in(1, std::nullopt)
-      .or_default(std::int64_t{100});
+  add_params(s, farm::kGrainViewOptions);  // every
 
   s.add("farm", Type::Table, "Distribution of the RVEs over MPI ranks.");
   add_params(s, farm::kBalanceOptions);  // rebalance_threshold, rebalance_check_every

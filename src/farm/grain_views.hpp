@@ -11,20 +11,29 @@
 #include <string>
 #include <vector>
 
+#include "common/param_table.hpp"
 #include "dem/vtk_export.hpp"
 
 namespace farm {
 
 class RveFarm;
 
-/// [output.grains]: which RVEs, how often. Empty `rves`: no views (the default).
+/// [output.grains]: which RVEs, how often. Empty `rves`: no views (the default). The initializer
+/// of `every` is its job key's default too (kGrainViewOptions).
 struct GrainViewOptions {
   std::vector<std::int64_t> rves;  ///< point ids of the RVEs drawn (ascending, each once)
-  std::int64_t every = 10;         ///< MPM steps between views (>= 1); step 0 and the last too
+  std::int64_t every = 100;        ///< MPM steps between views (>= 1); step 0 and the last too
   /// Throws common::InputError naming output.grains.rves / .every, the value and the rule, when
   /// an id is repeated or not a point of `ids` (the farm's RVE ids, ascending), or every < 1.
   void validate(const std::vector<std::int64_t>& ids) const;
 };
+
+/// [output.grains]: its numeric key (the ids, a list, are the schema's own row).
+inline constexpr auto kGrainViewOptions = common::make_table<GrainViewOptions>(
+    "farm::GrainViewOptions", "output.grains",
+    {{"every", &GrainViewOptions::every, common::Unit::Dimensionless, common::ge(1),
+      common::Source::job_default,
+      "MPM steps between two views; step 0 and the last step are drawn too."}});
 
 /// The directory of the views inside the output directory.
 [[nodiscard]] std::filesystem::path grain_view_dir(const std::string& out_dir);

@@ -103,6 +103,18 @@ TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
   EXPECT_EQ(c.solver.mass_threshold, mpm::SolverConfig{}.mass_threshold);
 }
 
+// [output.grains] without `every` takes the C++ default, and the schema says the same number (it
+// said 100 while GrainViewOptions said 10).
+TEST(CoupledSetup, GrainViewsWithoutEveryTakeTheOneDefault) {
+  const std::string text = std::string(kJob) + "\n[output.grains]\nrves = [0]\n";
+  const farm::CoupledConfig c = app::coupled_setup(app::Job::parse(text, "grains.toml"), {"out", 4});
+  ASSERT_EQ(c.grains.rves, std::vector<std::int64_t>{0});
+  EXPECT_EQ(c.grains.every, farm::GrainViewOptions{}.every);
+  EXPECT_EQ(c.grains.every, 100);
+  const std::string with = text + "every = 7\n";
+  EXPECT_EQ(app::coupled_setup(app::Job::parse(with, "grains.toml"), {"out", 4}).grains.every, 7);
+}
+
 TEST(CoupledSetup, CreatesAndRestoresTheModelOfEachPoint) {
   const app::Job job = app::Job::parse(kJob, "mixed.toml");
   const farm::CoupledConfig c = app::coupled_setup(job, {"out", -1});
