@@ -198,10 +198,17 @@ def main():
         r.in_band = inner & (dist <= max(width, r.h) / 2.0)
         r.out_band = inner & (dist > max(width, r.h))
         incl = min(th, 180.0 - th)
+        r.reading = (f"{r.label}: first peak sigma_a/sigma_r {r.ratio[i]:.2f} at eps_a "
+                     f"{100 * r.eps[i]:.1f} % (pure DEM {fd['ratio_peak']:.2f} at "
+                     f"{100 * fd['eps_peak']:.1f} %); at eps_a {100 * r.eps[r.row]:.1f} % a shear band at "
+                     f"{incl:.1f} deg from the horizontal (Roscoe {roscoe:.1f}, Coulomb {coulomb:.1f}), "
+                     f"{1e3 * width:.1f} mm thick = {width / r.h:.1f} cells")
         print(f"| {r.label} | {r.cells[0]} x {r.cells[1]} | {len(x)} | {r.ratio[i]:.2f} "
               f"({100 * r.eps[i]:.2f} %) | {r10:.2f} | {err} | {100 * bal:.1f} % | {incl:.1f} deg | "
               f"{1e3 * width:.1f} mm | {width / r.h:.2f} | {r.conj[0]:.1f} deg, {1e3 * r.conj[1]:.1f} mm, {r.conj[2]:.2f} | {100 * r.eps[r.row]:.2f} % |")
     print()
+    for r in runs:
+        print(r.reading)
     print()
     print("| run | RVEs with p < 1 kPa at the end | e in / out of the band | Z in / out | "
           "MPM steps, wall (log.txt) |")
