@@ -528,48 +528,49 @@ void Solver::update_points(double dt) {
   }
 }
 
+void Solver::stress_stage(double t, double dt) {
+  g2p_velocity_gradient(config_.grid, cache_, fields_, threshold_, points_);
+  update_stress(dt);
+  check_points(t + dt);
+}
+
+void Solver::momentum_stage(double t, double dt) {
+  internal_force_tracked();
+  add_external_loads();
+  compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
+  hold_thickness_acceleration();  // before the walls: no reaction through the thickness
+  project_wall_trial(dt);
+  apply_acceleration_constraints(config_.grid, constraints_, t, dt, fields_, &reactions_);
+  hold_thickness_acceleration();
+  if (guard_.enabled()) w_ext_step_ += grid_external_work(dt);
+  update_points(dt);
+}
+
+void Solver::reproject_momentum(double t, double dt) {
+  p2g_momentum(config_.grid, cache_, bins_, points_, fields_, config_.transfer == Transfer::apic);
+  scale_inertia(false);
+  compute_nodal_velocity(threshold_, fields_);
+  hold_thickness_velocity();
+  apply_velocity_constraints(config_.grid, constraints_, t + dt, fields_);
+  hold_thickness_velocity();
+}
+
 void Solver::step() {
   const double dt = next_dt();
   const double t = time_;
   if (guard_.enabled() && !guard_.started())
     guard_.start(kinetic_energy(points_, config_.mass_scaling), internal_work_);
   prepare_grid(step_, t);
-  const Grid& grid = config_.grid;
   if (config_.stress_update == StressUpdate::usf) {
     // USF: L from V_v(t), stress first, then forces from the new stress (eqs. 5, 6, 8-10).
-    g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
-    update_stress(dt);
-    check_points(t + dt);
-    internal_force_tracked();
-    add_external_loads();
-    compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
-    hold_thickness_acceleration();  // before the walls: no reaction through the thickness
-    project_wall_trial(dt);
-    apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
-    hold_thickness_acceleration();
-    if (guard_.enabled()) w_ext_step_ += grid_external_work(dt);
-    update_points(dt);
+    stress_stage(t, dt);
+    momentum_stage(t, dt);
   } else {
     // MUSL: forces from the old stress, move the points, re-project their new momentum with the
     // start-of-step weights, then L and the stress from it.
-    internal_force_tracked();
-    add_external_loads();
-    compute_nodal_acceleration(threshold_, config_.damping, config_.damping_mode, fields_);
-    hold_thickness_acceleration();  // before the walls: no reaction through the thickness
-    project_wall_trial(dt);
-    apply_acceleration_constraints(grid, constraints_, t, dt, fields_, &reactions_);
-    hold_thickness_acceleration();
-    if (guard_.enabled()) w_ext_step_ += grid_external_work(dt);
-    update_points(dt);
-    p2g_momentum(grid, cache_, bins_, points_, fields_, config_.transfer == Transfer::apic);
-    scale_inertia(false);
-    compute_nodal_velocity(threshold_, fields_);
-    hold_thickness_velocity();
-    apply_velocity_constraints(grid, constraints_, t + dt, fields_);
-    hold_thickness_velocity();
-    g2p_velocity_gradient(grid, cache_, fields_, threshold_, points_);
-    update_stress(dt);
-    check_points(t + dt);
+    momentum_stage(t, dt);
+    reproject_momentum(t, dt);
+    stress_stage(t, dt);
   }
   advance_displacements(t, dt);
   time_ = t + dt;

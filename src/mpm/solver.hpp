@@ -220,6 +220,15 @@ class Solver {
 
  private:
   void prepare_grid(std::int64_t step, double t);
+  // The two stages of a step, written once; USF runs stress then momentum, MUSL momentum, the
+  // re-projection, then stress.
+  /// L of the points from the nodal velocities, their stress, the blow-up checks at t + dt.
+  void stress_stage(double t, double dt);
+  /// Forces, accelerations, the walls and constraints on them, then G2P (velocities, positions).
+  void momentum_stage(double t, double dt);
+  /// MUSL: the points' new momentum to the nodes with the start-of-step weights, constrained at
+  /// t + dt.
+  void reproject_momentum(double t, double dt);
   void update_stress(double dt);
   void update_material_stress(double dt);
   /// G2P of the point velocities (and positions, C_p): FLIP/PIC or APIC by config_.transfer.
