@@ -343,21 +343,30 @@ def figure(data, yade, fig_dir):
             last = final(pd.read_csv(base + "_profiles.csv"))
             ax_p.plot(last["x_m"] / 0.5, last["h_vol_m"] / (0.5 * a), color="tab:blue", lw=1.2,
                       label="MPM x DEM, 2500 d50 (shipped), 2 x 2")
-        ax_p.set_xlabel("x / L0")
-        ax_p.set_ylabel("deposit height (initial density) / H0")
-        ax_p.set_xlim(0, 1 + 2.2 * a)
-        ax_p.set_ylim(0, 1.05)
-        ax_p.axvline(1.0, color="0.6", lw=0.8)
-        ax_p.set_title(f"a = {a}: final deposit")
-        ax_p.legend(fontsize=7)
-        ax_f.set_xlabel("t / t*")
-        ax_f.set_ylabel("(L - L0) / L0, continuous deposit")
-        ax_f.set_xlim(0, 10)
-        ax_f.set_title(f"a = {a}: front")
-        ax_f.legend(fontsize=7)
+        style_axes(ax_p, ax_f, f"a = {a}", 1 + 2.2 * a)
+    save(fig, fig_dir, "column_grain_scale.png")
+
+
+def style_axes(ax_p, ax_f, title, x_max):
+    """Labels, limits and legends of a deposit panel (ax_p) and a front panel (ax_f)."""
+    ax_p.set_xlabel("x / L0")
+    ax_p.set_ylabel("deposit height (initial density) / H0")
+    ax_p.set_xlim(0, x_max)
+    ax_p.set_ylim(0, 1.05)
+    ax_p.axvline(1.0, color="0.6", lw=0.8)
+    ax_p.set_title(f"{title}: final deposit")
+    ax_p.legend(fontsize=7)
+    ax_f.set_xlabel("t / t*")
+    ax_f.set_ylabel("(L - L0) / L0, continuous deposit")
+    ax_f.set_xlim(0, 10)
+    ax_f.set_title(f"{title}: front")
+    ax_f.legend(fontsize=7)
+
+
+def save(fig, fig_dir, name):
     fig.tight_layout()
     os.makedirs(fig_dir, exist_ok=True)
-    out = os.path.join(fig_dir, "column_grain_scale.png")
+    out = os.path.join(fig_dir, name)
     fig.savefig(out, dpi=100)
     print("wrote", out)
 
@@ -392,23 +401,8 @@ def size_figure(data, yade, fig_dir):
         ax_f.plot([float(r["t_over_tstar"]) for r in tsm],
                   [(float(r["L_front_connected_m"]) - L0m) / L0m for r in tsm], color="tab:red", lw=width,
                   ls="--", label=f"MPM x DEM, 1 point per cell, {size:g} d50")
-    ax_p.set_xlabel("x / L0")
-    ax_p.set_ylabel("deposit height (initial density) / H0")
-    ax_p.set_xlim(0, 3.2)
-    ax_p.set_ylim(0, 1.05)
-    ax_p.axvline(1.0, color="0.6", lw=0.8)
-    ax_p.set_title("a = 2, E = 3 MPa: final deposit")
-    ax_p.legend(fontsize=7)
-    ax_f.set_xlabel("t / t*")
-    ax_f.set_ylabel("(L - L0) / L0, continuous deposit")
-    ax_f.set_xlim(0, 10)
-    ax_f.set_title("a = 2, E = 3 MPa: front")
-    ax_f.legend(fontsize=7)
-    fig.tight_layout()
-    os.makedirs(fig_dir, exist_ok=True)
-    out = os.path.join(fig_dir, "column_size_a2.png")
-    fig.savefig(out, dpi=100)
-    print("wrote", out)
+    style_axes(ax_p, ax_f, "a = 2, E = 3 MPa", 3.2)
+    save(fig, fig_dir, "column_size_a2.png")
 
 
 # The deposit in continuum terms: (a, label, E, "yade" tag or "mpm" stem)
