@@ -11,6 +11,7 @@
 #include "dem/packing_io.hpp"
 #include "dem/params.hpp"
 #include "dem/reference_material.hpp"
+#include "dem/simulation.hpp"
 
 namespace dem_test {
 
@@ -59,6 +60,34 @@ inline std::vector<TrajectoryRow> read_trajectory(const std::string& path) {
     rows.push_back(r);
   }
   return rows;
+}
+
+/// The columns both two-sphere trajectory tests compare with YADE, from a two-sphere simulation
+/// (sphere 1 against sphere 0, rotations theta1 / theta2 about z integrated by the test): x and y
+/// of the branch, theta1, theta2, overlap, normal force, shear y and |shear|, rolling moment z
+/// and |rolling|, |twist|, kn, ks. `got` must hold at least 13 values; entries 4-12 are left as
+/// they are while no contact is active.
+inline void measure_pair(const dem::Simulation& sim, double r1, double r2, double theta1,
+                         double theta2, std::vector<double>& got) {
+  const auto& sp = sim.spheres();
+  const auto& c = sim.contacts();
+  got[0] = sp.x[1].x() - sp.x[0].x();
+  got[1] = sp.x[1].y() - sp.x[0].y();
+  got[2] = theta1;
+  got[3] = theta2;
+  for (std::size_t p = 0; p < c.size(); ++p) {
+    if (!c.active[p]) continue;
+    got[4] = r1 + r2 - c.branch[p].norm();
+    got[5] = sim.normal_force(p);
+    got[6] = c.hist.shear[1][p];
+    got[7] = dem::at(c.hist.shear, p).norm();
+    got[8] = c.hist.roll[2][p];
+    got[9] = dem::at(c.hist.roll, p).norm();
+    got[10] = dem::at(c.hist.twist, p).norm();
+    const dem::ContactProps pr = sim.contact_props(p);
+    got[11] = pr.kn;
+    got[12] = pr.ks;
+  }
 }
 
 }  // namespace dem_test

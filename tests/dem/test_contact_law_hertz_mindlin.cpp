@@ -126,22 +126,9 @@ TEST(ContactLawHertzMindlin, YadeTwoSphereTrajectory) {
     const Row& r = rows[next];
     const auto& c = sim.contacts();
     std::vector<double> got(names.size(), 0.0);
-    got[0] = sp.x[1].x() - sp.x[0].x();
-    got[1] = sp.x[1].y() - sp.x[0].y();
-    got[2] = theta1;
-    got[3] = theta2;
-    for (std::size_t p = 0; p < c.size(); ++p) {
+    dem_test::measure_pair(sim, r1, r2, theta1, theta2, got);
+    for (std::size_t p = 0; p < c.size(); ++p) {  // Coulomb sliding and the bending cap reached
       if (!c.active[p]) continue;
-      got[4] = r1 + r2 - c.branch[p].norm();
-      got[5] = sim.normal_force(p);
-      got[6] = c.hist.shear[1][p];
-      got[7] = dem::at(c.hist.shear, p).norm();
-      got[8] = c.hist.roll[2][p];
-      got[9] = dem::at(c.hist.roll, p).norm();
-      got[10] = dem::at(c.hist.twist, p).norm();
-      const dem::ContactProps pr = sim.contact_props(p);
-      got[11] = pr.kn;
-      got[12] = pr.ks;
       slid = slid || got[7] >= 0.999999 * got[5] * std::tan(std::numbers::pi / 6.0);
       capped = capped || got[9] >= 0.999999 * 2.55e-5 * got[5];
     }
