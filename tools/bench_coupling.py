@@ -32,7 +32,6 @@ import statistics
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_sparing as bs  # noqa: E402 (a tool beside this one: scenes, measures, errors)
 
 

@@ -86,7 +86,6 @@ def job_text(scene, tol, max_spared, perturbed=False):
     elif perturbed:
         repl = repl + PERTURBATION[kind]
     if isinstance(path, dict):  # a footing written by tools/footing_make_job.py
-        sys.path.insert(0, os.path.join(ROOT, "tools"))
         import footing_make_job  # noqa: E402 (a tool beside this one)
         text = footing_make_job.job_text(**dict(footing_make_job.DEFAULTS, **path))
     else:
@@ -150,13 +149,11 @@ def measures(out, kind, work):
             # a row every step: the rows' DEM steps are the log's
             assert int(f["rve/dem_steps"][1:].sum()) == work["dem_steps"], out
     if kind == "biaxial":
-        sys.path.insert(0, os.path.join(ROOT, "tools"))
         import biaxial_analysis  # noqa: E402 (a tool beside this one)
         r = biaxial_analysis.Run(out)
         d["eps"], d["ratio"] = r.eps.copy(), r.ratio.copy()
         r.f.close()
     if kind == "collapse":
-        sys.path.insert(0, os.path.join(ROOT, "tools"))
         import mpm_column_collapse  # noqa: E402 (a tool beside this one)
         summ = mpm_column_collapse.analyse(out)["summ"]
         d["runout"] = summ["runout_connected_over_L0"]

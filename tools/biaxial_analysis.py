@@ -22,7 +22,6 @@ import tomllib
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import band_fit  # noqa: E402 (the fit beside this tool)
 
 P_CONF_DEFAULT = 1e5

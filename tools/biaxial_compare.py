@@ -12,7 +12,6 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import biaxial_analysis as B  # noqa: E402
 
 

@@ -38,7 +38,6 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_coupling as bc  # noqa: E402
 import bench_sparing as bs  # noqa: E402
 

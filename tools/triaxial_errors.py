@@ -16,11 +16,9 @@ Default reference: the 30,000-sphere pure DEM of docs/data/triaxial_dem_30k.
 import argparse
 import math
 import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_triaxial import series_of_csv, series_of_run, split_label  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
