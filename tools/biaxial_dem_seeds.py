@@ -6,6 +6,8 @@ docs/validation/biaxial.md, "Which pure DEM".
 
   tools/biaxial_dem_seeds.py OUT_DIR [--samples 16] [--inertial-number 2.5e-4] [--strain 0.06]
                              [--exe build/mpmxdem] [--mean MEAN.csv]
+                             [--spheres 300] [--pressure 100]   (the RVEs of another job: the
+                             footing's are 100 spheres at 50 kPa, docs/validation/footing.md)
 
 Each test runs on one thread (about 4 s for 300 spheres to 6 % at 2.5e-4 on an idle core).
 """
@@ -28,8 +30,15 @@ def main():
     ap.add_argument("--lateral-tolerance", default="0.1")
     ap.add_argument("--exe", default=os.path.join(HERE, "..", "build", "mpmxdem"))
     ap.add_argument("--mean", default=None, help="default: OUT/mean.csv")
+    ap.add_argument("--spheres", type=int, default=300, help="spheres per sample")
+    ap.add_argument("--pressure", type=float, default=100.0,
+                    help="preparation and confining pressure [kPa]")
     a = ap.parse_args()
     base = open(BASE).read()
+    base = re.sub(r"(?m)^spheres = 300$", f"spheres = {a.spheres}", base)
+    base = base.replace("pure DEM, 300 spheres", f"pure DEM, {a.spheres} spheres")
+    base = re.sub(r'(?m)^(pressure|confining_pressure) = "100 kPa"$',
+                  lambda m: f'{m.group(1)} = "{a.pressure:g} kPa"', base)
     os.makedirs(a.out, exist_ok=True)
     series = []
     for seed in range(1, a.samples + 1):

@@ -9,6 +9,7 @@ figure of every run's curve.
 """
 import argparse
 import os
+import re
 import tomllib
 
 import pandas as pd
@@ -24,10 +25,13 @@ def footing_geometry(run):
 
 
 def curve(run):
-    """(s / B, q [Pa]) of a run."""
+    """(s / B, q [Pa]) of a run. A footing deeper than half a cell is a staircase of boxes
+    (footing, footing_1, ...; tools/footing_make_job.py): its reaction is their sum, its
+    settlement that of the first box (held from the start)."""
     half, thick = footing_geometry(run)
     r = pd.read_csv(os.path.join(run, "reactions.csv"))
-    return -r["footing_uz_m"] / (2 * half), -r["footing_rz_N"] / (half * thick)
+    boxes = [c for c in r.columns if re.fullmatch(r"footing(_\d+)?_rz_N", c)]
+    return -r["footing_uz_m"] / (2 * half), -r[boxes].sum(axis=1) / (half * thick)
 
 
 def main():

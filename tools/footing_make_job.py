@@ -12,20 +12,74 @@ preparation for every RVE; rollers on the sides (x = 0: symmetry, x = width: far
 rigid base. Mass scaling 1e4 (quasi-static). Reference quantity: the footing's reaction
 (reactions.csv, footing_rz_N) against its settlement (footing_uz_m).
 
-The footing holds the node plane of the surface for the whole run: the top row of points (a
-quarter cell under the surface) must stay in the cells under it, so the settlement is at most
-half a cell (checked; a deeper settlement needs a staircase of held planes as the biaxial's
-platen, tools/biaxial_make_jobs.py).
+The grid is fixed and the material under the footing moves down, so the footing is a staircase
+of held node planes (boxes footing, footing_1, ...), each taking over the next plane down half a
+cell before the material's top reaches it, as the biaxial's platen (tools/biaxial_make_jobs.py):
+the top row of points under the footing never leaves the cells whose upper plane is held
+(--self-test checks it), and the settlement may be many cells. The footing's reaction is the sum
+over the boxes (tools/footing_curves.py).
+
+--material frictional puts the Drucker-Prager continuum of [mpm.elastic] (plane-strain
+Mohr-Coulomb, no dilatancy) in place of the RVEs, at the same isotropic initial stress: the
+footing whose limit load bearing-capacity theory gives (tools/bearing_capacity.py).
 
     /usr/bin/python3 tools/footing_make_job.py --out jobs/footing_plane_strain.toml
     /usr/bin/python3 tools/footing_make_job.py --width 0.4 --depth 0.2 --out /tmp/footing_wide.toml
+    /usr/bin/python3 tools/footing_make_job.py --material frictional --settlement 0.015 --out /tmp/f.toml
     /usr/bin/python3 tools/footing_make_job.py --check jobs/footing_plane_strain.toml  # (ctest)
+    /usr/bin/python3 tools/footing_make_job.py --self-test                          # (ctest)
 """
 import argparse
+import math
 import sys
 
 DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=0.005,
-                speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2)
+                speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
+                friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0)
+LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
+
+
+def footing_boxes(depth, cell, speed, t_end):
+    """The footing's boxes (k, z_k, t_k): box k holds the node planes z >= depth - k cell from
+    t_k = (k - LEAD) cell / speed (box 0 from the start)."""
+    boxes, k = [], 0
+    while True:
+        tk = max(k - LEAD, 0.0) * cell / speed
+        if tk >= t_end:
+            return boxes
+        boxes.append((k, depth - k * cell, tk))
+        k += 1
+
+
+def grip_failures(depth, cell, speed, t_end, boxes, samples=4000):
+    """Times at which the top row of points under the footing (a quarter cell under the surface,
+    moving down with it) lies in a cell whose upper node plane no box holds yet, or a box engages
+    more than half a cell inside the material. Empty: the footing keeps its grip."""
+    engaged = {k: tk for k, _, tk in boxes}
+    bad = []
+    for i in range(samples + 1):
+        t = t_end * i / samples
+        k_cell = math.floor((cell / 4 + speed * t) / cell + 1e-9)
+        if not (k_cell in engaged and engaged[k_cell] <= t + 1e-12):
+            bad.append(("loose", t))
+    for k, zk, tk in boxes:
+        if (depth - speed * tk) - zk > 0.5 * cell + 1e-9:
+            bad.append(("deep", tk))
+    return bad
+
+
+def self_test():
+    for cell in (0.025, 0.0125, 0.00625):
+        for settlement in (0.005, 0.015, 0.03):
+            t_end = settlement / 0.001
+            bad = grip_failures(0.1, cell, 0.001, t_end, footing_boxes(0.1, cell, 0.001, t_end))
+            assert not bad, f"cell {cell} to {settlement}: {bad[:3]}"
+    # One plane (no staircase) loses the grip three quarters of a cell down: the check sees it.
+    t_end = 0.03 / 0.001
+    bad = grip_failures(0.1, 0.0125, 0.001, t_end, [(0, 0.1, 0.0)])
+    assert bad and abs(bad[0][1] * 0.001 - 0.75 * 0.0125) < 1e-4, bad[:2]
+    print("footing_make_job self-test: the footing keeps its grip on cells of 25 / 12.5 / 6.25 mm "
+          "to 30 mm of settlement; one held plane loses it %.2f cell down" % (bad[0][1] * 0.001 / 0.0125))
 
 
 def fmt(x):
@@ -33,43 +87,17 @@ def fmt(x):
     return repr(round(x, 12))
 
 
-def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping):
-    nx, nz = round(width / cell), round(depth / cell)
-    if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
-        raise ValueError("width and depth must be whole numbers of cells")
-    if abs(round(half_width / cell) * cell - half_width) > 1e-9 or half_width < cell:
-        raise ValueError("half_width must be a whole number (>= 1) of cells")
-    if settlement > 0.5 * cell + 1e-12:
-        raise ValueError("settlement %g m is more than half a cell (%g m): the top row of points "
-                         "would leave the cells under the held surface" % (settlement, cell))
-    rves = nx * nz * 4
-    t_end = settlement / speed
-    x0, z0 = -cell, -cell                     # one empty cell left of x = 0 and under the base
-    xt, zt = width + cell, depth + 2 * cell   # one beyond the far side, two above the surface
-    B_mm = 2e3 * half_width
-    return f'''# Plane-strain strip footing on a granular layer (a scene whose far field idles).
-# Written by tools/footing_make_job.py --width {width:g} --depth {depth:g} --cell {cell:g} --half-width {half_width:g}
-#   --settlement {settlement:g} --speed {speed:g} --spheres {spheres} --pressure {pressure:g} --every {every}
-#   --damping {damping:g}
-# Half of the problem (symmetry plane x = 0): a layer {width * 1e3:g} mm wide and {depth * 1e3:g} mm deep on
-# {nx} x {nz} cells of [2, 1, 2] points ({rves} RVEs of {spheres} spheres), a rigid rough footing of
-# half-width {half_width * 1e3:g} mm (B = {B_mm:g} mm: the node columns x = 0 ... {half_width * 1e3:g} mm of the surface)
-# pushed down at {speed * 1e3:g} mm/s to a settlement of {settlement * 1e3:g} mm ({settlement / (2 * half_width):g} B). No gravity: a
-# {pressure / 1e3:g} kPa surcharge on the surface and an isotropic initial state at {pressure / 1e3:g} kPa (one
-# DEM preparation for every RVE); rollers on the sides (x = 0: symmetry; x = {width * 1e3:g} mm: far field),
-# a rough rigid base. Mass scaling 1e4 (quasi-static: the log reports E_kin/W_int).
-# Reference quantity: the footing's reaction (reactions.csv footing_rz_N) against its settlement
-# (footing_uz_m); its bearing pressure is -footing_rz_N / (half-width x thickness {cell * 1e3:g} mm)
-# (tools/footing_curves.py). The default layer (200 x 100 mm, 2 B deep on a rough base) is small:
-# at 0.1 B it carries 6.7 MPa against 4.8 and 4.4 on layers 2 and 3 times as wide and deep; study
-# the footing itself on the larger ones (--width 0.6 --depth 0.3: 4608 RVEs, about 4 min on 2 cores).
-# Sparing the idle far field: docs/validation/speed.md "Sparing on a strip footing".
-#
-# Run:        mpirun -n 2 --bind-to none mpmxdem run jobs/footing_plane_strain.toml --out results/footing
-# Validate:   mpmxdem check jobs/footing_plane_strain.toml
-title = "Plane-strain strip footing, MPM x DEM, {nx} x {nz} cells, {rves} RVEs of {spheres} spheres"
-
-[dem.material]                 # the reference material (docs/validation/triaxial.md)
+def material_tables(material, spheres, pressure, friction_angle, young):
+    """The tables that say what the layer is made of: RVEs, or the Drucker-Prager continuum."""
+    if material == "frictional":
+        return f'''[mpm.elastic]                  # elastic-perfectly plastic Drucker-Prager (plane-strain Mohr-Coulomb), no dilatancy
+young_modulus = "{young / 1e6:g} MPa"
+poisson_ratio = 0.3
+friction_angle = "{friction_angle:g} deg"
+'''
+    if material != "dem":
+        raise ValueError("material must be dem or frictional, not %r" % material)
+    return f'''[dem.material]                 # the reference material (docs/validation/triaxial.md)
 density = "2650 kg/m^3"
 young_modulus = "300 MPa"
 stiffness_ratio = 0.5
@@ -94,7 +122,79 @@ pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the f
 # dt_refresh = 20              # the critical time step kept over 20 DEM steps: 1.29x on this
                                # footing on top of the defaults, errors inside its sensitivity
                                # (docs/validation/speed.md, "Defaults")
+'''
 
+
+def footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end):
+    """The footing: box 0 on the surface's node plane, then one box per plane down (staircase)."""
+    out = []
+    for k, zk, tk in footing_boxes(depth, cell, speed, t_end):
+        head = ("[[mpm.velocity]]               # the footing: rigid, rough (no slip), pushed down" if k == 0
+                else f"[[mpm.velocity]]               # the footing's next node plane, held from {tk:g} s")
+        since = "" if k == 0 else f'\nfrom = "{fmt(tk)} s"'
+        name = "footing" if k == 0 else "footing_%d" % k
+        out.append(f'''{head}
+min = [{fmt(x0)}, 0.0, {fmt(zk)}]
+max = [{fmt(half_width)}, {fmt(cell)}, {fmt(zt)}]
+x = 0.0
+z = "{-speed * 1e3:g} mm/s"{since}
+name = "{name}"
+''')
+    return "\n".join(out)
+
+
+def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
+             material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0):
+    nx, nz = round(width / cell), round(depth / cell)
+    if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
+        raise ValueError("width and depth must be whole numbers of cells")
+    if abs(round(half_width / cell) * cell - half_width) > 1e-9 or half_width < cell:
+        raise ValueError("half_width must be a whole number (>= 1) of cells")
+    if settlement >= depth / 2:
+        raise ValueError("settlement %g m is half the layer's depth (%g m) or more" % (settlement, depth))
+    rves = nx * nz * 4
+    t_end = settlement / speed
+    x0, z0 = -cell, -cell                     # one empty cell left of x = 0 and under the base
+    xt, zt = width + cell, depth + above * cell  # one beyond the far side, `above` above the surface
+    B_mm = 2e3 * half_width
+    init_stress = f'''
+initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", 0.0, 0.0, 0.0]'''
+    frictional = material == "frictional"
+    above_words = "two" if above == 2 else "%d" % above
+    if above < 2:
+        raise ValueError("above must be 2 cells or more (the footing's planes)")
+    flags = "" if not frictional else (
+        f"\n#   --material frictional --friction-angle {friction_angle:g} --young {young:g}")
+    flags += "" if above == 2 else f" --above {above}"
+    flags += "" if mass_scaling == 10000 else f" --mass-scaling {mass_scaling:g}"
+    what = (f"{nx} x {nz} cells of [2, 1, 2] points ({rves} RVEs of {spheres} spheres)" if not frictional else
+            f"{nx} x {nz} cells of [2, 1, 2] points (Drucker-Prager, phi = {friction_angle:g} deg, no dilatancy)")
+    state = ("(one\n# DEM preparation for every RVE)" if not frictional else "(the\n# continuum's initial stress)")
+    title = (f"Plane-strain strip footing, MPM x DEM, {nx} x {nz} cells, {rves} RVEs of {spheres} spheres"
+             if not frictional else
+             f"Plane-strain strip footing, Drucker-Prager continuum ({friction_angle:g} deg), {nx} x {nz} cells")
+    return f'''# Plane-strain strip footing on a granular layer (a scene whose far field idles).
+# Written by tools/footing_make_job.py --width {width:g} --depth {depth:g} --cell {cell:g} --half-width {half_width:g}
+#   --settlement {settlement:g} --speed {speed:g} --spheres {spheres} --pressure {pressure:g} --every {every}
+#   --damping {damping:g}{flags}
+# Half of the problem (symmetry plane x = 0): a layer {width * 1e3:g} mm wide and {depth * 1e3:g} mm deep on
+# {what}, a rigid rough footing of
+# half-width {half_width * 1e3:g} mm (B = {B_mm:g} mm: the node columns x = 0 ... {half_width * 1e3:g} mm of the surface)
+# pushed down at {speed * 1e3:g} mm/s to a settlement of {settlement * 1e3:g} mm ({settlement / (2 * half_width):g} B). No gravity: a
+# {pressure / 1e3:g} kPa surcharge on the surface and an isotropic initial state at {pressure / 1e3:g} kPa {state}; rollers on the sides (x = 0: symmetry; x = {width * 1e3:g} mm: far field),
+# a rough rigid base. Mass scaling 1e4 (quasi-static: the log reports E_kin/W_int).
+# Reference quantity: the footing's reaction (reactions.csv footing_rz_N) against its settlement
+# (footing_uz_m); its bearing pressure is -footing_rz_N / (half-width x thickness {cell * 1e3:g} mm)
+# (tools/footing_curves.py). The default layer (200 x 100 mm, 2 B deep on a rough base) is small:
+# at 0.1 B it carries 6.7 MPa against 4.8 and 4.4 on layers 2 and 3 times as wide and deep; study
+# the footing itself on the larger ones (--width 0.6 --depth 0.3: 4608 RVEs, about 4 min on 2 cores).
+# Sparing the idle far field: docs/validation/speed.md "Sparing on a strip footing".
+#
+# Run:        mpirun -n 2 --bind-to none mpmxdem run jobs/footing_plane_strain.toml --out results/footing
+# Validate:   mpmxdem check jobs/footing_plane_strain.toml
+title = "{title}"
+
+{material_tables(material, spheres, pressure, friction_angle, young)}
 [mpm]
 shape_function = "ugimp"       # in the plane; linear through the thickness
 update = "usf"
@@ -105,21 +205,21 @@ strain_smoothing = "cell"      # selective reduced integration per cell (anti-lo
 damping = {damping:g}                  # Cundall damping (eq. 8): a force on the moving nodes that no
                                # reaction reports (with 0.2 the reactions and the surcharge miss
                                # equilibrium by 1-2 % of the footing's load; with 0: 0.2 %)
-mass_scaling = 10000           # quasi-static: inertia x 10000, time step x 100
+mass_scaling = {mass_scaling:g}{' ' * (16 - len('%g' % mass_scaling))}# quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):.3g}
 cfl = 0.5
 end_time = "{t_end:g} s"
 
 [mpm.grid]                     # one empty cell left of the symmetry plane, beyond the far side and
-origin = [{fmt(x0)}, 0.0, {fmt(z0)}]    # under the base (uGIMP), two above the surface (the footing's planes)
+origin = [{fmt(x0)}, 0.0, {fmt(z0)}]    # under the base (uGIMP), {above_words} above the surface (the footing's planes)
 spacing = [{fmt(cell)}, {fmt(cell)}, {fmt(cell)}]
-cells = [{nx + 2}, 1, {nz + 3}]
+cells = [{nx + 2}, 1, {nz + 1 + above}]
 
 [[mpm.body]]
 min = [0.0, 0.0, 0.0]
 max = [{fmt(width)}, {fmt(cell)}, {fmt(depth)}]
 points_per_cell = [2, 1, 2]
 density = "1696 kg/m^3"
-material = "dem"
+material = "{'elastic' if frictional else 'dem'}"{init_stress if frictional else ''}
 
 [[mpm.velocity]]               # rough rigid base: the node planes z = 0 and under it
 min = [{fmt(x0)}, 0.0, {fmt(z0)}]
@@ -140,13 +240,7 @@ max = [{fmt(xt)}, {fmt(cell)}, {fmt(zt)}]
 x = 0.0
 name = "far"
 
-[[mpm.velocity]]               # the footing: rigid, rough (no slip), pushed down
-min = [{fmt(x0)}, 0.0, {fmt(depth)}]
-max = [{fmt(half_width)}, {fmt(cell)}, {fmt(zt)}]
-x = 0.0
-z = "{-speed * 1e3:g} mm/s"
-name = "footing"
-
+{footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end)}
 [[mpm.traction]]               # the surcharge on the surface's current area (under the footing too:
 face = "z+"                    # the footing's reaction includes it over its half-width)
 pressure = "{pressure / 1e3:g} kPa"
@@ -161,8 +255,13 @@ def main():
     for k, v in DEFAULTS.items():
         ap.add_argument("--" + k.replace("_", "-"), type=type(v), default=v)
     ap.add_argument("--out", help="the job file to write (default: stdout)")
+    # --above: empty cells above the surface (a dilatant layer heaves beside a deep footing)
     ap.add_argument("--check", help="exit 1 unless this file is what the defaults write")
+    ap.add_argument("--self-test", action="store_true", help="check the footing's staircase keeps its grip")
     a = ap.parse_args()
+    if a.self_test:
+        self_test()
+        return
     try:
         text = job_text(**{k: getattr(a, k) for k in DEFAULTS})
     except ValueError as e:

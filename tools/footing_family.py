@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""The strip footing to its limit load over layer sizes and meshes, for the Drucker-Prager
+continuum (against bearing-capacity theory) and for the RVEs (docs/validation/footing.md).
+
+Writes each run's job with tools/footing_make_job.py under OUT, runs it (`mpiexec -n NP
+build/mpmxdem run`; a run whose results are there is kept), reads its load-settlement curve
+(tools/footing_curves.py) and writes OUT/summary.csv, one row per run: the layer, the cell, the
+bearing pressure at s/B = 0.1 and 0.2, the limit load q_lim (the mean of q over s/B in [0.3, 0.4])
+with its drift (the mean over [0.35, 0.4] against the mean over [0.3, 0.35], in %: a load that has
+levelled off drifts by a few % at most) and its spread (max - min over the window, in %), N_q = q_lim / q0, the friction angle whose Prandtl N_q that
+is (tools/bearing_capacity.py), the wall time.
+
+    /usr/bin/python3 tools/footing_family.py --out docs/data/footing_frictional --family frictional
+    /usr/bin/python3 tools/footing_family.py --out docs/data/footing_dem --family dem --np 2
+    /usr/bin/python3 tools/footing_family.py --table docs/data/footing_frictional/summary.csv
+
+The frictional family takes about 40 min on one core (most of it the 3.125 mm mesh); the RVE
+family hours (docs/validation/footing.md gives each run's time).
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import time
+
+import bearing_capacity as bc
+import footing_curves
+import footing_make_job
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+S_END = 0.02                  # settlement [m]: 0.4 B for the default footing (B = 50 mm)
+WINDOW = (0.3, 0.4)           # s / B over which the limit load is read
+HEADROOM = 0.06               # empty grid above the surface [m]: a dilatant layer heaves beside the footing
+# name: footing_make_job options (besides settlement)
+FAMILIES = {
+    "frictional": {
+        "phi40_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
+        "phi40_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
+        "phi40_w0.8_h12.5": dict(width=0.8, depth=0.4, cell=0.0125),
+        "phi40_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
+        "phi40_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625),
+        "phi40_w0.4_h3.125": dict(width=0.4, depth=0.2, cell=0.003125),
+        "phi30_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625, friction_angle=30.0),
+    },
+    "dem": {
+        "dem_w0.2_h25": dict(width=0.2, depth=0.1, cell=0.025),
+        "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
+        "dem_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
+        "dem_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
+    },
+}
+COLUMNS = ["name", "material", "phi_deg", "width_m", "depth_m", "cell_m", "points", "q_0.1_MPa",
+           "q_0.2_MPa", "q_lim_MPa", "drift_pct", "spread_pct", "N_q", "phi_eff_deg", "wall_s"]
+
+
+def options(family, opts):
+    o = dict(footing_make_job.DEFAULTS, settlement=S_END, every=20)
+    if family == "frictional":
+        o.update(material="frictional", damping=0.2)
+    o.update(opts)
+    o["above"] = max(2, math.ceil(HEADROOM / o["cell"] - 1e-9))
+    return o
+
+
+def mean_between(sb, q, lo, hi):
+    sel = (sb >= lo - 1e-9) & (sb <= hi + 1e-9)
+    if not sel.any():
+        raise ValueError("no rows with s/B in [%g, %g]: did the run reach s/B = %g?" % (lo, hi, hi))
+    return float(q[sel].mean())
+
+
+def at(sb, q, m):
+    k = (sb - m).abs().idxmin()
+    return float(q[k])
+
+
+def reading(run, o, wall):
+    sb, q = footing_curves.curve(run)
+    lo, hi = WINDOW
+    mid = 0.5 * (lo + hi)
+    q_lim = mean_between(sb, q, lo, hi)
+    drift = 100.0 * (mean_between(sb, q, mid, hi) - mean_between(sb, q, lo, mid)) / q_lim
+    sel = (sb >= lo - 1e-9) & (sb <= hi + 1e-9)
+    spread = 100.0 * float(q[sel].max() - q[sel].min()) / q_lim
+    nq = q_lim / o["pressure"]
+    nx, nz = round(o["width"] / o["cell"]), round(o["depth"] / o["cell"])
+    return {"material": o["material"], "phi_deg": o["friction_angle"] if o["material"] == "frictional" else "",
+            "width_m": o["width"], "depth_m": o["depth"], "cell_m": o["cell"], "points": 4 * nx * nz,
+            "q_0.1_MPa": "%.4f" % (at(sb, q, 0.1) / 1e6), "q_0.2_MPa": "%.4f" % (at(sb, q, 0.2) / 1e6),
+            "q_lim_MPa": "%.4f" % (q_lim / 1e6), "drift_pct": "%.1f" % drift, "spread_pct": "%.1f" % spread, "N_q": "%.2f" % nq,
+            "phi_eff_deg": "%.2f" % bc.effective_angle(nq), "wall_s": "%.0f" % wall}
+
+
+def run_one(out, family, name, exe, mpiexec, np_):
+    o = options(family, FAMILIES[family][name])
+    d = os.path.join(out, name)
+    job = os.path.join(out, name + ".toml")
+    with open(job, "w") as f:
+        f.write(footing_make_job.job_text(**o))
+    wall_file = os.path.join(out, name + ".wall")
+    if not os.path.exists(os.path.join(d, "reactions.csv")) or not os.path.exists(wall_file):
+        t0 = time.time()
+        with open(os.path.join(out, name + ".log"), "w") as log:
+            rc = subprocess.call([mpiexec, "-n", str(np_), "--bind-to", "none", exe, "run", job,
+                                  "--out", d, "--force"], stdout=log, stderr=subprocess.STDOUT)
+        if rc != 0:
+            raise SystemExit("%s: exit %d (see %s.log)" % (name, rc, os.path.join(out, name)))
+        with open(wall_file, "w") as f:
+            f.write("%.1f\n" % (time.time() - t0))
+    wall = float(open(wall_file).read())
+    return dict(name=name, **reading(d, o, wall))
+
+
+def table(summary):
+    rows = list(csv.DictReader(open(summary)))
+    print("| run | layer [mm] | cell [mm] | points | q at s/B 0.1 / 0.2 [MPa] | limit load q_lim [MPa] "
+          "| drift / spread [%] | N_q | phi mobilised [deg] | wall [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print("| %s | %g x %g | %g | %s | %s / %s | %s / %s | %s | %s | %s |" % (
+            r["name"], 1e3 * float(r["width_m"]), 1e3 * float(r["depth_m"]), 1e3 * float(r["cell_m"]),
+            r["points"], r["q_0.1_MPa"], r["q_0.2_MPa"], r["q_lim_MPa"], r["drift_pct"], r["spread_pct"], r["N_q"],
+            r["phi_eff_deg"], r["wall_s"]))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out")
+    ap.add_argument("--family", choices=sorted(FAMILIES), default="frictional")
+    ap.add_argument("--only", nargs="*", default=None, help="run these names only (other rows kept)")
+    ap.add_argument("--np", type=int, default=1, help="MPI ranks per run")
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "mpmxdem"))
+    ap.add_argument("--mpiexec", default="mpiexec")
+    ap.add_argument("--table", metavar="SUMMARY_CSV")
+    a = ap.parse_args()
+    if a.table:
+        table(a.table)
+        return
+    if not a.out:
+        ap.error("--out or --table")
+    os.makedirs(a.out, exist_ok=True)
+    summary = os.path.join(a.out, "summary.csv")
+    rows = {r["name"]: r for r in csv.DictReader(open(summary))} if os.path.exists(summary) else {}
+    for name in FAMILIES[a.family]:
+        if a.only is not None and name not in a.only:
+            continue
+        rows[name] = run_one(a.out, a.family, name, a.exe, a.mpiexec, a.np)
+        print(" ".join("%s=%s" % (k, rows[name][k]) for k in COLUMNS), flush=True)
+        with open(summary, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=COLUMNS)
+            w.writeheader()
+            for n in FAMILIES[a.family]:
+                if n in rows:
+                    w.writerow({k: rows[n][k] for k in COLUMNS})
+
+
+if __name__ == "__main__":
+    sys.exit(main())
