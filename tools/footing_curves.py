@@ -6,6 +6,8 @@ thickness read from the run's resolved job. Prints q at a few settlements per ru
 figure of every run's curve.
 
     /usr/bin/python3 tools/footing_curves.py RUN [RUN ...] [--label NAME ...] [--out curves.png]
+        [--theory LABEL=PHI_DEG ...] [--q0 50e3]   (horizontal lines at Prandtl's q0 N_q(phi),
+                                                     tools/bearing_capacity.py)
 """
 import argparse
 import os
@@ -39,6 +41,10 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--label", action="append", default=[])
     ap.add_argument("--out")
+    ap.add_argument("--theory", action="append", default=[], metavar="LABEL=PHI_DEG",
+                    help="a line at q0 N_q(phi) on the figure")
+    ap.add_argument("--q0", type=float, default=50e3, help="surcharge [Pa] of the theory lines")
+    ap.add_argument("--title")
     a = ap.parse_args()
     labels = a.label + [os.path.basename(r.rstrip("/")) for r in a.runs[len(a.label):]]
     curves = [curve(r) for r in a.runs]
@@ -57,6 +63,14 @@ def main():
         fig, ax = plt.subplots(figsize=(6.5, 4.2))
         for lab, (sb, q) in zip(labels, curves):
             ax.plot(sb, q / 1e6, lw=1, label=lab)
+        import bearing_capacity
+        for k, t in enumerate(a.theory):
+            label, phi = t.rsplit("=", 1)
+            qu = a.q0 * bearing_capacity.n_q(float(phi)) / 1e6
+            ax.axhline(qu, color="k", lw=0.8, ls=("--", ":", "-.")[k % 3],
+                       label="%s: q0 N_q(%s deg) = %.2f MPa" % (label, phi, qu))
+        if a.title:
+            ax.set_title(a.title, fontsize=9)
         ax.set_xlabel("settlement s / B")
         ax.set_ylabel("bearing pressure q [MPa]")
         ax.legend(fontsize=7)

@@ -46,8 +46,9 @@ FAMILIES = {
     },
     "dem": {
         "dem_w0.2_h25": dict(width=0.2, depth=0.1, cell=0.025),
-        "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
         "dem_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
+        "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
+        "dem_w0.8_h25": dict(width=0.8, depth=0.4, cell=0.025),
         "dem_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
     },
 }
@@ -59,6 +60,8 @@ def options(family, opts):
     o = dict(footing_make_job.DEFAULTS, settlement=S_END, every=20)
     if family == "frictional":
         o.update(material="frictional", damping=0.2)
+    else:
+        o.update(mass_scaling=1000.0)  # with 1e4 the dilating RVE layer is not quasi-static (E_kin/W_int 0.04)
     o.update(opts)
     o["above"] = max(2, math.ceil(HEADROOM / o["cell"] - 1e-9))
     return o

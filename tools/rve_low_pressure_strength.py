@@ -1,14 +1,16 @@
 #!/usr/bin/python3
-"""The column RVEs' strength at the column's own pressure: plane-strain biaxial tests of the
-column's grains (contact modulus 3 MPa, prepared at 100 Pa) at 30 Pa, 100 and 1000 spheres.
-
-docs/validation/column_collapse.md, "What friction the column needs". Modes:
+"""The RVEs' strength at a scene's own pressure: plane-strain biaxial tests of a scene's grains,
+100 and 1000 spheres, from the jobs stored in a data folder. The column's (contact modulus 3 MPa,
+at 30 Pa; docs/validation/column_collapse.md, "What friction the column needs") are the default;
+the footing's (300 MPa, at 50 kPa; docs/validation/footing.md) are
+--data docs/data/footing_rve_strength. Modes:
 
   --run DIR     runs every job docs/data/column_collapse_rve_strength/*.toml with
                 `build/mpmxdem dem JOB --out DIR/<stem>` (one thread each; about a minute in all;
                 DIR/<stem>.log is each run's log)
                 and copies each run's dem_series.csv to DATA/<stem>_series.csv
   --table       prints the page's table from DATA/*_series.csv (standard library only)
+  --dilatancy   adds the dilatancy angle at the peak to the table
 
 Usage: /usr/bin/python3 tools/rve_low_pressure_strength.py [--data D] [--exe E] (--run DIR | --table)
 Defaults: D = docs/data/column_collapse_rve_strength, E = build/mpmxdem.
@@ -16,7 +18,9 @@ Defaults: D = docs/data/column_collapse_rve_strength, E = build/mpmxdem.
 The mobilised friction angle of a plane-strain test is asin((s1 - s3) / (s1 + s3)), s1 the axial
 and s3 the lateral (x) stress, compression positive. Peak: the largest mean over 5 consecutive
 rows (about 0.6 % of axial strain: a 100-sphere RVE's single rows are noisy); critical state: the
-mean over axial strains above 15 %, with its standard deviation over the rows.
+mean over axial strains above 15 %, with its standard deviation over the rows. Dilatancy angle at
+the peak (--dilatancy): asin(-d eps_v / (d eps_a - d eps_x)) over the peak's rows (plane strain:
+eps_x = eps_v - eps_a; compression positive).
 """
 import argparse
 import csv
@@ -49,21 +53,36 @@ def mobilised(series_path):
             float(rows[-1]["Z"]))
 
 
+def dilatancy_at_peak(series_path):
+    """Dilatancy angle [deg] over the rows of the peak's running mean (see mobilised)."""
+    rows = list(csv.DictReader(open(series_path)))
+    s = [(-float(r["szz"]) + float(r["sxx"])) / (-float(r["szz"]) - float(r["sxx"])) for r in rows]
+    runs = [sum(s[i:i + WINDOW]) / WINDOW for i in range(len(s) - WINDOW + 1)]
+    i = max(range(len(runs)), key=runs.__getitem__)
+    j = min(i + WINDOW - 1, len(rows) - 1)
+    i = max(i - 1, 0)
+    da = float(rows[j]["eps_a"]) - float(rows[i]["eps_a"])
+    dv = float(rows[j]["eps_v"]) - float(rows[i]["eps_v"])
+    return math.degrees(math.asin(-dv / (2 * da - dv)))
+
+
 def stems(data):
     return sorted((os.path.basename(p)[:-len(".toml")] for p in glob.glob(os.path.join(data, "*.toml"))),
                   key=lambda n: (int(n.split("_")[0][1:]), n))
 
 
-def table(data):
-    lines = ["| RVE | spheres | peak friction angle | critical-state friction angle (axial strain > 15 %) "
-             "| void ratio at 30 % | coordination at 30 % |", "|---|---|---|---|---|---|"]
+def table(data, dilatancy=False):
+    lines = ["| RVE | spheres | peak friction angle | " + ("dilatancy angle at the peak | " if dilatancy else "")
+             + "critical-state friction angle (axial strain > 15 %) "
+             "| void ratio at 30 % | coordination at 30 % |", "|---|---|---|---|---|---|" + ("---|" if dilatancy else "")]
     for stem in stems(data):
         path = os.path.join(data, f"{stem}_series.csv")
         if not os.path.exists(path):
             continue
         peak, crit, sd, e, z = mobilised(path)
         n, seed = stem.split("_")
-        lines.append(f"| seed {seed[len('seed'):]} | {n[1:]} | {peak:.1f} deg | {crit:.1f} +- {sd:.1f} deg | "
+        psi = f"{dilatancy_at_peak(path):.1f} deg | " if dilatancy else ""
+        lines.append(f"| seed {seed[len('seed'):]} | {n[1:]} | {peak:.1f} deg | {psi}{crit:.1f} +- {sd:.1f} deg | "
                      f"{e:.3f} | {z:.2f} |")
     return "\n".join(lines)
 
@@ -87,11 +106,12 @@ def main():
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "mpmxdem"))
     ap.add_argument("--run", metavar="DIR")
     ap.add_argument("--table", action="store_true")
+    ap.add_argument("--dilatancy", action="store_true", help="the table with the dilatancy angle at the peak")
     args = ap.parse_args()
     if args.run:
         run(args.data, args.exe, args.run)
     if args.table:
-        print(table(args.data))
+        print(table(args.data, args.dilatancy))
     if not (args.run or args.table):
         ap.error("one of --run DIR, --table")
 
