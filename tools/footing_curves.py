@@ -48,7 +48,7 @@ def main():
     a = ap.parse_args()
     labels = a.label + [os.path.basename(r.rstrip("/")) for r in a.runs[len(a.label):]]
     curves = [curve(r) for r in a.runs]
-    marks = (0.02, 0.05, 0.08, 0.1)
+    marks = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
     print("%-40s " % "run" + " ".join("q(s/B=%g) [MPa]" % m for m in marks))
     for lab, (sb, q) in zip(labels, curves):
         vals = []

@@ -5,7 +5,7 @@ continuum (against bearing-capacity theory) and for the RVEs (docs/validation/fo
 Writes each run's job with tools/footing_make_job.py under OUT, runs it (`mpiexec -n NP
 build/mpmxdem run`; a run whose results are there is kept), reads its load-settlement curve
 (tools/footing_curves.py) and writes OUT/summary.csv, one row per run: the layer, the cell, the
-bearing pressure at s/B = 0.1 and 0.2, the limit load q_lim (the mean of q over s/B in [0.3, 0.4])
+bearing pressure at s/B = 0.1 and 0.2, the peak load and where it is, the limit load q_lim (the mean of q over s/B in [0.3, 0.4])
 with its drift (the mean over [0.35, 0.4] against the mean over [0.3, 0.35], in %: a load that has
 levelled off drifts by a few % at most) and its spread (max - min over the window, in %), N_q = q_lim / q0, the friction angle whose Prandtl N_q that
 is (tools/bearing_capacity.py), the wall time.
@@ -32,7 +32,9 @@ import footing_make_job
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 S_END = 0.02                  # settlement [m]: 0.4 B for the default footing (B = 50 mm)
 WINDOW = (0.3, 0.4)           # s / B over which the limit load is read
-HEADROOM = 0.06               # empty grid above the surface [m]: a dilatant layer heaves beside the footing
+# Empty grid above the surface [m]: the RVEs' dilatant layer heaves beside the footing by tens of mm
+# (with 50 mm a point left the grid at s/B = 0.2); the continuum, without dilatancy, much less.
+HEADROOM = {"dem": 0.06, "frictional": 0.025}
 # name: footing_make_job options (besides settlement)
 FAMILIES = {
     "frictional": {
@@ -42,18 +44,21 @@ FAMILIES = {
         "phi40_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
         "phi40_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625),
         "phi40_w0.4_h3.125": dict(width=0.4, depth=0.2, cell=0.003125),
+        "phi40_w0.8_h6.25": dict(width=0.8, depth=0.4, cell=0.00625),
         "phi30_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625, friction_angle=30.0),
     },
     "dem": {
-        "dem_w0.2_h25": dict(width=0.2, depth=0.1, cell=0.025),
-        "dem_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
         "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
-        "dem_w0.8_h25": dict(width=0.8, depth=0.4, cell=0.025),
         "dem_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
+        "dem_w0.2_h6.25": dict(width=0.2, depth=0.1, cell=0.00625),
+        # an RVE that loses every contact keeps following its cell instead of turning into a
+        # stress-free disconnected material (dem.coupling.contact_loss)
+        "dem_w0.2_h12.5_strained": dict(width=0.2, depth=0.1, cell=0.0125, coupling='contact_loss = "strained"'),
     },
 }
-COLUMNS = ["name", "material", "phi_deg", "width_m", "depth_m", "cell_m", "points", "q_0.1_MPa",
-           "q_0.2_MPa", "q_lim_MPa", "drift_pct", "spread_pct", "N_q", "phi_eff_deg", "wall_s"]
+COLUMNS = ["name", "material", "phi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",
+           "q_0.2_MPa", "q_peak_MPa", "s_peak", "phi_peak_deg", "q_lim_MPa", "drift_pct", "spread_pct", "N_q",
+           "phi_lim_deg", "wall_s"]
 
 
 def options(family, opts):
@@ -63,8 +68,9 @@ def options(family, opts):
     else:
         o.update(mass_scaling=1000.0)  # with 1e4 the dilating RVE layer is not quasi-static (E_kin/W_int 0.04)
     o.update(opts)
-    o["above"] = max(2, math.ceil(HEADROOM / o["cell"] - 1e-9))
-    return o
+    o["above"] = max(2, math.ceil(HEADROOM[family] / o["cell"] - 1e-9))
+    extra = o.pop("coupling", "")
+    return o, extra
 
 
 def mean_between(sb, q, lo, hi):
@@ -83,33 +89,51 @@ def reading(run, o, wall):
     sb, q = footing_curves.curve(run)
     lo, hi = WINDOW
     mid = 0.5 * (lo + hi)
-    q_lim = mean_between(sb, q, lo, hi)
-    drift = 100.0 * (mean_between(sb, q, mid, hi) - mean_between(sb, q, lo, mid)) / q_lim
-    sel = (sb >= lo - 1e-9) & (sb <= hi + 1e-9)
-    spread = 100.0 * float(q[sel].max() - q[sel].min()) / q_lim
-    nq = q_lim / o["pressure"]
+    q0 = o["pressure"]
+    k = int(q.idxmax())
     nx, nz = round(o["width"] / o["cell"]), round(o["depth"] / o["cell"])
-    return {"material": o["material"], "phi_deg": o["friction_angle"] if o["material"] == "frictional" else "",
-            "width_m": o["width"], "depth_m": o["depth"], "cell_m": o["cell"], "points": 4 * nx * nz,
-            "q_0.1_MPa": "%.4f" % (at(sb, q, 0.1) / 1e6), "q_0.2_MPa": "%.4f" % (at(sb, q, 0.2) / 1e6),
-            "q_lim_MPa": "%.4f" % (q_lim / 1e6), "drift_pct": "%.1f" % drift, "spread_pct": "%.1f" % spread, "N_q": "%.2f" % nq,
-            "phi_eff_deg": "%.2f" % bc.effective_angle(nq), "wall_s": "%.0f" % wall}
+    row = {"material": o["material"], "phi_deg": o["friction_angle"] if o["material"] == "frictional" else "",
+           "width_m": o["width"], "depth_m": o["depth"], "cell_m": o["cell"], "points": 4 * nx * nz,
+           "s_end": "%.3f" % float(sb.max()),
+           "q_0.1_MPa": "%.4f" % (at(sb, q, 0.1) / 1e6), "q_0.2_MPa": "%.4f" % (at(sb, q, 0.2) / 1e6),
+           "q_peak_MPa": "%.4f" % (q[k] / 1e6), "s_peak": "%.3f" % sb[k],
+           "phi_peak_deg": "%.2f" % bc.effective_angle(q[k] / q0),
+           "q_lim_MPa": "", "drift_pct": "", "spread_pct": "", "N_q": "", "phi_lim_deg": "", "wall_s": "%.0f" % wall}
+    if sb.max() >= hi - 1e-3:
+        q_lim = mean_between(sb, q, lo, hi)
+        drift = 100.0 * (mean_between(sb, q, mid, hi) - mean_between(sb, q, lo, mid)) / q_lim
+        sel = (sb >= lo - 1e-9) & (sb <= hi + 1e-9)
+        spread = 100.0 * float(q[sel].max() - q[sel].min()) / q_lim
+        row.update({"q_lim_MPa": "%.4f" % (q_lim / 1e6), "drift_pct": "%.1f" % drift,
+                    "spread_pct": "%.1f" % spread, "N_q": "%.2f" % (q_lim / q0),
+                    "phi_lim_deg": "%.2f" % bc.effective_angle(q_lim / q0)})
+    return row
+
+
+def job_text(o, extra):
+    """The job footing_make_job writes, with `extra` lines added to its [dem.coupling] table."""
+    text = footing_make_job.job_text(**o)
+    if extra:
+        text = text.replace("[dem.coupling]\n", "[dem.coupling]\n%s\n" % extra, 1)
+    return text
 
 
 def run_one(out, family, name, exe, mpiexec, np_):
-    o = options(family, FAMILIES[family][name])
+    o, extra = options(family, FAMILIES[family][name])
     d = os.path.join(out, name)
     job = os.path.join(out, name + ".toml")
     with open(job, "w") as f:
-        f.write(footing_make_job.job_text(**o))
+        f.write(job_text(o, extra))
     wall_file = os.path.join(out, name + ".wall")
     if not os.path.exists(os.path.join(d, "reactions.csv")) or not os.path.exists(wall_file):
         t0 = time.time()
         with open(os.path.join(out, name + ".log"), "w") as log:
             rc = subprocess.call([mpiexec, "-n", str(np_), "--bind-to", "none", exe, "run", job,
                                   "--out", d, "--force"], stdout=log, stderr=subprocess.STDOUT)
-        if rc != 0:
+        if rc != 0 and not os.path.exists(os.path.join(d, "reactions.csv")):
             raise SystemExit("%s: exit %d (see %s.log)" % (name, rc, os.path.join(out, name)))
+        if rc != 0:  # kept: the curve up to the failure (the table says where it ends)
+            print("%s: exit %d (see %s.log); its rows are kept" % (name, rc, os.path.join(out, name)), flush=True)
         with open(wall_file, "w") as f:
             f.write("%.1f\n" % (time.time() - t0))
     wall = float(open(wall_file).read())
@@ -118,14 +142,16 @@ def run_one(out, family, name, exe, mpiexec, np_):
 
 def table(summary):
     rows = list(csv.DictReader(open(summary)))
-    print("| run | layer [mm] | cell [mm] | points | q at s/B 0.1 / 0.2 [MPa] | limit load q_lim [MPa] "
-          "| drift / spread [%] | N_q | phi mobilised [deg] | wall [s] |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| run | layer [mm] | cell [mm] | points | q at s/B 0.1 / 0.2 [MPa] | peak q [MPa] at s/B "
+          "| limit load q_lim [MPa] | drift / spread [%] | N_q | phi mobilised [deg] | wall [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print("| %s | %g x %g | %g | %s | %s / %s | %s / %s | %s | %s | %s |" % (
+        lim = (r["q_lim_MPa"], "%s / %s" % (r["drift_pct"], r["spread_pct"]), r["N_q"], r["phi_lim_deg"]) \
+            if r["q_lim_MPa"] else ("not reached (ends at s/B %s)" % r["s_end"], "-", "-",
+                                   "%s at the peak" % r["phi_peak_deg"])
+        print("| %s | %g x %g | %g | %s | %s / %s | %s at %s | %s | %s | %s | %s | %s |" % (
             r["name"], 1e3 * float(r["width_m"]), 1e3 * float(r["depth_m"]), 1e3 * float(r["cell_m"]),
-            r["points"], r["q_0.1_MPa"], r["q_0.2_MPa"], r["q_lim_MPa"], r["drift_pct"], r["spread_pct"], r["N_q"],
-            r["phi_eff_deg"], r["wall_s"]))
+            r["points"], r["q_0.1_MPa"], r["q_0.2_MPa"], r["q_peak_MPa"], r["s_peak"], *lim, r["wall_s"]))
 
 
 def main():
