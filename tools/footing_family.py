@@ -172,6 +172,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     summary = os.path.join(a.out, "summary.csv")
     rows = {r["name"]: r for r in csv.DictReader(open(summary))} if os.path.exists(summary) else {}
+    rows = {n: r for n, r in rows.items() if set(COLUMNS) <= set(r)}  # rows of an older layout: read again
     for name in FAMILIES[a.family]:
         if a.only is not None and name not in a.only:
             continue
