@@ -60,7 +60,7 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6.5, 4.2))
+        fig, ax = plt.subplots(figsize=(9.5, 4.2))
         for lab, (sb, q) in zip(labels, curves):
             ax.plot(sb, q / 1e6, lw=1, label=lab)
         import bearing_capacity
@@ -73,7 +73,7 @@ def main():
             ax.set_title(a.title, fontsize=9)
         ax.set_xlabel("settlement s / B")
         ax.set_ylabel("bearing pressure q [MPa]")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
         ax.grid(alpha=0.3)
         fig.tight_layout()
         fig.savefig(a.out, dpi=120)

@@ -254,36 +254,44 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
     const common::Vec3 centre = points.x[p] + G.col(n) * (load.side * hw[n]);
     const common::Vec3 g1 = G.col(t1) * hw[t1];
     const common::Vec3 g2 = G.col(t2) * hw[t2];
-    for (const double alpha : {-g, g}) {
-      for (const double beta : {-g, g}) {
-        const common::Vec3 x = centre + alpha * g1 + beta * g2;
-        std::array<int, 3> base{};
-        std::array<std::array<double, ns>, 3> w{};
-        for (int d = 0; d < 3; ++d) {
-          const auto du = static_cast<std::size_t>(d);
-          const double sd = std::clamp((x[d] - grid.origin[d]) / grid.spacing[d], margin, s_hi[du]);
-          base[du] = Shape::stencil_base(sd, 0.0);
-          for (int i = 0; i < ns; ++i)
-            w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
-        }
-        // The active nodes of the stencil with their weights, and the weights' sum.
-        int m = 0;
-        double sum = 0.0;
-        for (int k = 0; k < ns; ++k) {
-          for (int j = 0; j < ns; ++j) {
-            for (int i = 0; i < ns; ++i) {
-              const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
-              const double S = w[0][static_cast<std::size_t>(i)] *
-                               w[1][static_cast<std::size_t>(j)] *
-                               w[2][static_cast<std::size_t>(k)];
-              if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
-              sum += S;
-              node_k[static_cast<std::size_t>(m)] = node;
-              S_k[static_cast<std::size_t>(m)] = S;
-              ++m;
-            }
+    // The active nodes of the stencil at x with their weights (node_k, S_k, m) and the weights'
+    // sum.
+    int m = 0;
+    auto gather = [&](const common::Vec3& x) {
+      std::array<int, 3> base{};
+      std::array<std::array<double, ns>, 3> w{};
+      for (int d = 0; d < 3; ++d) {
+        const auto du = static_cast<std::size_t>(d);
+        const double sd = std::clamp((x[d] - grid.origin[d]) / grid.spacing[d], margin, s_hi[du]);
+        base[du] = Shape::stencil_base(sd, 0.0);
+        for (int i = 0; i < ns; ++i)
+          w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
+      }
+      m = 0;
+      double sum = 0.0;
+      for (int k = 0; k < ns; ++k) {
+        for (int j = 0; j < ns; ++j) {
+          for (int i = 0; i < ns; ++i) {
+            const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
+            const double S = w[0][static_cast<std::size_t>(i)] *
+                             w[1][static_cast<std::size_t>(j)] *
+                             w[2][static_cast<std::size_t>(k)];
+            if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
+            sum += S;
+            node_k[static_cast<std::size_t>(m)] = node;
+            S_k[static_cast<std::size_t>(m)] = S;
+            ++m;
           }
         }
+      }
+      return sum;
+    };
+    for (const double alpha : {-g, g}) {
+      for (const double beta : {-g, g}) {
+        double sum = gather(centre + alpha * g1 + beta * g2);
+        // A facet stretched or sheared far (a surface point by a footing's edge) may put a Gauss
+        // point among nodes that hold no material: its share goes through the point itself.
+        if (!(sum > 0.0)) sum = gather(points.x[p]);
         if (!(sum > 0.0)) {
           throw common::NumericalError("mpm traction load on axis " + std::to_string(n) + " side " +
                                        std::to_string(load.side) + ": the facet of point id " +

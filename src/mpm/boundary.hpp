@@ -120,8 +120,9 @@ std::vector<std::int64_t> face_points(const MaterialPoints& points, int axis, in
 /// force f_p = -p a_p + t |a_p|, spread over its 2 x 2 Gauss points on the deformed facet with
 /// the grid basis (linear hat for linear and uGIMP, the B-spline for bspline2), positions clipped
 /// to the grid, each Gauss point's weights renormalised over the active nodes, so the nodal
-/// forces sum exactly to sum_p f_p. Throws common::NumericalError if a Gauss point touches no
-/// active node. Returns the current loaded area sum_p |a_p| [m^2]. `reference_geometry` (total
+/// forces sum exactly to sum_p f_p. A Gauss point that touches no active node (a facet deformed
+/// far from its point) gives its share to the nodes of the point's own position; throws
+/// common::NumericalError if those are not active either. Returns the current loaded area sum_p |a_p| [m^2]. `reference_geometry` (total
 /// Lagrangian, the grid being the reference configuration): the Gauss points lie on the facet's
 /// initial position (the force is still Nanson's, on the deformed area).
 double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,

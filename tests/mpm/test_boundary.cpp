@@ -91,6 +91,28 @@ TEST(Boundary, PressureOnARotatedFaceStaysNormalToIt) {
   EXPECT_LT((sum - 1e5 * Vec3(c, sn, 0)).norm(), 1e-9);
 }
 
+TEST(Boundary, AFacetShearedAwayFromTheMaterialLoadsItsPointsOwnNodes) {
+  // The points of one cell, sheared so far (F_xz = 8) that their top facets' Gauss points lie two
+  // cells away, among nodes that hold no material (a surface point by a footing's edge): the
+  // facet's force goes through the point itself, still summing to -p a exactly (before: exit 3,
+  // "touches no node holding material").
+  CellSetup s = single_cell(mpm::ShapeKind::linear, 2);
+  const std::vector<std::int64_t> facets = mpm::face_points(s.pts, 2, +1);
+  ASSERT_EQ(facets.size(), 4u);
+  for (auto& F : s.pts.F) F << 1, 0, 8, 0, 1, 0, 0, 0, 1;
+  const double A = mpm::apply_traction(s.g, mpm::ShapeKind::linear, {2, +1, 1e5, Vec3::Zero()},
+                                       s.pts, facets, s.f);
+  Vec3 sum = Vec3::Zero();
+  for (auto i : s.f.active) sum += s.f.force[i];
+  // Simple shear F = I + 8 e_x e_z keeps the top face's normal and area (Nanson: J = 1,
+  // F^-T e_z = e_z); its facets' centres move 8 x 0.25 = 2 cells along x.
+  EXPECT_NEAR(A, 1.0, 1e-12);
+  EXPECT_LT((sum - Vec3(0, 0, -1e5)).norm(), 1e-9 * 1e5);
+  // Every force is on the points' own cell (the only active nodes), none elsewhere.
+  for (std::size_t i = 0; i < s.f.force.size(); ++i)
+    if (!s.f.is_active[i]) EXPECT_EQ(s.f.force[i], Vec3::Zero());
+}
+
 TEST(Boundary, MirrorConstraintMakesGhostNodesAntisymmetric) {
   mpm::Grid g{Vec3(-1, -1, -1), Vec3::Ones(), common::Vec3i(4, 2, 2)};
   mpm::VelocityConstraint c{
