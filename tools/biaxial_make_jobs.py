@@ -31,41 +31,51 @@ def end_time(strain, v):
     return H * (1.0 - math.exp(-strain)) / v
 
 
-def platen_boxes(h, v, t_end, lead=0.5):
-    """The top platen's boxes (k, z_k, t_k): the grid is fixed and the material's top moves down
-    at v, so the platen is a staircase of held node planes, box k (nodes at z >= H - k h) from
-    t_k = (k - lead) h / v, i.e. `lead` of a cell before the top reaches H - k h. The top row of
-    points (a quarter cell under the top) must never leave the cells whose upper node plane is
-    held: with lead = 0 (as written before 2026-11-25) it did from 3/4 h to h of travel and the fine
-    meshes broke up there (docs/notes/biaxial_2026-11.md, "Three meshes to 10 %"). The material above a newly
-    held plane (half a cell) moves with the platen. A node held by several boxes keeps its first
-    constraint's reaction: the platen's reaction is the sum over the boxes named platen_*."""
+def staircase(top, h, v, t_end, lead=0.5):
+    """A rigid platen or footing pushed at v into material on a fixed grid, as a staircase of held
+    node planes: boxes (k, z_k, t_k), box k holding the nodes at z >= z_k = top - k h from t_k =
+    (k - lead) h / v, i.e. `lead` of a cell before the material's top (top - v t) reaches z_k.
+    The material above a newly held plane (half a cell) moves with the platen. A node held by
+    several boxes keeps its first constraint's reaction: the platen's reaction is the sum over
+    its boxes. Also tools/footing_make_job.py's footing."""
     boxes = []
     k = 0
     while True:
         tk = max(k - lead, 0.0) * h / v
         if tk >= t_end:
             return boxes
-        boxes.append((k, H - k * h, tk))
+        boxes.append((k, top - k * h, tk))
         k += 1
 
 
-def grip_failures(h, v, t_end, boxes, samples=4000):
-    """Times at which the top row of points (affine compression: (H - h/4)(1 - v t / H)) lies in a
-    cell whose upper node plane no box holds yet, or a box engages more than half a cell inside
-    the material. Empty: the platen keeps its grip."""
+def grip_failures(top, h, v, t_end, boxes, row_depth, samples=4000):
+    """Times at which the top row of points, row_depth(t) below `top`, lies in a cell whose upper
+    node plane no box holds yet, or a box engages more than half a cell inside the material (whose
+    top is at top - v t). Empty: the staircase keeps its grip."""
     bad = []
     engaged = {k: tk for k, _, tk in boxes}
     for i in range(samples + 1):
         t = t_end * i / samples
-        z_row = (H - h / 4) * (1.0 - v * t / H)
-        k_cell = math.floor((H - z_row) / h + 1e-9)  # upper plane of its cell: H - k_cell h
+        k_cell = math.floor(row_depth(t) / h + 1e-9)  # upper plane of its cell: top - k_cell h
         if not (k_cell in engaged and engaged[k_cell] <= t + 1e-12):
             bad.append(("loose", t))
     for k, zk, tk in boxes:
-        if (H - v * tk) - zk > 0.5 * h + 1e-9:
+        if (top - v * tk) - zk > 0.5 * h + 1e-9:
             bad.append(("deep", tk))
     return bad
+
+
+def platen_boxes(h, v, t_end, lead=0.5):
+    """The top platen's boxes (staircase from the specimen's top H). The top row of points (a
+    quarter cell under the top) must never leave the cells whose upper node plane is held: with
+    lead = 0 (as written before 2026-11-25) it did from 3/4 h to h of travel and the fine meshes
+    broke up there (docs/notes/biaxial_2026-11.md, "Three meshes to 10 %")."""
+    return staircase(H, h, v, t_end, lead)
+
+
+def platen_grip_failures(h, v, t_end, boxes, samples=4000):
+    """grip_failures of the platen: the top row of points compresses affinely, at (H - h/4)(1 - v t / H)."""
+    return grip_failures(H, h, v, t_end, boxes, lambda t: H - (H - h / 4) * (1.0 - v * t / H), samples)
 
 
 def self_test():
@@ -74,13 +84,13 @@ def self_test():
         for strain, rate in ((0.105, 0.03), (0.25, 0.01)):
             v = rate * H
             t_end = end_time(strain, v)
-            bad = grip_failures(h, v, t_end, platen_boxes(h, v, t_end))
+            bad = platen_grip_failures(h, v, t_end, platen_boxes(h, v, t_end))
             assert not bad, f"{nx} x {2 * nx} to {strain}: {bad[:3]}"
     # The old staircase (lead 0) loses the grip on 8 x 16 at 10.5 % (from 3/4 h of travel): the
     # check sees it.
     h, v = W / 8, 0.03 * H
     t_end = end_time(0.105, v)
-    old = grip_failures(h, v, t_end, platen_boxes(h, v, t_end, lead=0.0))
+    old = platen_grip_failures(h, v, t_end, platen_boxes(h, v, t_end, lead=0.0))
     assert old and abs(old[0][1] * v - 0.75 * h) < 0.02 * h, old[:2]
     print("biaxial_make_jobs self-test: the platen keeps its grip on 2 x 4 to 16 x 32 meshes to "
           f"25 %; the old staircase loses it on 8 x 16 at {100 * old[0][1] * v / H:.2f} % of travel")

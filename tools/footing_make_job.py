@@ -33,6 +33,8 @@ import argparse
 import math
 import sys
 
+from biaxial_make_jobs import grip_failures, staircase
+
 DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=0.005,
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
                 friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0)
@@ -42,41 +44,24 @@ LEAD = 0.5  # a plane is held this many cells before the material's top reaches 
 def footing_boxes(depth, cell, speed, t_end):
     """The footing's boxes (k, z_k, t_k): box k holds the node planes z >= depth - k cell from
     t_k = (k - LEAD) cell / speed (box 0 from the start)."""
-    boxes, k = [], 0
-    while True:
-        tk = max(k - LEAD, 0.0) * cell / speed
-        if tk >= t_end:
-            return boxes
-        boxes.append((k, depth - k * cell, tk))
-        k += 1
+    return staircase(depth, cell, speed, t_end, LEAD)
 
 
-def grip_failures(depth, cell, speed, t_end, boxes, samples=4000):
-    """Times at which the top row of points under the footing (a quarter cell under the surface,
-    moving down with it) lies in a cell whose upper node plane no box holds yet, or a box engages
-    more than half a cell inside the material. Empty: the footing keeps its grip."""
-    engaged = {k: tk for k, _, tk in boxes}
-    bad = []
-    for i in range(samples + 1):
-        t = t_end * i / samples
-        k_cell = math.floor((cell / 4 + speed * t) / cell + 1e-9)
-        if not (k_cell in engaged and engaged[k_cell] <= t + 1e-12):
-            bad.append(("loose", t))
-    for k, zk, tk in boxes:
-        if (depth - speed * tk) - zk > 0.5 * cell + 1e-9:
-            bad.append(("deep", tk))
-    return bad
+def footing_grip_failures(depth, cell, speed, t_end, boxes, samples=4000):
+    """grip_failures of the footing: the top row of points under it, a quarter cell under the
+    surface, moves down with it."""
+    return grip_failures(depth, cell, speed, t_end, boxes, lambda t: cell / 4 + speed * t, samples)
 
 
 def self_test():
     for cell in (0.025, 0.0125, 0.00625):
         for settlement in (0.005, 0.015, 0.03):
             t_end = settlement / 0.001
-            bad = grip_failures(0.1, cell, 0.001, t_end, footing_boxes(0.1, cell, 0.001, t_end))
+            bad = footing_grip_failures(0.1, cell, 0.001, t_end, footing_boxes(0.1, cell, 0.001, t_end))
             assert not bad, f"cell {cell} to {settlement}: {bad[:3]}"
     # One plane (no staircase) loses the grip three quarters of a cell down: the check sees it.
     t_end = 0.03 / 0.001
-    bad = grip_failures(0.1, 0.0125, 0.001, t_end, [(0, 0.1, 0.0)])
+    bad = footing_grip_failures(0.1, 0.0125, 0.001, t_end, [(0, 0.1, 0.0)])
     assert bad and abs(bad[0][1] * 0.001 - 0.75 * 0.0125) < 1e-4, bad[:2]
     print("footing_make_job self-test: the footing keeps its grip on cells of 25 / 12.5 / 6.25 mm "
           "to 30 mm of settlement; one held plane loses it %.2f cell down" % (bad[0][1] * 0.001 / 0.0125))
