@@ -273,8 +273,7 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
         for (int j = 0; j < ns; ++j) {
           for (int i = 0; i < ns; ++i) {
             const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
-            const double S = w[0][static_cast<std::size_t>(i)] *
-                             w[1][static_cast<std::size_t>(j)] *
+            const double S = w[0][static_cast<std::size_t>(i)] * w[1][static_cast<std::size_t>(j)] *
                              w[2][static_cast<std::size_t>(k)];
             if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
             sum += S;

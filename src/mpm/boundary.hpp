@@ -122,9 +122,10 @@ std::vector<std::int64_t> face_points(const MaterialPoints& points, int axis, in
 /// to the grid, each Gauss point's weights renormalised over the active nodes, so the nodal
 /// forces sum exactly to sum_p f_p. A Gauss point that touches no active node (a facet deformed
 /// far from its point) gives its share to the nodes of the point's own position; throws
-/// common::NumericalError if those are not active either. Returns the current loaded area sum_p |a_p| [m^2]. `reference_geometry` (total
-/// Lagrangian, the grid being the reference configuration): the Gauss points lie on the facet's
-/// initial position (the force is still Nanson's, on the deformed area).
+/// common::NumericalError if those are not active either. Returns the current loaded area
+/// sum_p |a_p| [m^2]. `reference_geometry` (total Lagrangian, the grid being the reference
+/// configuration): the Gauss points lie on the facet's initial position (the force is still
+/// Nanson's, on the deformed area).
 double apply_traction(const Grid& grid, ShapeKind kind, const TractionLoad& load,
                       const MaterialPoints& points, const std::vector<std::int64_t>& facet_points,
                       GridFields& fields, bool reference_geometry = false);
