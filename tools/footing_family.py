@@ -26,7 +26,6 @@ import sys
 import time
 
 import bearing_capacity as bc
-import footing_curves
 import footing_make_job
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -93,6 +92,7 @@ def mpa(x):
 
 
 def reading(run, o, wall):
+    import footing_curves  # pandas; --table needs only the standard library
     sb, q = footing_curves.curve(run)
     lo, hi = WINDOW
     mid = 0.5 * (lo + hi)
