@@ -11,6 +11,7 @@ levelled off drifts by a few % at most) and its spread (max - min over the windo
 is (tools/bearing_capacity.py), the wall time.
 
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_frictional --family frictional
+    /usr/bin/python3 tools/footing_family.py --out docs/data/footing_associated --family associated
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_dem --family dem --np 2
     /usr/bin/python3 tools/footing_family.py --table docs/data/footing_frictional/summary.csv
 
@@ -33,7 +34,8 @@ S_END = 0.02                  # settlement [m]: 0.4 B for the default footing (B
 WINDOW = (0.3, 0.4)           # s / B over which the limit load is read
 # Empty grid above the surface [m]: the RVEs' dilatant layer heaves beside the footing by tens of mm
 # (with 50 mm a point left the grid at s/B = 0.2); the continuum, without dilatancy, much less.
-HEADROOM = {"dem": 0.06, "frictional": 0.025}
+# An associated flow dilates as much as it shears: its surface heaves like the RVEs'.
+HEADROOM = {"dem": 0.06, "frictional": 0.025, "associated": 0.06}
 # name: footing_make_job options (besides settlement)
 FAMILIES = {
     "frictional": {
@@ -46,6 +48,16 @@ FAMILIES = {
         "phi40_w0.8_h6.25": dict(width=0.8, depth=0.4, cell=0.00625),
         "phi30_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625, friction_angle=30.0),
     },
+    # The associated Drucker-Prager continuum (psi = phi), for which Prandtl's N_q is the exact
+    # limit load: what is left between them is the MPM's own error.
+    "associated": {
+        "phi40_psi40_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
+        "phi40_psi40_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
+        "phi40_psi40_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625),
+        "phi40_psi40_w0.8_h12.5": dict(width=0.8, depth=0.4, cell=0.0125),
+        "phi30_psi30_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125, friction_angle=30.0, dilatancy_angle=30.0),
+        "phi30_psi30_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625, friction_angle=30.0, dilatancy_angle=30.0),
+    },
     "dem": {
         "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
         "dem_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
@@ -57,7 +69,7 @@ FAMILIES = {
         "dem_w0.2_h12.5_ms100": dict(width=0.2, depth=0.1, cell=0.0125, mass_scaling=100.0),
     },
 }
-COLUMNS = ["name", "material", "phi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",
+COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",
            "q_0.2_MPa", "q_peak_MPa", "s_peak", "phi_peak_deg", "q_lim_MPa", "drift_pct", "spread_pct", "N_q",
            "phi_lim_deg", "wall_s"]
 
@@ -66,6 +78,8 @@ def options(family, opts):
     o = dict(footing_make_job.DEFAULTS, settlement=S_END, every=20)
     if family == "frictional":
         o.update(material="frictional", damping=0.2)
+    elif family == "associated":
+        o.update(material="frictional", damping=0.2, dilatancy_angle=40.0)
     else:
         o.update(mass_scaling=1000.0)  # with 1e4 the dilating RVE layer is not quasi-static (E_kin/W_int 0.04)
     o.update(opts)
@@ -99,7 +113,9 @@ def reading(run, o, wall):
     q0 = o["pressure"]
     k = int(q.idxmax())
     nx, nz = round(o["width"] / o["cell"]), round(o["depth"] / o["cell"])
-    row = {"material": o["material"], "phi_deg": o["friction_angle"] if o["material"] == "frictional" else "",
+    frictional = o["material"] == "frictional"
+    row = {"material": o["material"], "phi_deg": o["friction_angle"] if frictional else "",
+           "psi_deg": o["dilatancy_angle"] if frictional else "",
            "width_m": o["width"], "depth_m": o["depth"], "cell_m": o["cell"], "points": 4 * nx * nz,
            "s_end": "%.3f" % float(sb.max()),
            "q_0.1_MPa": mpa(at(sb, q, 0.1)), "q_0.2_MPa": mpa(at(sb, q, 0.2)),
@@ -182,6 +198,8 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     summary = os.path.join(a.out, "summary.csv")
     rows = {r["name"]: r for r in csv.DictReader(open(summary))} if os.path.exists(summary) else {}
+    for r in rows.values():  # written before the dilatancy angle: the continuum had none
+        r.setdefault("psi_deg", "0" if r.get("material") == "frictional" else "")
     rows = {n: r for n, r in rows.items() if set(COLUMNS) <= set(r)}  # rows of an older layout: read again
     for name in FAMILIES[a.family]:
         if a.only is not None and name not in a.only:

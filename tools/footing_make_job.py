@@ -37,7 +37,7 @@ from biaxial_make_jobs import grip_failures, staircase
 
 DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=0.005,
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
-                friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0)
+                friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0)
 LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
 
 
@@ -72,13 +72,20 @@ def fmt(x):
     return repr(round(x, 12))
 
 
-def material_tables(material, spheres, pressure, friction_angle, young):
+def material_tables(material, spheres, pressure, friction_angle, young, dilatancy_angle=0.0):
     """The tables that say what the layer is made of: RVEs, or the Drucker-Prager continuum."""
     if material == "frictional":
-        return f'''[mpm.elastic]                  # elastic-perfectly plastic Drucker-Prager (plane-strain Mohr-Coulomb), no dilatancy
+        if dilatancy_angle == 0:
+            return f'''[mpm.elastic]                  # elastic-perfectly plastic Drucker-Prager (plane-strain Mohr-Coulomb), no dilatancy
 young_modulus = "{young / 1e6:g} MPa"
 poisson_ratio = 0.3
 friction_angle = "{friction_angle:g} deg"
+'''
+        return f'''[mpm.elastic]                  # elastic-perfectly plastic Drucker-Prager (plane-strain Mohr-Coulomb)
+young_modulus = "{young / 1e6:g} MPa"
+poisson_ratio = 0.3
+friction_angle = "{friction_angle:g} deg"
+dilatancy_angle = "{dilatancy_angle:g} deg"{'      # associated flow' if dilatancy_angle == friction_angle else ''}
 '''
     if material != "dem":
         raise ValueError("material must be dem or frictional, not %r" % material)
@@ -129,7 +136,8 @@ name = "{name}"
 
 
 def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
-             material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0):
+             material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0,
+             dilatancy_angle=0.0):
     nx, nz = round(width / cell), round(depth / cell)
     if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
         raise ValueError("width and depth must be whole numbers of cells")
@@ -150,10 +158,12 @@ initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{press
         raise ValueError("above must be 2 cells or more (the footing's planes)")
     flags = "" if not frictional else (
         f"\n#   --material frictional --friction-angle {friction_angle:g} --young {young:g}")
+    flags += "" if dilatancy_angle == 0 else f" --dilatancy-angle {dilatancy_angle:g}"
     flags += "" if above == 2 else f" --above {above}"
     flags += "" if mass_scaling == 10000 else f" --mass-scaling {mass_scaling:g}"
     what = (f"{nx} x {nz} cells of [2, 1, 2] points ({rves} RVEs of {spheres} spheres)" if not frictional else
-            f"{nx} x {nz} cells of [2, 1, 2] points (Drucker-Prager, phi = {friction_angle:g} deg, no dilatancy)")
+            f"{nx} x {nz} cells of [2, 1, 2] points (Drucker-Prager, phi = {friction_angle:g} deg, "
+            + ("no dilatancy)" if dilatancy_angle == 0 else f"psi = {dilatancy_angle:g} deg)"))
     state = ("(one\n# DEM preparation for every RVE)" if not frictional else "(the\n# continuum's initial stress)")
     title = (f"Plane-strain strip footing, MPM x DEM, {nx} x {nz} cells, {rves} RVEs of {spheres} spheres"
              if not frictional else
@@ -179,7 +189,7 @@ initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{press
 # Validate:   mpmxdem check jobs/footing_plane_strain.toml
 title = "{title}"
 
-{material_tables(material, spheres, pressure, friction_angle, young)}
+{material_tables(material, spheres, pressure, friction_angle, young, dilatancy_angle)}
 [mpm]
 shape_function = "ugimp"       # in the plane; linear through the thickness
 update = "usf"

@@ -42,6 +42,8 @@ farm::ElasticMicroParams elastic_params(const Job& job, const MpmSetup& setup,
   p.initial_stress = setup.elastic_initial_stress;
   if (job.has("mpm.elastic.friction_angle"))
     p.friction_angle = job.number("mpm.elastic.friction_angle") * M_PI / 180.0;
+  if (job.has("mpm.elastic.dilatancy_angle"))
+    p.dilatancy_angle = job.number("mpm.elastic.dilatancy_angle") * M_PI / 180.0;
   p.validate();
   return p;
 }

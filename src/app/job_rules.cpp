@@ -129,7 +129,8 @@ void material_rules(const Job& job, Rules& r) {
   }
   if (!job.has_section("dem.material.hertz_mindlin")) {
     std::string keys;
-    for (const auto& p : dem::kHertzMindlin) keys += (keys.empty() ? "" : ", ") + std::string(p.key);
+    for (const auto& p : dem::kHertzMindlin)
+      keys += (keys.empty() ? "" : ", ") + std::string(p.key);
     r.fail("dem.material.contact_law",
            fmt::format("needs the table [dem.material.hertz_mindlin] ({})", keys));
   }  // present: the schema requires its keys
@@ -183,6 +184,20 @@ void regularisation_rules(const Job& job, Rules& r) {
     } else if (!(job.number(key) > 0.0)) {
       r.fail(key, "must be > 0 in [mpm.regularisation] (remove the table for no regularisation)");
     }
+  }
+}
+
+// The dilatancy of the Drucker-Prager continuum: with its friction angle, and not above it.
+void continuum_rules(const Job& job, Rules& r) {
+  const std::string psi = "mpm.elastic.dilatancy_angle";
+  if (!job.has(psi)) return;
+  const std::string phi = "mpm.elastic.friction_angle";
+  if (!job.has(phi)) {
+    r.fail(psi, "needs mpm.elastic.friction_angle: a linear elastic material has no plastic flow");
+  } else if (job.number(psi) > job.number(phi)) {
+    r.fail(psi, fmt::format("must be <= mpm.elastic.friction_angle ({:g} deg): a flow more "
+                            "dilatant than associated is not a granular material",
+                            job.number(phi)));
   }
 }
 
@@ -421,6 +436,7 @@ void check_job_rules(const Job& job) {
   loading_rules(job, r);
   numerics_rules(job, r);
   mpm_rules(job, r);
+  continuum_rules(job, r);
   stress_level_rules(job, r);
   for (const std::string& e : check_insitu_rules(job)) r.add(e);
   if (!r.errors().empty()) throw common::InputError(fmt::format("{}", fmt::join(r.errors(), "\n")));

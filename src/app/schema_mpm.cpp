@@ -150,9 +150,15 @@ void add_mpm_sections(Schema& s) {
       .need();
   s.add("mpm.elastic.friction_angle", Type::Float,
         "Absent: linear elastic. Given: elastic-perfectly plastic, cohesionless Drucker-Prager "
-        "cone matched to Mohr-Coulomb in plane strain, no dilatancy (sqrt(J2) <= p sin(phi); "
-        "tension returns to zero stress): a frictional continuum to compare the DEM RVEs with "
-        "on the same mesh (docs/design/mpm.md, Frictional continuum).")
+        "cone matched to Mohr-Coulomb in plane strain (tension returns to zero stress): a "
+        "frictional continuum to compare the DEM RVEs with on the same mesh (docs/design/mpm.md, "
+        "Frictional continuum).")
+      .unit(Q::Angle)
+      .in(0, 90, false, true);
+  s.add("mpm.elastic.dilatancy_angle", Type::Float,
+        "Dilatancy angle psi of the Drucker-Prager flow, matched to Mohr-Coulomb in plane strain "
+        "with friction_angle (needs it; at most friction_angle). Absent or 0: no dilatancy; "
+        "equal to friction_angle: associated flow, for which Prandtl's bearing capacity is exact.")
       .unit(Q::Angle)
       .in(0, 90, false, true);
 

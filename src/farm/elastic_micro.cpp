@@ -38,6 +38,8 @@ void ElasticMicroParams::validate() const {
   if (!initial_stress.allFinite()) bad("initial_stress", initial_stress.trace(), "must be finite");
   if (!(friction_angle >= 0.0 && friction_angle < 0.5 * M_PI))
     bad("friction_angle", friction_angle, "must be in [0, pi/2) rad");
+  if (!(dilatancy_angle >= 0.0 && dilatancy_angle <= friction_angle))
+    bad("dilatancy_angle", dilatancy_angle, "must be in [0, friction_angle] rad");
 }
 
 ElasticMicro::ElasticMicro(std::int64_t id, const ElasticMicroParams& params)
@@ -87,7 +89,12 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
 void ElasticMicro::frictional_substep(const common::HughesWinget& update, const common::Mat3& L,
                                       double h, double volumetric) {
   const common::Lame c = common::lame(params_.young, params_.poisson);
-  const double sin_phi = std::sin(params_.friction_angle);
+  const double bulk = c.lambda + 2.0 * c.mu / 3.0;
+  const mpm::DruckerPragerCone cone =
+      mpm::plane_strain_cone(params_.friction_angle, params_.dilatancy_angle);
+  auto ret = [&](const common::Mat3& trial) {
+    return mpm::drucker_prager_return(trial, cone, bulk, c.mu);
+  };
   if (free_volume_ > 0.0) {  // disconnected: a dilation adds to the free volume, stress-free
     free_volume_ += volumetric;
     if (free_volume_ > 0.0) {
@@ -97,16 +104,13 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
     // This compression closed the free volume: the remainder strains the material.
     const double remainder = free_volume_ / volumetric;  // in (0, 1]: both negative
     free_volume_ = 0.0;
-    stress_ = mpm::drucker_prager_return(
-                  common::HughesWinget(L, remainder * h, c).apply(common::Mat3::Zero()), sin_phi)
-                  .stress;
+    stress_ = ret(common::HughesWinget(L, remainder * h, c).apply(common::Mat3::Zero())).stress;
     return;
   }
   const double p = -stress_.trace() / 3.0;
-  const mpm::DruckerPragerResult r = mpm::drucker_prager_return(update.apply(stress_), sin_phi);
+  const mpm::DruckerPragerResult r = ret(update.apply(stress_));
   stress_ = r.stress;
   if (r.apex) {  // the dilation beyond the elastic unloading of p becomes free volume
-    const double bulk = c.lambda + 2.0 * c.mu / 3.0;
     free_volume_ = std::max(0.0, volumetric - p / bulk);
   }
 }
@@ -133,6 +137,7 @@ void ElasticMicro::save(common::StateWriter& w) const {
   common::write_scalar(w, "elastic/params/void_ratio0", params_.void_ratio0);
   w.write("elastic/params/initial_stress", nine(params_.initial_stress));
   common::write_scalar(w, "elastic/params/friction_angle", params_.friction_angle);
+  common::write_scalar(w, "elastic/params/dilatancy_angle", params_.dilatancy_angle);
   common::write_scalar(w, "elastic/params/substeps", params_.substeps);
   common::write_scalar(w, "elastic/params/fail_id", params_.fail_id);
   common::write_scalar(w, "elastic/params/fail_step", params_.fail_step);
@@ -147,13 +152,13 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   // elastic/int_params (3).
   const std::int64_t version =
       r.has("elastic/version") ? common::read_scalar_i64(r, "elastic/version") : 1;
-  if (version != kElasticStateVersion && version != 2) {
+  if (version != kElasticStateVersion && version != 2 && version != 3) {
     throw common::InputError(
         "elastic micro state: field 'elastic/version' = " + std::to_string(version) +
-        (r.has("elastic/version") ? "" : " (absent)") + ": this build reads version " +
+        (r.has("elastic/version") ? "" : " (absent)") + ": this build reads versions 2, 3 and " +
         std::to_string(kElasticStateVersion) +
-        " and 2 only (version 1 stored the parameters as the positional array "
-        "'elastic/params'; versions 2 and 3 store named fields such as 'elastic/params/young'); "
+        " only (version 1 stored the parameters as the positional array "
+        "'elastic/params'; versions 2 to 4 store named fields such as 'elastic/params/young'); "
         "restart from a state written by this version");
   }
   auto matrix = [&r](const char* name) {
@@ -173,6 +178,8 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   params.initial_stress = matrix("elastic/params/initial_stress");
   params.friction_angle =
       version >= 3 ? common::read_scalar_f64(r, "elastic/params/friction_angle") : 0.0;
+  params.dilatancy_angle =
+      version >= 4 ? common::read_scalar_f64(r, "elastic/params/dilatancy_angle") : 0.0;
   params.substeps = common::read_scalar_i64(r, "elastic/params/substeps");
   params.fail_id = common::read_scalar_i64(r, "elastic/params/fail_id");
   params.fail_step = common::read_scalar_i64(r, "elastic/params/fail_step");

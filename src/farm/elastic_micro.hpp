@@ -1,6 +1,7 @@
 // farm::ElasticMicro: a cheap deterministic continuum micro model (hypoelastic, Jaumann rate,
 // Hughes-Winget objective update) that exercises the farm's plumbing without DEM; with a friction
-// angle it is elastic-perfectly plastic (cohesionless Drucker-Prager, mpm/drucker_prager.hpp): the
+// angle it is elastic-perfectly plastic (cohesionless Drucker-Prager, dilatant or not,
+// mpm/drucker_prager.hpp): the
 // frictional continuum that the DEM RVEs are compared with on the same mesh. Not a model of sand
 // to replace the RVEs: a reference, and a tool for protocol, restart and balancing tests.
 #pragma once
@@ -13,8 +14,9 @@ namespace farm {
 /// Version of ElasticMicro's state (field elastic/version; docs/reference/checkpoint.md). 1 (no
 /// field): positional arrays elastic/params and elastic/int_params; 2: one named field per
 /// parameter; 3: adds elastic/params/friction_angle and elastic/free_volume (a version-2 state is
-/// read as friction_angle = 0, free volume 0).
-inline constexpr std::int64_t kElasticStateVersion = 3;
+/// read as friction_angle = 0, free volume 0); 4: adds elastic/params/dilatancy_angle (a version-2
+/// or 3 state is read as dilatancy_angle = 0).
+inline constexpr std::int64_t kElasticStateVersion = 4;
 
 struct ElasticMicroParams {
   double young = 0.0;        ///< E [Pa], > 0
@@ -25,6 +27,10 @@ struct ElasticMicroParams {
   /// Friction angle of the Drucker-Prager cone matched to plane-strain Mohr-Coulomb [rad], in
   /// [0, pi/2). 0: linear elastic (no yield surface).
   double friction_angle = 0.0;
+  /// Dilatancy angle of the plastic flow, matched to plane-strain Mohr-Coulomb with the friction
+  /// angle (mpm::plane_strain_cone) [rad], in [0, friction_angle]. 0: deviatoric flow; equal to
+  /// friction_angle: associated flow, for which Prandtl's bearing capacity is exact.
+  double dilatancy_angle = 0.0;
   /// Cost knob: every step is split into this many equal sub-increments (>= 1). Gives RVEs of
   /// different cost for balancing tests; the stress depends on it (it is part of the model).
   std::int64_t substeps = 1;

@@ -89,10 +89,11 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   p.fail_step = 11;
   p.void_ratio0 = 0.55;
   p.friction_angle = 0.5;
+  p.dilatancy_angle = 0.25;
   const farm::ElasticMicro m(4, p);
   common::StateStore s;
   m.save(s);
-  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{3});
+  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{4});
   EXPECT_EQ(s.read_i64("elastic/id"), std::vector<std::int64_t>{4});
   EXPECT_EQ(s.read_f64("elastic/params/young"), std::vector<double>{p.young});
   EXPECT_EQ(s.read_f64("elastic/params/poisson"), std::vector<double>{p.poisson});
@@ -103,6 +104,7 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   EXPECT_EQ(s0[1], p.initial_stress(0, 1));  // row-major
   EXPECT_EQ(s0[8], p.initial_stress(2, 2));
   EXPECT_EQ(s.read_f64("elastic/params/friction_angle"), std::vector<double>{0.5});
+  EXPECT_EQ(s.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{0.25});
   EXPECT_EQ(s.read_i64("elastic/params/substeps"), std::vector<std::int64_t>{3});
   EXPECT_EQ(s.read_i64("elastic/params/fail_id"), std::vector<std::int64_t>{9});
   EXPECT_EQ(s.read_i64("elastic/params/fail_step"), std::vector<std::int64_t>{11});
@@ -125,8 +127,8 @@ TEST(ElasticMicro, OldVersionRefused) {
     ADD_FAILURE() << "a version-1 state was loaded";
   } catch (const common::InputError& e) {
     const std::string m = e.what();
-    for (const char* needle :
-         {"'elastic/version' = 1 (absent)", "reads version 3 and 2 only", "elastic/params/young"}) {
+    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2, 3 and 4 only",
+                               "elastic/params/young"}) {
       EXPECT_NE(m.find(needle), std::string::npos) << m;
     }
   }
@@ -139,7 +141,9 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
   m.save(s);
   common::StateStore v2;
   for (const auto& [name, field] : s.fields()) {
-    if (name == "elastic/params/friction_angle" || name == "elastic/version") continue;
+    if (name == "elastic/params/friction_angle" || name == "elastic/params/dilatancy_angle" ||
+        name == "elastic/version")
+      continue;
     std::visit([&v2, &name](const auto& values) { v2.write(name, values); }, field);
   }
   v2.write("elastic/version", std::vector<std::int64_t>{2});
@@ -147,7 +151,33 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
   common::StateStore again;
   loaded->save(again);
   EXPECT_EQ(again.read_f64("elastic/params/friction_angle"), std::vector<double>{0.0});
+  EXPECT_EQ(again.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{0.0});
   EXPECT_EQ(again.read_f64("elastic/stress"), s.read_f64("elastic/stress"));
+}
+
+// A version-3 state (before the dilatancy angle) is read with a deviatoric flow and continues as
+// the same state saved by this version would.
+TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
+  farm::ElasticMicroParams p = params();
+  p.friction_angle = 0.6;
+  farm::ElasticMicro m(4, p, -1e4 * common::Mat3::Identity());
+  common::Mat3 L = common::Mat3::Zero();
+  L(0, 2) = 1.0;
+  for (int k = 0; k < 50; ++k) (void)m.step(L, 1e-4);
+  common::StateStore s;
+  m.save(s);
+  common::StateStore v3;
+  for (const auto& [name, field] : s.fields()) {
+    if (name == "elastic/params/dilatancy_angle" || name == "elastic/version") continue;
+    std::visit([&v3, &name](const auto& values) { v3.write(name, values); }, field);
+  }
+  v3.write("elastic/version", std::vector<std::int64_t>{3});
+  const auto loaded = farm::ElasticMicro::load(v3);
+  for (int k = 0; k < 50; ++k) {
+    (void)m.step(L, 1e-4);
+    (void)loaded->step(L, 1e-4);
+  }
+  EXPECT_EQ(loaded->stress(), m.stress());
 }
 
 // With a friction angle the model is elastic-perfectly plastic: a simple shear at constant volume
@@ -165,6 +195,34 @@ TEST(ElasticMicro, FrictionAngleBoundsTheShearStress) {
   EXPECT_NEAR(std::abs(s(0, 2)), p0 * 0.5, 0.01 * p0 * 0.5);
   const farm::MicroReport r = m.report();
   EXPECT_NEAR(r.q, std::sqrt(3.0) * p0 * 0.5, 1e-6 * p0);  // on the cone: q = sqrt(3 J2)
+}
+
+// With a dilatancy angle the flow is that of plane-strain Mohr-Coulomb (mpm::plane_strain_cone):
+// driven along the plastic flow direction of MC in plane strain (y fixed, z compressed, x
+// extended so that the volume grows at sin(psi) of the shear), the stress settles where the
+// elastic strain rate vanishes: the in-plane stress ratio is sin(phi) and the state stays put.
+// The check is independent of the cone's formulas: only Mohr-Coulomb's angles enter it.
+TEST(ElasticMicro, DilatantFlowMatchesPlaneStrainMohrCoulomb) {
+  for (const double phi_deg : {30.0, 40.0}) {
+    for (const double psi_deg : {0.0, 10.0, phi_deg}) {
+      farm::ElasticMicroParams p = params();
+      p.friction_angle = phi_deg * M_PI / 180.0;
+      p.dilatancy_angle = psi_deg * M_PI / 180.0;
+      farm::ElasticMicro m(0, p, -10e3 * common::Mat3::Identity());
+      const double sin_psi = std::sin(p.dilatancy_angle);
+      common::Mat3 L = common::Mat3::Zero();
+      L(2, 2) = -1.0;                               // eps_3 (major, compression), 1 /s
+      L(0, 0) = (1.0 + sin_psi) / (1.0 - sin_psi);  // eps_1: (e1 + e3) / (e1 - e3) = sin(psi)
+      for (int k = 0; k < 3000; ++k) (void)m.step(L, 1e-5);  // 3 % axial, far beyond yield
+      const common::Mat3 before = m.stress();
+      (void)m.step(L, 1e-5);
+      const common::Mat3 s = m.stress();
+      const double ratio = (s(0, 0) - s(2, 2)) / -(s(0, 0) + s(2, 2));
+      SCOPED_TRACE(testing::Message() << "phi " << phi_deg << " psi " << psi_deg);
+      EXPECT_NEAR(ratio, std::sin(p.friction_angle), 1e-6);
+      EXPECT_LT((s - before).norm(), 1e-6 * s.norm());  // a steady plastic flow
+    }
+  }
 }
 
 // A frictional material pulled apart is disconnected: stress-free while its free volume lasts, and

@@ -109,8 +109,11 @@ TEST(Boundary, AFacetShearedAwayFromTheMaterialLoadsItsPointsOwnNodes) {
   EXPECT_NEAR(A, 1.0, 1e-12);
   EXPECT_LT((sum - Vec3(0, 0, -1e5)).norm(), 1e-9 * 1e5);
   // Every force is on the points' own cell (the only active nodes), none elsewhere.
-  for (std::size_t i = 0; i < s.f.force.size(); ++i)
-    if (!s.f.is_active[i]) EXPECT_EQ(s.f.force[i], Vec3::Zero());
+  for (std::size_t i = 0; i < s.f.force.size(); ++i) {
+    if (!s.f.is_active[i]) {
+      EXPECT_EQ(s.f.force[i], Vec3::Zero());
+    }
+  }
 }
 
 TEST(Boundary, MirrorConstraintMakesGhostNodesAntisymmetric) {
