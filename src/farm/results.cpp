@@ -255,11 +255,22 @@ void ResultsWriter::describe_constraints() {
 }
 
 ResultsWriter::~ResultsWriter() {
-  // A run that stops on an error keeps the rows of the steps it completed.
+  // A run that stops on an error keeps the rows of the steps it completed, and its indexes
+  // (points.xmf, means.csv, reactions.csv) list them: a user reads a failed run's last rows where
+  // a finished run's are.
   try {
     write_pending();
   } catch (const std::exception& e) {
     std::cerr << "results.h5: " << pending_ << " row(s) could not be written: " << e.what() << "\n";
+    return;
+  }
+  if (indexed_rows_ == rows()) return;
+  try {
+    write_xdmf();
+    write_csv();
+  } catch (const std::exception& e) {
+    std::cerr << "results: the indexes of " << dir_ << " could not be rewritten: " << e.what()
+              << "\n";
   }
 }
 
@@ -424,6 +435,7 @@ void ResultsWriter::flush(bool indexes) {
   }
   write_xdmf();
   write_csv();
+  indexed_rows_ = rows();
   index_written_ = std::chrono::steady_clock::now();
   index_cost_s_ = std::chrono::duration<double>(index_written_ - now).count();
 }

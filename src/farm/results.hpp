@@ -50,7 +50,8 @@ class ResultsWriter {
 
   /// One output row. rve_stress/reports by RVE index (ascending ids). Rows are kept in memory
   /// and written in blocks (kRowsPerWrite rows or kBytesPerWrite bytes), by flush() and by the
-  /// destructor (a run that stops on an error keeps its completed rows).
+  /// destructor (a run that stops on an error keeps its completed rows, in results.h5 and in the
+  /// indexes: points.xmf, means.csv, reactions.csv).
   /// reactions, displacements: one per constraint name (mpm::Solver::reactions and
   /// constraint_displacements) [N], [m]; ignored without constraint names.
   /// measures: grain-scale measures by RVE index (RveFarm::measure); empty: NaN rows.
@@ -109,6 +110,7 @@ class ResultsWriter {
   std::vector<std::vector<double>> constraint_rows_;  ///< per row: rx ry rz ux uy uz per constraint
   std::chrono::steady_clock::time_point index_written_{};  ///< last rewrite of xmf + csv
   double index_cost_s_ = 0.0;                              ///< its duration [s]
+  std::int64_t indexed_rows_ = -1;  ///< rows() when the indexes were last rewritten (-1: never)
 };
 
 }  // namespace farm

@@ -215,17 +215,24 @@ TEST(Results, UnwritableIndexIsAnIoError) {
   }
 }
 
-// Rows not yet written when the writer goes away (an error unwinding the driver) are written.
+// Rows not yet written when the writer goes away (an error unwinding the driver) are written, and
+// the indexes list them: means.csv has every row, points.xmf names the last step.
 TEST(Results, PendingRowsAreWrittenByTheDestructor) {
   const std::string dir = scratch("pending");
   const Sample smp;
   {
     farm::ResultsWriter w(dir, smp.rve_ids, smp.points, -1);
-    for (int r = 0; r < 5; ++r) smp.append(w, r);
+    smp.append(w, 0);
+    w.flush();  // the indexes as of row 0 (a run's first output)
+    for (int r = 1; r < 5; ++r) smp.append(w, r);
   }
   const std::vector<double> step = read_all(dir + "/results.h5", "/step");
   ASSERT_EQ(step.size(), 5u);
   EXPECT_EQ(step[4], 40.0);
+  EXPECT_EQ(csv_rows(dir), 5);
+  std::ifstream xmf(dir + "/points.xmf");
+  const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Name=\"step_40\""), std::string::npos) << "points.xmf lacks the last step";
 }
 
 // A restarted writer keeps the rows up to the checkpoint's step and continues after them.
