@@ -5,7 +5,7 @@ continuum (against bearing-capacity theory) and for the RVEs (docs/validation/fo
 Writes each run's job with tools/footing_make_job.py under OUT, runs it (`mpiexec -n NP
 build/mpmxdem run`; a run whose results are there is kept), reads its load-settlement curve
 (tools/footing_curves.py) and writes OUT/summary.csv, one row per run: the layer, the cell, the
-bearing pressure at s/B = 0.1 and 0.2, the peak load and where it is, the limit load q_lim (the mean of q over s/B in [0.3, 0.4]; for the associated family in [0.05, 0.1])
+bearing pressure at s/B = 0.1 and 0.2, the peak load and where it is, the limit load q_lim (the mean of q over s/B in [0.3, 0.4]; for the associated family in [0.02, 0.06])
 with its drift (the mean over [0.35, 0.4] against the mean over [0.3, 0.35], in %: a load that has
 levelled off drifts by a few % at most) and its spread (max - min over the window, in %), N_q = q_lim / q0, the friction angle whose Prandtl N_q that
 is (tools/bearing_capacity.py), the wall time.
@@ -22,6 +22,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -35,11 +36,13 @@ WINDOW = (0.3, 0.4)           # s / B over which the limit load is read
 # The associated continuum dilates without end (a point by the footing's edge reached ten times its
 # volume at s/B = 0.29, and the load kept rising with the heave): it is made stiff (E = 500 MPa,
 # E / q_lim ~ 150) so that it reaches its limit load at a small settlement, where the geometry has
-# hardly changed (the small-strain setting of the theorems), and read there. Mass scaling 1e3:
-# with 1e4 its E_kin / W_int reached 0.13-0.22 and the load overshot by 20 %.
+# hardly changed (the small-strain setting of the theorems), and read there: over s/B in [0.02,
+# 0.06], from where the load levels off to before it rises again with the heave by the footing's
+# edge (on 6.25 mm cells from s/B 0.06 on: a footing becoming embedded). Mass scaling 1e3: with
+# 1e4 its E_kin / W_int reached 0.13-0.22 and the load overshot by 20 %.
 ASSOCIATED = dict(material="frictional", damping=0.2, dilatancy_angle=40.0, young=500e6,
-                  mass_scaling=1000.0, settlement=0.005)
-WINDOWS = {"associated": (0.05, 0.1)}
+                  mass_scaling=1000.0, settlement=0.003)
+WINDOWS = {"associated": (0.02, 0.06)}
 # Empty grid above the surface [m]: the RVEs' dilatant layer heaves beside the footing by tens of mm
 # (with 50 mm a point left the grid at s/B = 0.2); the continuum, without dilatancy, much less.
 # An associated flow dilates as much as it shears: its surface heaves like the RVEs'.
@@ -62,10 +65,17 @@ FAMILIES = {
         "phi40_psi40_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
         "phi40_psi40_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
         "phi40_psi40_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625),
+        # Prandtl's mechanism at 40 deg, associated, reaches about 0.4 m beyond the footing's edge:
+        # the 400 mm layer's far side cuts it; the 800 mm one holds it
+        "phi40_psi40_w0.8_h25": dict(width=0.8, depth=0.4, cell=0.025),
         "phi40_psi40_w0.8_h12.5": dict(width=0.8, depth=0.4, cell=0.0125),
+        "phi40_psi40_w0.8_h6.25": dict(width=0.8, depth=0.4, cell=0.00625),
         "phi30_psi30_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125, friction_angle=30.0, dilatancy_angle=30.0),
         "phi30_psi30_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625, friction_angle=30.0, dilatancy_angle=30.0),
-        "phi40_psi40_w0.4_h3.125": dict(width=0.4, depth=0.2, cell=0.003125),
+        # the same settings without dilatancy, and without the cell's strain smoothing (locking)
+        "phi40_psi0_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025, dilatancy_angle=0.0),
+        "phi40_psi40_w0.4_h12.5_unsmoothed": dict(width=0.4, depth=0.2, cell=0.0125,
+                                                  setting=("strain_smoothing", '"none"')),
     },
     "dem": {
         "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
@@ -93,7 +103,7 @@ def options(family, opts):
         o.update(mass_scaling=1000.0)  # with 1e4 the dilating RVE layer is not quasi-static (E_kin/W_int 0.04)
     o.update(opts)
     o["above"] = max(2, math.ceil(HEADROOM[family] / o["cell"] - 1e-9))
-    extra = o.pop("coupling", "")
+    extra = dict(coupling=o.pop("coupling", ""), setting=o.pop("setting", None))
     return o, extra
 
 
@@ -143,10 +153,17 @@ def reading(run, o, wall, window=WINDOW):
 
 
 def job_text(o, extra):
-    """The job footing_make_job writes, with `extra` lines added to its [dem.coupling] table."""
+    """The job footing_make_job writes, with extra["coupling"] lines added to its [dem.coupling]
+    table and extra["setting"] = (key, value) replacing the value of a key it writes."""
     text = footing_make_job.job_text(**o)
-    if extra:
-        text = text.replace("[dem.coupling]\n", "[dem.coupling]\n%s\n" % extra, 1)
+    if extra["coupling"]:
+        text = text.replace("[dem.coupling]\n", "[dem.coupling]\n%s\n" % extra["coupling"], 1)
+    if extra["setting"]:
+        key, value = extra["setting"]
+        text, n = re.subn(r"(?m)^%s = .*$" % re.escape(key), "%s = %s  # set by tools/footing_family.py" % (key, value),
+                          text, count=1)
+        if n != 1:
+            raise SystemExit("footing_family: the job has no key %r to set" % key)
     return text
 
 
