@@ -168,7 +168,11 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   bench->add_option("--steps", o.bench_steps, "Timed steps")
       ->check(integer_at_least(1, 1'000'000'000));
 
-  cli.add_subcommand("schema", "Print the job-file reference (Markdown) generated from the schema");
+  auto* schema = cli.add_subcommand(
+      "schema", "Print the job-file reference (Markdown) generated from the schema");
+  schema->add_flag("--outputs", o.schema_outputs,
+                   "Print the reference of results.h5 instead (every dataset, its shape, unit and "
+                   "description)");
 
   // An empty output directory (CLI11 would call it a missing value, or take it as none).
   for (int i = 1; i < argc; ++i) {

@@ -16,6 +16,7 @@ struct Options {
   std::int64_t max_steps = -1;  ///< stop after this many steps (-1: no limit)
   double max_wall_s = 0.0;      ///< run: stop with a checkpoint before this wall time [s] (0: none)
   bool force = false;           ///< write into a non-empty output directory
+  bool schema_outputs = false;  ///< schema: print the results.h5 reference instead
   int verbosity = 0;            ///< -v count
   std::string bench;            ///< bench target: "dem" or "mpm"
   std::int64_t bench_size = 0;  ///< bench: problem size (0: the target's default)

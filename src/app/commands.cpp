@@ -25,6 +25,7 @@
 #include "common/errors.hpp"
 #include "dem/packing_io.hpp"
 #include "farm/mpi_util.hpp"
+#include "farm/results.hpp"
 
 namespace app {
 
@@ -173,8 +174,12 @@ int command_check(const Options& o, const Comm& comm) {
   return 0;
 }
 
-int command_schema(const Options& /*o*/, const Comm& comm) {
-  if (comm.rank == 0) std::fputs(schema_markdown(job_schema()).c_str(), stdout);
+int command_schema(const Options& o, const Comm& comm) {
+  if (comm.rank == 0) {
+    const std::string text =
+        o.schema_outputs ? farm::results_reference_markdown() : schema_markdown(job_schema());
+    std::fputs(text.c_str(), stdout);
+  }
   return 0;
 }
 

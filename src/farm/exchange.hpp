@@ -69,10 +69,10 @@ struct InitRecord {
 static_assert(std::is_trivially_copyable_v<InitRecord>);
 static_assert(sizeof(InitRecord) == 15 * sizeof(double));
 
-/// What Command::measure gathers per RVE (96 bytes), only when an output row is written: the
-/// step's RveRecord does not carry it, so the other steps neither compute nor send it.
+/// What Command::measure gathers per RVE (the doubles of kMeasureFields, whose size check is in
+/// micro_model.hpp), only when an output row is written: the step's RveRecord does not carry it,
+/// so the other steps neither compute nor send it.
 static_assert(std::is_trivially_copyable_v<MicroMeasures>);
-static_assert(sizeof(MicroMeasures) == 12 * sizeof(double));
 
 /// Collective over `comm` (Command::measure): `mine` (this rank's RVEs in Placement::local()
 /// order) of every rank to rank 0, returned there by RVE index (empty elsewhere). One

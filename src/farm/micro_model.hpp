@@ -5,10 +5,12 @@
 
 #include <mpi.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,9 @@ struct MicroReport {
 
 /// Grain-scale measures of an RVE's current state (dem::Measures): computed only when an output
 /// row is written (RveFarm::measure, one command of its own), never on the other MPM steps.
-/// Continuum models have none: every entry NaN (MicroMeasures::none()).
+/// Continuum models have none: every entry NaN (MicroMeasures::none()). Every member has its row
+/// in kMeasureFields, from which the exchange's size check, results.h5 and the points' Xdmf view
+/// are made: a new measure is a member here, its row there, and where the model computes it.
 struct MicroMeasures {
   double fabric[9] = {};    ///< fabric tensor <n (x) n> over the contacts, row-major [-]
   double z_mech = 0.0;      ///< coordination without rattlers 2 Nc' / N' [-]
@@ -41,6 +45,52 @@ struct MicroMeasures {
   /// Every entry NaN: what a model without grains reports.
   [[nodiscard]] static MicroMeasures none();
 };
+
+/// One member of MicroMeasures as the outputs know it: results.h5's dataset /rve/<name> [row, rve,
+/// components] with its unit and description attributes, and the points' Xdmf attribute <name>
+/// (a Scalar for 1 component, a Vector for 3, a Tensor for 9).
+struct MeasureField {
+  const char* name;         ///< dataset name under /rve and Xdmf attribute name
+  std::size_t offset;       ///< offsetof(MicroMeasures, member)
+  int components;           ///< doubles of the member: 1, 3 or 9 (a row-major 3x3)
+  const char* unit;         ///< attribute "unit" ("-": dimensionless)
+  const char* description;  ///< attribute "description"
+};
+
+/// The measures in the order results.h5 creates them and the Xdmf view lists them.
+inline constexpr MeasureField kMeasureFields[] = {
+    {"fabric", offsetof(MicroMeasures, fabric), 9, "-",
+     "fabric tensor <n (x) n> over the RVE's contacts (n: unit contact normal), row-major 3x3 "
+     "[row, rve, 9], trace 1; NaN for continuum models. Written for output rows only"},
+    {"z_mech", offsetof(MicroMeasures, z_mech), 1, "-",
+     "mechanical coordination number 2 Nc' / N' without rattlers (spheres with < 2 contacts, "
+     "removed repeatedly); NaN for continuum models"},
+    {"unbalanced", offsetof(MicroMeasures, unbalanced), 1, "-",
+     "unbalanced force ratio: mean over spheres of |resultant force| / mean over contacts of "
+     "|contact force|; NaN for continuum models"},
+    {"kinetic_energy", offsetof(MicroMeasures, kinetic), 1, "J",
+     "kinetic energy of the spheres' fluctuating motion 1/2 sum (m |u|^2 + I |w|^2) (u: velocity "
+     "relative to the cell's affine field); NaN for continuum models"},
+};
+
+/// Doubles in all the rows of kMeasureFields.
+constexpr std::size_t measure_doubles() {
+  std::size_t n = 0;
+  for (const MeasureField& f : kMeasureFields) n += static_cast<std::size_t>(f.components);
+  return n;
+}
+static_assert(sizeof(MicroMeasures) == measure_doubles() * sizeof(double),
+              "every member of MicroMeasures needs its row in kMeasureFields");
+
+/// The doubles of `m` that `f` names.
+inline std::span<double> values(MicroMeasures& m, const MeasureField& f) {
+  return {reinterpret_cast<double*>(reinterpret_cast<char*>(&m) + f.offset),
+          static_cast<std::size_t>(f.components)};
+}
+inline std::span<const double> values(const MicroMeasures& m, const MeasureField& f) {
+  return {reinterpret_cast<const double*>(reinterpret_cast<const char*>(&m) + f.offset),
+          static_cast<std::size_t>(f.components)};
+}
 
 /// One file of a grain-scale view: its name inside the view directory and its whole content.
 struct ViewFile {
@@ -68,7 +118,8 @@ class MicroModel {
   [[nodiscard]] virtual MicroMeasures measures() const = 0;
   /// The grain-scale view of the current state as files for ParaView, named from `stem` (a plain
   /// file name): for DEM the spheres, the contact network and the periodic cell
-  /// (dem/vtk_export.hpp, docs/design/dem.md "Grain-scale views"). Continuum models have none (empty).
+  /// (dem/vtk_export.hpp, docs/design/dem.md "Grain-scale views"). Continuum models have none
+  /// (empty).
   [[nodiscard]] virtual std::vector<ViewFile> grain_view(const std::string& stem) const {
     (void)stem;
     return {};
@@ -82,12 +133,10 @@ class MicroModel {
 };
 
 inline MicroMeasures MicroMeasures::none() {
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   MicroMeasures m;
-  for (double& f : m.fabric) f = nan;
-  m.z_mech = nan;
-  m.unbalanced = nan;
-  m.kinetic = nan;
+  for (const MeasureField& f : kMeasureFields) {
+    for (double& v : values(m, f)) v = std::numeric_limits<double>::quiet_NaN();
+  }
   return m;
 }
 

@@ -373,20 +373,16 @@ void ResultsWriter::append(std::int64_t step, double time,
   stage_row("rve/guards", gd.data());
   // Grain-scale measures (RveFarm::measure, for output rows only); NaN when not given.
   MPMXDEM_CHECK(measures.empty() || measures.size() == n, "one MicroMeasures per RVE");
-  std::vector<double> zm(n);
-  std::vector<double> ub(n);
-  std::vector<double> ke(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const MicroMeasures mm = measures.empty() ? MicroMeasures::none() : measures[k];
-    std::copy(std::begin(mm.fabric), std::end(mm.fabric), buf.begin() + 9 * k);
-    zm[k] = mm.z_mech;
-    ub[k] = mm.unbalanced;
-    ke[k] = mm.kinetic;
+  for (const MeasureField& f : kMeasureFields) {
+    const auto c = static_cast<std::size_t>(f.components);
+    std::vector<double> v(c * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const MicroMeasures mm = measures.empty() ? MicroMeasures::none() : measures[k];
+      const std::span<const double> src = values(mm, f);
+      std::copy(src.begin(), src.end(), v.begin() + static_cast<std::ptrdiff_t>(c * k));
+    }
+    stage_row(std::string("rve/") + f.name, v.data());
   }
-  stage_row("rve/fabric", buf.data());
-  stage_row("rve/z_mech", zm.data());
-  stage_row("rve/unbalanced", ub.data());
-  stage_row("rve/kinetic_energy", ke.data());
   std::vector<double> x(3 * m);
   for (std::size_t p = 0; p < m; ++p) {
     for (int a = 0; a < 3; ++a) x[3 * p + static_cast<std::size_t>(a)] = points.x[p][a];

@@ -113,4 +113,9 @@ class ResultsWriter {
   std::int64_t indexed_rows_ = -1;  ///< rows() when the indexes were last rewritten (-1: never)
 };
 
+/// The reference of results.h5 (Markdown): every dataset with its shape, unit and description,
+/// from the tables the writer creates them with (docs/reference/results_h5.md, printed by
+/// `mpmxdem schema --outputs`).
+[[nodiscard]] std::string results_reference_markdown();
+
 }  // namespace farm

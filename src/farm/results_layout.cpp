@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <iterator>
+#include <string_view>
 
+#include "farm/micro_model.hpp"
 #include "farm/results.hpp"
 
 namespace farm::results_detail {
@@ -32,7 +34,8 @@ constexpr SeriesSpec kSeriesTable[] = {
     {"rve/t_p", false, 1, 'r', "s", "quasi-static time of the step, eq. (11)"},
     {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
     {"rve/guards", true, 1, 'r', "",
-     "guard bits (dem::RveGuard, docs/design/dem.md; bit 16 farm::kGuardSpared: the DEM was not stepped, "
+     "guard bits (dem::RveGuard, docs/design/dem.md; bit 16 farm::kGuardSpared: the DEM was not "
+     "stepped, "
      "docs/design/sparing.md)"},
     {"points/x", false, 3, 'p', "m",
      "position of every material point (order of /points/id) [row, point, xyz]"},
@@ -51,18 +54,6 @@ constexpr SeriesSpec kSeriesTable[] = {
      "-ln(1 - eps_v) is the logarithmic strain"},
     {"means/p", false, 0, '-', "Pa", "mean over RVEs of p, compression positive"},
     {"means/q", false, 0, '-', "Pa", "mean over RVEs of the von Mises q"},
-    {"rve/fabric", false, 9, 'r', "-",
-     "fabric tensor <n (x) n> over the RVE's contacts (n: unit contact normal), row-major 3x3 "
-     "[row, rve, 9], trace 1; NaN for continuum models. Written for output rows only"},
-    {"rve/z_mech", false, 1, 'r', "-",
-     "mechanical coordination number 2 Nc' / N' without rattlers (spheres with < 2 contacts, "
-     "removed repeatedly); NaN for continuum models"},
-    {"rve/unbalanced", false, 1, 'r', "-",
-     "unbalanced force ratio: mean over spheres of |resultant force| / mean over contacts of "
-     "|contact force|; NaN for continuum models"},
-    {"rve/kinetic_energy", false, 1, 'r', "J",
-     "kinetic energy of the spheres' fluctuating motion 1/2 sum (m |u|^2 + I |w|^2) (u: velocity "
-     "relative to the cell's affine field); NaN for continuum models"},
     {"points/velocity", false, 3, 'p', "m/s", "velocity of every material point [row, point, xyz]"},
     {"points/displacement", false, 3, 'p', "m",
      "displacement x - x0 of every point from its position at t = 0 (the job's points) [row, "
@@ -71,6 +62,13 @@ constexpr SeriesSpec kSeriesTable[] = {
      "deformation gradient F = dx/dx0 of every point, row-major 3x3 [row, point, 9] (any strain "
      "follows from it: Green-Lagrange (F^T F - I)/2, logarithmic ln(V) of F = V R)"},
 };
+
+// The two id datasets (written once, not per row).
+constexpr const char* kRveIdDescription =
+    "RVE ids, ascending: the order of the RVE axis of every /rve series";
+constexpr const char* kPointIdDescription =
+    "material point ids in the solver's slot order: the order of the point axis of every /points "
+    "series";
 
 // Velocity constraints (mpm::Solver::reactions), written when the run has any; their names are
 // the attribute "names" of /constraints, in order.
@@ -136,11 +134,9 @@ void describe(hid_t file) {
     put_attr(d.get(), "unit", std::string(unit));
     put_attr(d.get(), "description", std::string(description));
   };
-  dataset("rve/id", "", "RVE ids, ascending: the order of the RVE axis of every /rve series");
-  dataset("points/id", "",
-          "material point ids in the solver's slot order: the order of the point axis of "
-          "every /points series");
-  for (const SeriesSpec& s : kSeriesTable) dataset(s.name, s.unit, s.description);
+  dataset("rve/id", "", kRveIdDescription);
+  dataset("points/id", "", kPointIdDescription);
+  for (const SeriesSpec& s : series()) dataset(s.name, s.unit, s.description);
 }
 
 std::vector<hsize_t> row_dims(const SeriesSpec& s, std::size_t n_rve, std::size_t n_pts,
@@ -168,15 +164,81 @@ void write_static(hid_t file, const char* name, const std::vector<std::int64_t>&
   }
 }
 
-std::span<const SeriesSpec> series() { return kSeriesTable; }
+// The grain-scale measures (farm::kMeasureFields) come after this series.
+constexpr std::string_view kMeasuresAfter = "means/q";
+
+std::span<const SeriesSpec> series() {
+  static const std::vector<std::string> measure_names = [] {
+    std::vector<std::string> v;
+    for (const MeasureField& f : kMeasureFields) v.push_back(std::string("rve/") + f.name);
+    return v;
+  }();
+  static const std::vector<SeriesSpec> all = [] {
+    std::vector<SeriesSpec> v;
+    for (const SeriesSpec& s : kSeriesTable) {
+      v.push_back(s);
+      if (s.name != kMeasuresAfter) continue;
+      for (std::size_t i = 0; i < std::size(kMeasureFields); ++i) {
+        const MeasureField& f = kMeasureFields[i];
+        v.push_back({measure_names[i].c_str(), false, f.components, 'r', f.unit, f.description});
+      }
+    }
+    return v;
+  }();
+  return all;
+}
 std::span<const SeriesSpec> constraint_series() { return kConstraintTable; }
 
 bool added_later(const std::string& name) {
-  static constexpr const char* kAdded[] = {
-      "points/volume",      "rve/fabric",      "rve/z_mech",          "rve/unbalanced",
-      "rve/kinetic_energy", "points/velocity", "points/displacement", "points/F"};
+  static constexpr const char* kAdded[] = {"points/volume", "points/velocity",
+                                           "points/displacement", "points/F"};
+  // Every grain-scale measure came after the first files, and so does every one added now.
   return std::any_of(std::begin(kAdded), std::end(kAdded),
-                     [&](const char* a) { return name == a; });
+                     [&](const char* a) { return name == a; }) ||
+         std::any_of(std::begin(kMeasureFields), std::end(kMeasureFields),
+                     [&](const MeasureField& f) { return name == std::string("rve/") + f.name; });
 }
 
 }  // namespace farm::results_detail
+
+namespace farm {
+
+std::string results_reference_markdown() {
+  using results_detail::constraint_series;
+  using results_detail::series;
+  std::string out =
+      "# results.h5: every dataset\n\n"
+      "Generated from the tables the writer creates results.h5 with (src/farm/results_layout.cpp, "
+      "the grain-scale measures from farm::kMeasureFields): `mpmxdem schema --outputs > "
+      "docs/reference/results_h5.md`. How to read them: [outputs.md](outputs.md). Every dataset "
+      "holds these two as the attributes `unit` (SI; `-` dimensionless, empty for counts and "
+      "bits) and `description`. nt: rows (output steps), n: RVEs, m: material points, nc: "
+      "velocity constraints (the group `/constraints` exists when the job has any).\n\n"
+      "| dataset | shape | type | unit | description |\n|---|---|---|---|---|\n";
+  auto row = [&out](const std::string& name, const std::string& shape, const char* type,
+                    const char* unit, const char* description) {
+    std::string d = description;
+    for (std::size_t i = 0; (i = d.find('|', i)) != std::string::npos; i += 2)
+      d.replace(i, 1, "\\|");
+    out += "| `/" + name + "` | " + shape + " | " + type + " | " + unit + " | " + d + " |\n";
+  };
+  row("rve/id", "[n]", "int64", "", results_detail::kRveIdDescription);
+  row("points/id", "[m]", "int64", "", results_detail::kPointIdDescription);
+  auto shape = [](const SeriesSpec& s) {
+    std::string d = "[nt";
+    if (s.over == 'r') d += ", n";
+    if (s.over == 'p') d += ", m";
+    if (s.over == 'c') d += ", nc";
+    if (s.per_item > 1) d += ", " + std::to_string(s.per_item);  // as row_dims
+    return d + "]";
+  };
+  for (const SeriesSpec& s : series()) {
+    row(s.name, shape(s), s.integer ? "int64" : "float64", s.unit, s.description);
+  }
+  for (const SeriesSpec& s : constraint_series()) {
+    row(s.name, shape(s), s.integer ? "int64" : "float64", s.unit, s.description);
+  }
+  return out;
+}
+
+}  // namespace farm

@@ -51,12 +51,12 @@ void ResultsWriter::write_xdmf() const {
   // same order: every point a DEM point): ParaView colours the points by them.
   bool one_to_one = rve_ids_.size() == m;
   for (std::size_t k = 0; one_to_one && k < m; ++k) one_to_one = rve_of_point_[k] == k;
-  const char* rve_scalars[] = {"z_mech", "unbalanced", "kinetic_energy"};
-  std::vector<Slab> rsc;
+  std::vector<Slab> measures;  // one per farm::kMeasureFields row
   if (one_to_one) {
-    for (const char* a : rve_scalars) rsc.push_back(slab((std::string("rve/") + a).c_str(), 1));
+    for (const MeasureField& f : kMeasureFields) {
+      measures.push_back(slab((std::string("rve/") + f.name).c_str(), f.components));
+    }
   }
-  const Slab fabric = slab("rve/fabric", 9);
   const std::string id_attr = fmt::format(
       "<Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
       "Dimensions=\"{}\" NumberType=\"Int\" Precision=\"8\" "
@@ -94,17 +94,13 @@ void ResultsWriter::write_xdmf() const {
                      "</Attribute>\n",
                      scalars[a], sc[a].head, t, sc[a].tail);
     }
-    if (one_to_one) {
+    for (std::size_t a = 0; a < measures.size(); ++a) {
+      const MeasureField& f = kMeasureFields[a];
+      const char* type = f.components == 9 ? "Tensor" : f.components == 3 ? "Vector" : "Scalar";
       fmt::format_to(it,
-                     "<Attribute Name=\"fabric\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
+                     "<Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">{}{}{}"
                      "</Attribute>\n",
-                     fabric.head, t, fabric.tail);
-      for (std::size_t a = 0; a < rsc.size(); ++a) {
-        fmt::format_to(it,
-                       "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"
-                       "</Attribute>\n",
-                       rve_scalars[a], rsc[a].head, t, rsc[a].tail);
-      }
+                     f.name, type, measures[a].head, t, measures[a].tail);
     }
     fmt::format_to(it, "{}</Grid>\n", id_attr);
   }
