@@ -94,6 +94,11 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   const std::string path = (std::filesystem::path(dir) / "results.h5").string();
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
+  // HDF5 must not meet a full disk with metadata of its own to flush: a failed H5Fclose leaves a
+  // file that HDF5's termination (at MPI_Finalize) crashes on (SIGSEGV instead of exit 4). So
+  // room is reserved before the file is opened or created, and its metadata is on disk before
+  // the first row (common::reserve_space; write_pending and flush do the same).
+  common::reserve_space(path, kReserveSlack);
   if (restart_step >= 0 && std::filesystem::exists(path)) {
     file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, writer_access().get()), H5Fclose);
     if (!file_.valid()) throw common::InputError("output " + path + ": cannot reopen as HDF5");
@@ -133,11 +138,12 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
     open_constraints(keep);
     describe(file_.get());  // a file of an earlier version gets them; software_version: this one
     describe_constraints();
+    check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + path);
     return;
   }
   file_ =
       Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, writer_access().get()), H5Fclose);
-  if (!file_.valid()) throw common::InputError("output " + path + ": cannot create");
+  if (!file_.valid()) throw common::IoError("output " + path + ": HDF5 cannot create it");
   write_static(file_.get(), "/rve/id", rve_ids_);
   write_static(file_.get(), "/points/id", point_ids_);
   for (const SeriesSpec& s : results_detail::series()) create_series(s);
@@ -146,6 +152,7 @@ ResultsWriter::ResultsWriter(const std::string& dir, const std::vector<std::int6
   }
   describe(file_.get());
   describe_constraints();
+  check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + path);
 }
 
 void ResultsWriter::create_series(const SeriesSpec& s) {
@@ -420,6 +427,7 @@ void ResultsWriter::flush(bool indexes) {
   if (pending_ > 0) {
     write_pending();  // flushes results.h5
   } else {
+    common::reserve_space(std::filesystem::path(dir_) / "results.h5", kReserveSlack);
     check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + dir_ + "/results.h5");
   }
   // points.xmf and means.csv are rewritten whole (atomic rename): O(rows), 0.4 s at 13,000 rows

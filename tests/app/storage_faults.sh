@@ -89,6 +89,18 @@ for e in "quota|122|Disk quota exceeded|0" "device|5|Input/output error|1"; do
   printf '%-16s %-5s %-11s %-8s %s\n' "checkpoint, $kind" "$rc" 5 "-" "$(grep -m1 '^error' "$out.txt")" >> "$dir/table.txt"
 done
 
+# A disk full from the start: results.h5's first megabyte (its metadata) finds no room. Room is
+# reserved before HDF5 opens the file: HDF5 itself never meets the full disk (where it did, its
+# failed close made its termination at MPI_Finalize crash: exit 139 instead of 4).
+out="$dir/f_results_start"
+run "$out" -x LD_PRELOAD="$shim" -x MPMXDEM_FAIL_PATH=results.h5 -x MPMXDEM_FAIL_AFTER=50000
+[ $rc -eq 4 ] || fail "results.h5 at the start: exit $rc, not 4: $(grep -v '^\[' "$out.txt" | tail -8)"
+grep -qF "no room for the next 1048576 bytes of '$out/results.h5': No space left on device" "$out.txt" ||
+  fail "results.h5 at the start: $(grep -i error "$out.txt")"
+[ "$(grep -c 'exited on signal\|Segmentation\|MPI_ABORT' "$out.txt")" -eq 0 ] ||
+  fail "results.h5 at the start: a rank crashed"
+printf '%-16s %-5s %-11s %-8s %s\n' "results.h5 start" "$rc" "none yet" "-" "$(grep -m1 '^error' "$out.txt")" >> "$dir/table.txt"
+
 # A real full disk: a 2 MB tmpfs that the run fills itself (whichever write meets the end).
 mnt="$dir/tmpfs"
 mkdir -p "$mnt"
@@ -107,6 +119,17 @@ if mount -t tmpfs -o size=2m tmpfs "$mnt" 2> /dev/null; then
   "$h5diff" "$dir/straight/results.h5" "$dir/tmpfs_out/results.h5" > /dev/null ||
     fail "tmpfs: results.h5 after the restart differs from the straight run's"
   printf '%-16s %-5s %-11s %-8s %s\n' "tmpfs of 2 MB" "$rc" "$(basename "$cp" .h5 | sed 's/checkpoint_0*//')" "same" "$(grep -m1 '^error' "$dir/tmpfs.txt")" >> "$dir/table.txt"
+  # Full before results.h5: a 600 kB tmpfs holds the job copy, the lock and the log, not the
+  # first megabyte of results.h5.
+  mount -t tmpfs -o size=600k tmpfs "$mnt"
+  run "$mnt/out"
+  cp "$mnt/out.txt" "$dir/tmpfs_small.txt"
+  umount "$mnt"
+  [ $rc -eq 4 ] || fail "tmpfs of 600 kB: exit $rc, not 4: $(grep -v '^\[' "$dir/tmpfs_small.txt" | tail -8)"
+  grep -q "No space left on device" "$dir/tmpfs_small.txt" || fail "tmpfs of 600 kB: $(grep -i error "$dir/tmpfs_small.txt")"
+  [ "$(grep -c 'exited on signal\|Segmentation\|MPI_ABORT' "$dir/tmpfs_small.txt")" -eq 0 ] ||
+    fail "tmpfs of 600 kB: a rank crashed"
+  printf '%-16s %-5s %-11s %-8s %s\n' "tmpfs of 600 kB" "$rc" "none yet" "-" "$(grep -m1 '^error' "$dir/tmpfs_small.txt")" >> "$dir/table.txt"
 else
   echo "note: mount -t tmpfs is not permitted here: the real full disk was not tried (the shim's cases were)"
 fi
