@@ -14,6 +14,7 @@ is (tools/bearing_capacity.py), the wall time.
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_associated --family associated
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_dem --family dem --np 2
     /usr/bin/python3 tools/footing_family.py --table docs/data/footing_frictional/summary.csv
+    /usr/bin/python3 tools/footing_family.py --out docs/data/footing_associated --family associated --windows
 
 The frictional family takes about 40 min on one core (most of it the 3.125 mm mesh); the RVE
 family hours (docs/validation/footing.md gives each run's time).
@@ -189,6 +190,33 @@ def run_one(out, family, name, exe, mpiexec, np_):
     return dict(name=name, **reading(d, o, wall, WINDOWS.get(family, WINDOW)))
 
 
+# The associated family's load over narrower windows of s/B: where in the reading window the
+# meshes agree (OUT/windows.csv, `--windows OUT`, `--windows-table OUT/windows.csv`).
+SUB_WINDOWS = [(0.01, 0.02), (0.02, 0.03), (0.03, 0.04), (0.04, 0.05), (0.05, 0.06)]
+
+
+def windows(out, family):
+    """OUT/windows.csv: every run's mean bearing pressure [MPa] over each of SUB_WINDOWS."""
+    import footing_curves  # pandas
+    names = [n for n in FAMILIES[family] if os.path.exists(os.path.join(out, n, "reactions.csv"))]
+    with open(os.path.join(out, "windows.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["name"] + ["q_%g_%g_MPa" % lh for lh in SUB_WINDOWS])
+        for n in names:
+            sb, q = footing_curves.curve(os.path.join(out, n))
+            w.writerow([n] + ["%.3f" % (mean_between(sb, q, lo, hi) / 1e6) if sb.max() >= hi - 1e-3 else ""
+                              for lo, hi in SUB_WINDOWS])
+
+
+def windows_table(path):
+    rows = list(csv.DictReader(open(path)))
+    cols = [c for c in rows[0] if c != "name"]
+    print("| run | " + " | ".join("q over s/B %s-%s [MPa]" % tuple(c.split("_")[1:3]) for c in cols) + " |")
+    print("|---|" + "---|" * len(cols))
+    for r in rows:
+        print("| %s | %s |" % (r["name"], " | ".join(r[c] or "-" for c in cols)))
+
+
 def table(summary):
     def f(x, digits=2):
         return "%.*f" % (digits, float(x)) if x else "-"
@@ -215,9 +243,20 @@ def main():
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "mpmxdem"))
     ap.add_argument("--mpiexec", default="mpiexec")
     ap.add_argument("--table", metavar="SUMMARY_CSV")
+    ap.add_argument("--windows", action="store_true",
+                    help="write OUT/windows.csv: each run's load over narrower windows of s/B")
+    ap.add_argument("--windows-table", metavar="WINDOWS_CSV")
     a = ap.parse_args()
     if a.table:
         table(a.table)
+        return
+    if a.windows_table:
+        windows_table(a.windows_table)
+        return
+    if a.windows:
+        if not a.out:
+            ap.error("--windows needs --out")
+        windows(a.out, a.family)
         return
     if not a.out:
         ap.error("--out or --table")

@@ -5,7 +5,7 @@ the MPM's own error. The family's settings (tools/footing_family.py ASSOCIATED: 
 scaling 1e3, to s/B = 0.06), on 400 x 200 mm with 25 mm cells (the footing two cells wide, 512
 points). Checks that the limit load (the mean bearing pressure over s/B in [0.02, 0.06]) is
 Prandtl's 3.21 MPa within 10 %: this coarsest mesh of docs/validation/footing.md gives 3.01 MPa
-(-6.4 %, the same as on the 800 x 400 mm layer; finer meshes come nearer). The same run without
+(-6.4 %, the same as on the 800 x 400 mm layer, where 12.5 and 6.25 mm cells give +0.6 and +6.2 %). The same run without
 dilatancy (psi = 0) gives 2.59 MPa (-19 %), and with a cone not matched to plane strain for psi = phi
 (eta = sin phi, the cone of psi = 0 with an associated flow) 4.81 MPa (+50 %): both fail.
 
