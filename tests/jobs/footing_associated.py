@@ -11,46 +11,24 @@ dilatancy (psi = 0) gives 2.59 MPa (-19 %), and with a cone not matched to plane
 
     footing_associated.py MPIEXEC EXE OUTDIR
 """
-import csv
-import os
-import re
-import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-import bearing_capacity  # noqa: E402
-import footing_family  # noqa: E402
-import footing_make_job  # noqa: E402
+import footing_run  # also puts tools/ on the path
+import bearing_capacity  # noqa: E402 (tools/, put on the path by footing_run)
+import footing_family  # noqa: E402 (tools/, put on the path by footing_run)
+import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
 
 TOLERANCE = 0.10
 
 
 def main():
     mpiexec, exe, out = sys.argv[1:4]
-    os.makedirs(out, exist_ok=True)
     p = dict(footing_make_job.DEFAULTS, every=20, width=0.4, depth=0.2, cell=0.025, above=2)
     p.update(footing_family.ASSOCIATED)
     phi = p["friction_angle"]
     assert p["dilatancy_angle"] == phi
-    job = os.path.join(out, "footing.toml")
-    with open(job, "w") as f:
-        f.write(footing_make_job.job_text(**p))
-    run = os.path.join(out, "run")
-    subprocess.run([mpiexec, "-n", "2", exe, "run", job, "--out", run, "--force"], check=True)
-    with open(os.path.join(run, "reactions.csv")) as f:
-        rows = list(csv.DictReader(f))
-    footing = [c[:-len("_rz_N")] for c in rows[0] if re.fullmatch(r"footing(_\d+)?_rz_N", c)]
-    half, thick = p["half_width"], p["cell"]
-    lo, hi = footing_family.WINDOWS["associated"]
-    sb, q = [], []
-    for r in rows:
-        sb.append(-float(r["footing_uz_m"]) / (2 * half))
-        q.append(-sum(float(r[n + "_rz_N"]) for n in footing) / (half * thick))
-    if max(sb) < hi - 1e-3:
-        sys.exit("the footing did not reach s/B = %g (%.3f)" % (hi, max(sb)))
-    window = [qi for si, qi in zip(sb, q) if lo <= si <= hi + 1e-9]
-    q_lim = sum(window) / len(window)
+    sb, q, _ = footing_run.run_curve(mpiexec, exe, out, p)
+    q_lim = footing_run.mean_over(sb, q, *footing_family.WINDOWS["associated"])
     prandtl = p["pressure"] * bearing_capacity.n_q(phi)
     print("associated limit load %.4g MPa against Prandtl's %.4g MPa: %+.1f %% (tolerance %g %%)"
           % (q_lim / 1e6, prandtl / 1e6, 100 * (q_lim / prandtl - 1), 100 * TOLERANCE))

@@ -13,45 +13,23 @@ checks equilibrium on one plane). Checks, against theory no one here wrote, that
 
     footing_limit_load.py MPIEXEC EXE OUTDIR
 """
-import csv
-import os
-import re
-import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-import bearing_capacity  # noqa: E402
-import footing_make_job  # noqa: E402
+import footing_run  # also puts tools/ on the path
+import bearing_capacity  # noqa: E402 (tools/, put on the path by footing_run)
+import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
 
 PHI = 40.0
 
 
 def main():
     mpiexec, exe, out = sys.argv[1:4]
-    os.makedirs(out, exist_ok=True)
     p = dict(footing_make_job.DEFAULTS, settlement=0.02, material="frictional",
              friction_angle=PHI, every=20)
-    job = os.path.join(out, "footing.toml")
-    with open(job, "w") as f:
-        f.write(footing_make_job.job_text(**p))
-    run = os.path.join(out, "run")
-    subprocess.run([mpiexec, "-n", "2", exe, "run", job, "--out", run, "--force"], check=True)
-    with open(os.path.join(run, "reactions.csv")) as f:
-        rows = list(csv.DictReader(f))
-    cols = rows[0].keys()
-    footing = [c[:-len("_rz_N")] for c in cols if re.fullmatch(r"footing(_\d+)?_rz_N", c)]
+    sb, q, footing = footing_run.run_curve(mpiexec, exe, out, p)
     if len(footing) < 3:
         sys.exit("expected a staircase of 3 boxes to s/B = 0.4, got %s" % footing)
-    half, thick = p["half_width"], p["cell"]
-    sb, q = [], []
-    for r in rows:
-        sb.append(-float(r["footing_uz_m"]) / (2 * half))
-        q.append(-sum(float(r[n + "_rz_N"]) for n in footing) / (half * thick))
-    window = [qi for si, qi in zip(sb, q) if 0.3 <= si <= 0.4 + 1e-9]
-    if not window or max(sb) < 0.399:
-        sys.exit("the footing did not reach s/B = 0.4 (%.3f)" % max(sb))
-    q_lim = sum(window) / len(window)
+    q_lim = footing_run.mean_over(sb, q, 0.3, 0.4)
     q0 = p["pressure"]
     lo = q0 * bearing_capacity.n_q(bearing_capacity.davis_angle(PHI, 0.0))
     hi = q0 * bearing_capacity.n_q(PHI)
