@@ -1,9 +1,9 @@
 // farm::ElasticMicro: a cheap deterministic continuum micro model (hypoelastic, Jaumann rate,
 // Hughes-Winget objective update) that exercises the farm's plumbing without DEM; with a friction
 // angle it is elastic-perfectly plastic (cohesionless Drucker-Prager, dilatant or not,
-// mpm/drucker_prager.hpp): the
-// frictional continuum that the DEM RVEs are compared with on the same mesh. Not a model of sand
-// to replace the RVEs: a reference, and a tool for protocol, restart and balancing tests.
+// mpm/drucker_prager.hpp): the frictional continuum that the DEM RVEs are compared with on the
+// same mesh. Not a model of sand to replace the RVEs: a reference, and a tool for protocol,
+// restart and balancing tests.
 #pragma once
 
 #include "common/tensor.hpp"

@@ -35,8 +35,7 @@ constexpr SeriesSpec kSeriesTable[] = {
     {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
     {"rve/guards", true, 1, 'r', "",
      "guard bits (dem::RveGuard, docs/design/dem.md; bit 16 farm::kGuardSpared: the DEM was not "
-     "stepped, "
-     "docs/design/sparing.md)"},
+     "stepped, docs/design/sparing.md)"},
     {"points/x", false, 3, 'p', "m",
      "position of every material point (order of /points/id) [row, point, xyz]"},
     {"points/stress", false, 9, 'p', "Pa",
