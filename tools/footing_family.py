@@ -66,6 +66,7 @@ FAMILIES = {
         "phi40_psi40_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025),
         "phi40_psi40_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
         "phi40_psi40_w0.4_h6.25": dict(width=0.4, depth=0.2, cell=0.00625),
+        "phi40_psi40_w0.4_h3.125": dict(width=0.4, depth=0.2, cell=0.003125, every=100),
         # Prandtl's mechanism at 40 deg, associated, reaches about 0.4 m beyond the footing's edge:
         # the 400 mm layer's far side cuts it; the 800 mm one holds it
         "phi40_psi40_w0.8_h25": dict(width=0.8, depth=0.4, cell=0.025),
