@@ -11,29 +11,18 @@ thickness (the sides are held in x). With the job's Cundall damping (0.2) the im
 
     footing_equilibrium.py MPIEXEC EXE OUTDIR
 """
-import csv
-import os
-import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-import footing_make_job  # noqa: E402
+import footing_run  # also puts tools/ on the path
+import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
 
 TOL = 5e-3
 
 
 def main():
     mpiexec, exe, out = sys.argv[1:4]
-    os.makedirs(out, exist_ok=True)
     params = dict(footing_make_job.DEFAULTS, cell=0.025, settlement=0.003, damping=0.0)
-    job = os.path.join(out, "footing.toml")
-    with open(job, "w") as f:
-        f.write(footing_make_job.job_text(**params))
-    run = os.path.join(out, "run")
-    subprocess.run([mpiexec, "-n", "2", exe, "run", job, "--out", run, "--force"], check=True)
-    with open(os.path.join(run, "reactions.csv")) as f:
-        rows = list(csv.DictReader(f))
+    rows = footing_run.run_rows(mpiexec, exe, out, params)
     names = ("base", "symmetry", "far", "footing")
     surcharge = params["pressure"] * params["width"] * params["cell"]  # on the material, -z
     worst = 0.0

@@ -1,7 +1,7 @@
-"""What the footing tests share (tests/jobs/footing_limit_load.py, footing_associated.py): write a
-footing job with tools/footing_make_job.py, run it on 2 ranks, and read its load-settlement curve
-from reactions.csv with the standard library (the staircase's boxes summed, as
-tools/footing_curves.py does with pandas)."""
+"""What the footing tests share (tests/jobs/footing_limit_load.py, footing_associated.py,
+footing_equilibrium.py): write a footing job with tools/footing_make_job.py, run it on 2 ranks,
+and read its reactions.csv and load-settlement curve with the standard library (the staircase's
+boxes summed, as tools/footing_curves.py does with pandas)."""
 import csv
 import os
 import re
@@ -13,9 +13,9 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 import footing_make_job  # noqa: E402
 
 
-def run_curve(mpiexec, exe, out, params):
-    """Runs the job of `params` (footing_make_job.job_text's arguments) into OUT/run; returns
-    (s / B, q [Pa], the footing's box names)."""
+def run_rows(mpiexec, exe, out, params):
+    """Runs the job of `params` (footing_make_job.job_text's arguments) into OUT/run on 2 ranks;
+    returns the rows of its reactions.csv (dicts of strings)."""
     os.makedirs(out, exist_ok=True)
     job = os.path.join(out, "footing.toml")
     with open(job, "w") as f:
@@ -23,7 +23,12 @@ def run_curve(mpiexec, exe, out, params):
     run = os.path.join(out, "run")
     subprocess.run([mpiexec, "-n", "2", exe, "run", job, "--out", run, "--force"], check=True)
     with open(os.path.join(run, "reactions.csv")) as f:
-        rows = list(csv.DictReader(f))
+        return list(csv.DictReader(f))
+
+
+def run_curve(mpiexec, exe, out, params):
+    """run_rows, read as (s / B, q [Pa], the footing's box names)."""
+    rows = run_rows(mpiexec, exe, out, params)
     boxes = [c[:-len("_rz_N")] for c in rows[0] if re.fullmatch(r"footing(_\d+)?_rz_N", c)]
     half, thick = params["half_width"], params["cell"]
     sb = [-float(r["footing_uz_m"]) / (2 * half) for r in rows]
