@@ -12,6 +12,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/state_io.hpp"
@@ -83,13 +84,13 @@ static_assert(sizeof(MicroMeasures) == measure_doubles() * sizeof(double),
               "every member of MicroMeasures needs its row in kMeasureFields");
 
 /// The doubles of `m` that `f` names.
-inline std::span<double> values(MicroMeasures& m, const MeasureField& f) {
-  return {reinterpret_cast<double*>(reinterpret_cast<char*>(&m) + f.offset),
-          static_cast<std::size_t>(f.components)};
-}
 inline std::span<const double> values(const MicroMeasures& m, const MeasureField& f) {
   return {reinterpret_cast<const double*>(reinterpret_cast<const char*>(&m) + f.offset),
           static_cast<std::size_t>(f.components)};
+}
+inline std::span<double> values(MicroMeasures& m, const MeasureField& f) {
+  const std::span<const double> v = values(std::as_const(m), f);
+  return {const_cast<double*>(v.data()), v.size()};
 }
 
 /// One file of a grain-scale view: its name inside the view directory and its whole content.
