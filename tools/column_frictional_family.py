@@ -2,13 +2,14 @@
 """The a = 2 column as a Drucker-Prager continuum over friction angles and resolutions.
 
 Writes variants of jobs/column_collapse_a2_frictional.toml (friction angle, points per cell, cell
-size, mpm.free_density, the FLIP share of the transfer; the grid always 3 m x 1.5 m) under OUT, runs each on one rank (`mpiexec -n 1 build/mpmxdem
-run`), analyses it with tools/mpm_column_collapse.py and writes OUT/summary.csv (one row per run:
-phi_deg, ppc, cell_m, H_f/H0, runout of the farthest point and of the continuous deposit, kinetic
-energy at the end, wall time) and OUT/<name>_timeseries.csv, OUT/<name>_profiles.csv.
+size, mpm.free_density, the FLIP share of the transfer, the strain smoothing; the grid always
+3 m x 1.5 m) under OUT, runs each on one rank (`mpiexec -n 1 build/mpmxdem run`), analyses it
+with tools/mpm_column_collapse.py and writes OUT/summary.csv (one row per run: phi_deg, ppc,
+cell_m, H_f/H0, runout of the farthest point and of the continuous deposit, kinetic energy at the
+end, wall time) and OUT/<name>_timeseries.csv, OUT/<name>_profiles.csv.
 
 Usage: /usr/bin/python3 tools/column_frictional_family.py --out docs/data/column_collapse_frictional
-       [--only NAME ...]   (about 30 min on one core, 15 of them for the 0.0156 m meshes;
+       [--only NAME ...]   (about 60 min on one core, 45 of them for the 0.0156 m meshes;
                             --only reruns those and keeps the other rows of summary.csv)
        /usr/bin/python3 tools/column_frictional_family.py --table docs/data/column_collapse_frictional/summary.csv
                            (prints the Markdown table of docs/validation/column_collapse.md)
@@ -46,6 +47,15 @@ RUNS = {
     "phi60_ppc4_h0.0625": (60, 4, 0.0625, "point", ""),
     "phi60_ppc2_h0.0625_flip0.99": (60, 2, 0.0625, "point", "flip = 0.99"),
     "phi60_ppc2_h0.0625_pic": (60, 2, 0.0625, "point", "flip = 0.0"),
+    "phi40_ppc2_h0.0625_flip0.99": (40, 2, 0.0625, "point", "flip = 0.99"),
+    "phi40_ppc2_h0.03125_flip0.99": (40, 2, 0.03125, "point", "flip = 0.99"),
+    "phi40_ppc2_h0.015625_flip0.99": (40, 2, 0.015625, "point", "flip = 0.99"),
+    "phi60_ppc2_h0.03125_flip0.99": (60, 2, 0.03125, "point", "flip = 0.99"),
+    # the cell's volume-averaged velocity gradient for every point of it (mpm.strain_smoothing):
+    # no point of a cell dilates while its neighbours compact
+    "phi40_ppc2_h0.0625_smoothed": (40, 2, 0.0625, "point", 'strain_smoothing = "cell"'),
+    "phi40_ppc2_h0.03125_smoothed": (40, 2, 0.03125, "point", 'strain_smoothing = "cell"'),
+    "phi40_ppc2_h0.015625_smoothed": (40, 2, 0.015625, "point", 'strain_smoothing = "cell"'),
     "phi40_ppc2_h0.0625_grid": (40, 2, 0.0625, "grid", ""),
     "phi40_ppc2_h0.03125_grid": (40, 2, 0.03125, "grid", ""),
     "phi40_ppc2_h0.015625_grid": (40, 2, 0.015625, "grid", ""),
@@ -74,17 +84,18 @@ def table(summary):
     and centre of mass (column_grain_scale.deposit_measures) from the profiles beside it."""
     folder = os.path.dirname(summary)
     rows = {r["name"]: r for r in csv.DictReader(open(summary))}
-    out = ["| phi | points per cell | cell (L0 / n) | stress-free points dilate | transfer | H_f/H0 | "
+    out = ["| phi | points per cell | cell (L0 / n) | stress-free points dilate | transfer | strain | H_f/H0 | "
            "runout, farthest point | runout, continuous deposit | runout to h < 0.05 H0 | centre of mass x / L0 |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
     dilate = {"point": "freely", "grid": "up to the material around"}
     transfer = {"": "FLIP", "flip = 0.99": "FLIP 0.99", "flip = 0.0": "PIC"}
+    strain = {"": "per point", 'strain_smoothing = "cell"': "cell mean"}
     for name, (phi, ppc, h, fd, extra) in RUNS.items():
         if name not in rows:
             continue
         r = rows[name]
         head = (f"| {phi} deg | {'1' if ppc == 1 else f'{ppc} x {ppc}'} | L0/{round(0.5 / h)} | {dilate[fd]} | "
-                f"{transfer[extra]} |")
+                f"{transfer.get(extra, 'FLIP')} | {strain.get(extra, 'per point')} |")
         if r["exit"] != "0":
             out.append(f"{head} exit {r['exit']} | | | | |")
             continue
