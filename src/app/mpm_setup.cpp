@@ -108,6 +108,23 @@ MpmSetup mpm_setup(const Job& job) {
                     "does not apply with mpm.transfer = \"apic\" (APIC's point velocity is the "
                     "grid's, PIC, with the affine part carried by C_p): remove one of the two"));
   }
+  // The PIC share is set per step (flip < 1) or in time (pic_time > 0), not both; APIC has none.
+  const auto pic_time = job.entries().find("mpm.pic_time");
+  if (pic_time != job.entries().end() && !pic_time->second.defaulted &&
+      job.number("mpm.pic_time") > 0.0) {
+    if (cfg.transfer == mpm::Transfer::apic) {
+      throw common::InputError(
+          job.message("mpm.pic_time",
+                      "does not apply with mpm.transfer = \"apic\" (it relaxes the FLIP part "
+                      "of the FLIP/PIC blend towards PIC; APIC has no FLIP part)"));
+    }
+    if (flip != job.entries().end() && !flip->second.defaulted && job.number("mpm.flip") != 1.0) {
+      throw common::InputError(
+          job.message("mpm.pic_time",
+                      "with mpm.flip < 1: the PIC share is set either per step (mpm.flip) or "
+                      "in time (mpm.pic_time, with flip = 1), not both: remove one of the two"));
+    }
+  }
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
   cfg.damping_mode = job.text("mpm.damping_mode") == "component"
                          ? mpm::DampingMode::cundall_component

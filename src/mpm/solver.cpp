@@ -62,6 +62,17 @@ void SolverConfig::validate() const {
                              "\": plane strain needs the linear or uGIMP shape functions (the "
                              "B-spline spans 3 node planes, the one-cell-thick grid has 2)");
   }
+  if (pic_time > 0.0 && flip != 1.0) {
+    throw common::InputError("mpm.pic_time = " + short_str(pic_time) +
+                             " s and mpm.flip = " + short_str(flip) +
+                             ": the PIC share is set either per step (flip < 1) or in time "
+                             "(pic_time > 0, with flip = 1), not both");
+  }
+  if (pic_time > 0.0 && transfer == Transfer::apic) {
+    throw common::InputError("mpm.pic_time = " + short_str(pic_time) +
+                             " s with mpm.transfer = \"apic\": the relaxation blends FLIP with "
+                             "PIC; APIC has no FLIP part to relax");
+  }
   if ((regularisation_length > 0.0) != (regularisation_modulus > 0.0)) {
     throw common::InputError(
         "mpm.regularisation.length = " + num_str(regularisation_length) +
@@ -522,9 +533,11 @@ void Solver::update_points(double dt) {
   if (config_.transfer == Transfer::apic) {
     g2p_update_affine(config_.grid, cache_, fields_, threshold_, config_.move_points, dt, points_);
   } else {
-    // The PIC share is 1 - flip, the expression the app computed from the job before (same bits).
-    g2p_update(config_.grid, cache_, fields_, 1.0 - config_.flip, config_.move_points, dt, points_,
-               config_.grid_positions, config_.wall_impulse_on_points);
+    // The PIC share: 1 - flip (the expression the app computed from the job before, same bits),
+    // or the relaxation of pic_time over this step.
+    g2p_update(config_.grid, cache_, fields_, pic_share(config_.flip, config_.pic_time, dt),
+               config_.move_points, dt, points_, config_.grid_positions,
+               config_.wall_impulse_on_points);
   }
 }
 

@@ -40,6 +40,11 @@ struct SolverConfig {
   /// FLIP share of the velocity update in [0, 1] [-]: 1 = pure NFLIP (eq. 9, the paper), 0 = PIC.
   /// Unused with Transfer::apic.
   double flip = 1.0;
+  /// Relaxation time of the points' velocities towards the grid's [s]: each step takes the PIC
+  /// share 1 - exp(-dt / pic_time) (pic_share), so the sub-grid velocity noise decays at a rate
+  /// set in time, not per step, and a finer mesh (a shorter step) damps it no more; 0 = off (the
+  /// share is then 1 - flip). Needs flip = 1 and Transfer::flip.
+  double pic_time = 0.0;
   /// flip: the FLIP/PIC blend above (the paper's); apic: affine PIC (transfers.hpp), which keeps
   /// a homogeneous deformation with one point per cell (docs/design/mpm.md, "Transfers").
   Transfer transfer = Transfer::flip;
@@ -115,6 +120,12 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
     {{"flip", &SolverConfig::flip, common::Unit::Dimensionless, common::in_cc(0, 1),
       common::Source::job_default,
       "FLIP fraction of the PIC/FLIP velocity blend; 1 is the paper's NFLIP."},
+     {"pic_time", &SolverConfig::pic_time, common::Unit::Time, common::ge(0),
+      common::Source::job_default,
+      "Relaxation time of the points' velocities towards the grid's: each step blends in the PIC "
+      "share 1 - exp(-dt / pic_time), a filter of the transfer's noise set in time, the same on "
+      "any mesh (mpm.flip per step is not); needs flip = 1; 0 = off (docs/design/mpm.md, "
+      "Transfers)."},
      {"damping", &SolverConfig::damping, common::Unit::Dimensionless, common::in_co(0, 1),
       common::Source::job_default, "Cundall damping D of the nodal accelerations (eq. 8)."},
      {"dt", &SolverConfig::dt, common::Unit::Time, common::ge(0), common::Source::job_optional,

@@ -222,6 +222,10 @@ Transfer transfer_from_string(std::string_view name) {
 
 std::string_view to_string(Transfer t) { return t == Transfer::apic ? "apic" : "flip"; }
 
+double pic_share(double flip, double pic_time, double dt) {
+  return pic_time > 0.0 ? -std::expm1(-dt / pic_time) : 1.0 - flip;
+}
+
 void p2g_mass_momentum(const Grid& grid, const StencilCache& cache, const PointBins& bins,
                        const MaterialPoints& points, const common::Vec3& gravity,
                        GridFields& fields, bool affine) {

@@ -25,6 +25,11 @@ enum class Transfer {
   apic,
 };
 [[nodiscard]] Transfer transfer_from_string(std::string_view name);  ///< "flip" | "apic"
+
+/// PIC share of a FLIP/PIC step of length dt [s]: 1 - exp(-dt / pic_time) when pic_time > 0 (a
+/// relaxation in time: n steps of dt leave exp(-n dt / pic_time) of the FLIP part, whatever dt),
+/// else 1 - flip (a share per step).
+[[nodiscard]] double pic_share(double flip, double pic_time, double dt);
 [[nodiscard]] std::string_view to_string(Transfer t);
 
 /// Per-step cache of each point's 1D weights (positions do not change between P2G and G2P).

@@ -263,6 +263,19 @@ TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
   cfg.flip = -0.5;
   expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
                  {"mpm.flip = -0.5", "[0, 1]"});
+  // The PIC share per step (flip) and in time (pic_time) are one or the other; APIC has none.
+  cfg = small_config(mpm::ShapeKind::linear);
+  cfg.pic_time = 1e-3;
+  cfg.flip = 0.95;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.pic_time = 0.001 s", "mpm.flip = 0.95", "not both"});
+  cfg.flip = 1.0;
+  cfg.transfer = mpm::Transfer::apic;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.pic_time", "apic"});
+  cfg = small_config(mpm::ShapeKind::linear);
+  cfg.pic_time = -1.0;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"mpm.pic_time = -1"});
   cfg = small_config(mpm::ShapeKind::linear);
   mpm::MaterialPoints pts = small_block(cfg.grid);
   pts.material[0] = 1;

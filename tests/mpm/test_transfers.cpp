@@ -246,3 +246,38 @@ TEST(Transfers, GridPositionsKeepAPointAboveAHeldBase) {
     }
   }
 }
+
+// mpm.pic_time: the FLIP part of a point's velocity relaxes towards the grid's as exp(-t /
+// pic_time), the same over one step of dt as over four of dt / 4; a share per step (mpm.flip)
+// damps four short steps more than one long one (which is why it is not mesh-independent).
+TEST(Transfers, PicShareRelaxesInTimeWhateverTheStep) {
+  EXPECT_EQ(mpm::pic_share(0.95, 0.0, 1e-3), 1.0 - 0.95);
+  EXPECT_EQ(mpm::pic_share(1.0, 0.0, 1e-3), 0.0);
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(1.0), common::Vec3i(1, 1, 2)};
+  auto relax = [&](double share_of_step(double), double dt, int steps) {
+    mpm::MaterialPoints pts;
+    mpm::fill_box(pts, g, Vec3::Zero(), Vec3::Ones(), 1, 1000.0, 0);
+    pts.x[0] = Vec3(0.5, 0.5, 0.5);
+    pts.v[0] = Vec3(1.0, 0.0, -5.0);
+    mpm::StencilCache cache;
+    mpm::GridFields f;
+    f.resize(g);
+    EXPECT_EQ(mpm::compute_stencils(mpm::ShapeKind::linear, g, pts, cache), -1);
+    for (auto& v : f.velocity) v = Vec3::Zero();  // the grid at rest: v_pic = 0
+    for (auto& a : f.acceleration) a = Vec3::Zero();
+    for (int k = 0; k < steps; ++k) {
+      mpm::g2p_update(g, cache, f, share_of_step(dt), true, dt, pts, true);
+    }
+    return pts.v[0];
+  };
+  constexpr double kTau = 0.05;
+  auto in_time = [](double dt) { return mpm::pic_share(1.0, kTau, dt); };
+  auto per_step = [](double dt) { return mpm::pic_share(0.9, 0.0, dt); };
+  const Vec3 long_steps = relax(in_time, 0.02, 5);
+  const Vec3 short_steps = relax(in_time, 0.005, 20);
+  EXPECT_NEAR(long_steps[2], -5.0 * std::exp(-0.1 / kTau), 1e-12);
+  EXPECT_NEAR(short_steps[2], long_steps[2], 1e-12);
+  EXPECT_NEAR(short_steps[0], long_steps[0], 1e-13);
+  // The share per step: 0.9^5 against 0.9^20 of the FLIP part left after the same time.
+  EXPECT_GT(std::abs(relax(per_step, 0.005, 20)[2] - relax(per_step, 0.02, 5)[2]), 1.0);
+}
