@@ -51,6 +51,11 @@ RUNS = {
     "phi40_ppc2_h0.03125_flip0.99": (40, 2, 0.03125, "point", "flip = 0.99"),
     "phi40_ppc2_h0.015625_flip0.99": (40, 2, 0.015625, "point", "flip = 0.99"),
     "phi60_ppc2_h0.03125_flip0.99": (60, 2, 0.03125, "point", "flip = 0.99"),
+    # the PIC share in time (mpm.pic_time = 0.02 t*, t* = sqrt(H0 / g) = 0.319 s): the same filter
+    # of the transfer's noise on every mesh
+    "phi40_ppc2_h0.0625_pic0.02": (40, 2, 0.0625, "point", 'pic_time = "6.4 ms"'),
+    "phi40_ppc2_h0.03125_pic0.02": (40, 2, 0.03125, "point", 'pic_time = "6.4 ms"'),
+    "phi40_ppc2_h0.015625_pic0.02": (40, 2, 0.015625, "point", 'pic_time = "6.4 ms"'),
     # the cell's volume-averaged velocity gradient for every point of it (mpm.strain_smoothing):
     # no point of a cell dilates while its neighbours compact
     "phi40_ppc2_h0.0625_smoothed": (40, 2, 0.0625, "point", 'strain_smoothing = "cell"'),
@@ -88,7 +93,8 @@ def table(summary):
            "runout, farthest point | runout, continuous deposit | runout to h < 0.05 H0 | centre of mass x / L0 |",
            "|---|---|---|---|---|---|---|---|---|---|---|"]
     dilate = {"point": "freely", "grid": "up to the material around"}
-    transfer = {"": "FLIP", "flip = 0.99": "FLIP 0.99", "flip = 0.0": "PIC"}
+    transfer = {"": "FLIP", "flip = 0.99": "FLIP 0.99", "flip = 0.0": "PIC",
+                'pic_time = "6.4 ms"': "PIC in 0.02 t*"}
     strain = {"": "per point", 'strain_smoothing = "cell"': "cell mean"}
     for name, (phi, ppc, h, fd, extra) in RUNS.items():
         if name not in rows:
