@@ -6,8 +6,11 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
   --analyse RUN_DIR STEM   runs tools/mpm_column_collapse.py on RUN_DIR and keeps its CSVs as
                            DATA/STEM_{timeseries,profiles,summary}.csv; writes
                            DATA/STEM_mobilised.csv (the RVEs' mobilised friction angle and void
-                           ratio per output row, from RUN_DIR/results.h5)
+                           ratio per output row, from RUN_DIR/results.h5) and DATA/STEM_core.csv
+                           (the back-lower quarter's deformation and density per output row)
   --mobilised-table STEM   prints the page's table of DATA/STEM_mobilised.csv
+  --core-table STEM...     prints the page's table of DATA/STEM_core.csv (the points that start in
+                           the column's back-lower quarter: do they stay at rest, and dense?)
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
   --damping-table          prints the page's table of the a = 1 columns against their damping
   --stiffness-table        prints the page's table of the columns against the grains' contact
@@ -54,9 +57,62 @@ def analyse(run, stem, data):
         for kind in ("timeseries", "profiles", "summary"):
             shutil.copy(os.path.join(tmp, f"{tags[0]}_{kind}.csv"),
                         os.path.join(data, f"{stem}_{kind}.csv"))
-    H0 = float(read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]["H0_m"])
+    summary = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
+    H0, L0 = float(summary["H0_m"]), float(summary["L0_m"])
     mobilised_series(os.path.join(run, "results.h5"), H0, os.path.join(data, f"{stem}_mobilised.csv"))
+    core_series(os.path.join(run, "results.h5"), L0, H0, os.path.join(data, f"{stem}_core.csv"))
     print(f"wrote {data}/{stem}_*.csv")
+
+
+def core_series(results, L0, H0, out):
+    """Per output row of a run's results.h5, the points that start in the column's back-lower
+    quarter (x < L0/2, z < H0/2: behind the plane from the toe at 45 + phi/2 to the horizontal for
+    any phi above 20 deg, a region the grains' column keeps at rest): their volume ratio J = V/V0
+    and in-plane distortion ln(l1/l2) (l1 >= l2 the principal stretches of F in the x-z plane),
+    median and 90th percentile, their RVEs' void ratio (median, 90th percentile), how many have
+    moved by more than 0.1 L0 and how many RVEs have contacts, into the CSV `out`."""
+    import h5py
+    import numpy as np
+    with h5py.File(results, "r") as f:
+        t = f["time"][:]
+        x = f["points/x"][:]
+        F = f["points/F"][:]
+        V = f["points/volume"][:]
+        e = f["points/void_ratio"][:]
+        z = f["points/z"][:]
+    core = (x[0][:, 0] < L0 / 2) & (x[0][:, 2] < H0 / 2)
+    tstar = (H0 / 9.81) ** 0.5
+    with open(out, "w", newline="") as fo:
+        w = csv.writer(fo)
+        w.writerow(["t_over_tstar", "points", "J_median", "J_p90", "distortion_median", "distortion_p90",
+                    "void_ratio_median", "void_ratio_p90", "moved", "with_contacts"])
+        for i in range(len(t)):
+            Fi = F[i][core].reshape(-1, 3, 3)[:, [0, 2]][:, :, [0, 2]]
+            lam = np.linalg.eigvalsh(np.einsum("kji,kjl->kil", Fi, Fi))  # squared stretches, ascending
+            dist = 0.5 * np.log(lam[:, 1] / lam[:, 0])
+            J = V[i][core] / V[0][core]
+            moved = np.linalg.norm(x[i][core] - x[0][core], axis=1) > 0.1 * L0
+            w.writerow([f"{t[i] / tstar:.3f}", int(core.sum()), f"{np.median(J):.4f}",
+                        f"{np.percentile(J, 90):.4f}", f"{np.median(dist):.4f}", f"{np.percentile(dist, 90):.4f}",
+                        f"{np.median(e[i][core]):.4f}", f"{np.percentile(e[i][core], 90):.4f}",
+                        int(moved.sum()), int((z[i][core] > 0).sum())])
+
+
+def core_table(data, stems):
+    """Markdown table of STEM_core.csv for each stem (label, stem) at 1, 2, 3, 5 and 8 t*."""
+    lines = ["| run | t / t* | points moved > 0.1 L0 | volume ratio J, median / 90th percentile | "
+             "distortion ln(l1/l2), median / 90th percentile | void ratio, median / 90th percentile | "
+             "RVEs with contacts |", "|---|---|---|---|---|---|---|"]
+    for label, stem in stems:
+        rows = read_csv(os.path.join(data, f"{stem}_core.csv"))
+        for tt in (1, 2, 3, 5, 8):
+            r = min(rows, key=lambda r: abs(float(r["t_over_tstar"]) - tt))
+            lines.append(f"| {label} | {float(r['t_over_tstar']):.1f} | {r['moved']} of {r['points']} | "
+                         f"{float(r['J_median']):.3f} / {float(r['J_p90']):.3f} | "
+                         f"{float(r['distortion_median']):.3f} / {float(r['distortion_p90']):.3f} | "
+                         f"{float(r['void_ratio_median']):.2f} / {float(r['void_ratio_p90']):.2f} | "
+                         f"{r['with_contacts']} of {r['points']} |")
+    return "\n".join(lines)
 
 
 def mobilised_series(results, H0, out):
@@ -405,6 +461,12 @@ def size_figure(data, yade, fig_dir):
     save(fig, fig_dir, "column_size_a2.png")
 
 
+# --core-table's row labels
+CORE_LABELS = {"a2_2x2_E3MPa_wallpts": "2 x 2, FLIP", "a2_2x2_E3MPa_wallpts_flip0.99": "2 x 2, FLIP 0.99",
+               "a2_2x2_E3MPa_wallpts_flip0.98": "2 x 2, FLIP 0.98", "a2_2x2_E3MPa_wallpts_flip0.995": "2 x 2, FLIP 0.995",
+               "a2_1ppc_E3MPa_wallpts_flip0.99": "1 point per cell, FLIP 0.99"}
+
+
 # The deposit in continuum terms: (a, label, E, "yade" tag or "mpm" stem)
 DEPOSIT = [(2, "pure DEM (YADE), L0 = 14.4 d50", "300 MPa", "yade", "dense_a2_n3000_l0.05"),
            (2, "pure DEM (YADE), L0 = 14.4 d50", "3 MPa", "yade", "dense_a2_l14.4_E3e6"),
@@ -416,6 +478,8 @@ DEPOSIT = [(2, "pure DEM (YADE), L0 = 14.4 d50", "300 MPa", "yade", "dense_a2_n3
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "3 MPa", "mpm", "a2_2x2_E3MPa"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points", "3 MPa", "mpm",
             "a2_2x2_E3MPa_wallpts"),
+           (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points, FLIP 0.99", "3 MPa",
+            "mpm", "a2_2x2_E3MPa_wallpts_flip0.99"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "300 MPa", "mpm", "a2_2x2")]
 
 
@@ -475,6 +539,7 @@ def main():
     ap.add_argument("--size-figure", action="store_true")
     ap.add_argument("--deposit-table", action="store_true")
     ap.add_argument("--mobilised-table", metavar="STEM")
+    ap.add_argument("--core-table", nargs="+", metavar="STEM")
     args = ap.parse_args()
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
@@ -492,8 +557,10 @@ def main():
         print(deposit_table(args.data, args.yade))
     if args.mobilised_table:
         print(mobilised_table(args.data, args.mobilised_table))
-    if not (args.analyse or args.table or args.damping_table or args.stiffness_table
-            or args.figure or args.size_figure or args.deposit_table or args.mobilised_table):
+    if args.core_table:
+        print(core_table(args.data, [(CORE_LABELS.get(s, s), s) for s in args.core_table]))
+    if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
+            or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 
