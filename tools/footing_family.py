@@ -78,6 +78,23 @@ FAMILIES = {
         "phi40_psi0_w0.4_h25": dict(width=0.4, depth=0.2, cell=0.025, dilatancy_angle=0.0),
         "phi40_psi40_w0.4_h12.5_unsmoothed": dict(width=0.4, depth=0.2, cell=0.0125,
                                                   setting=("strain_smoothing", '"none"')),
+        "phi40_psi40_w0.4_h6.25_unsmoothed": dict(width=0.4, depth=0.2, cell=0.00625,
+                                                  setting=("strain_smoothing", '"none"')),
+        "phi40_psi40_w0.4_h3.125_unsmoothed": dict(width=0.4, depth=0.2, cell=0.003125, every=100,
+                                                   setting=("strain_smoothing", '"none"')),
+        # the footing's node columns end at the surface: the heave beside its edge is not dragged
+        "phi40_psi40_w0.4_h25_free": dict(width=0.4, depth=0.2, cell=0.025, footing_side="free"),
+        "phi40_psi40_w0.4_h12.5_free": dict(width=0.4, depth=0.2, cell=0.0125, footing_side="free"),
+        "phi40_psi40_w0.4_h6.25_free": dict(width=0.4, depth=0.2, cell=0.00625, footing_side="free"),
+        "phi40_psi40_w0.4_h3.125_free": dict(width=0.4, depth=0.2, cell=0.003125, every=100,
+                                             footing_side="free"),
+        # a smooth footing (for a weightless layer Prandtl's N_q is that of the rough one)
+        "phi40_psi40_w0.4_h25_smooth": dict(width=0.4, depth=0.2, cell=0.025, footing_side="free",
+                                            footing_base="smooth"),
+        "phi40_psi40_w0.4_h12.5_smooth": dict(width=0.4, depth=0.2, cell=0.0125, footing_side="free",
+                                              footing_base="smooth"),
+        "phi40_psi40_w0.4_h6.25_smooth": dict(width=0.4, depth=0.2, cell=0.00625, footing_side="free",
+                                              footing_base="smooth"),
     },
     "dem": {
         "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),

@@ -19,6 +19,10 @@ the top row of points under the footing never leaves the cells whose upper plane
 (--self-test checks it), and the settlement may be many cells. The footing's reaction is the sum
 over the boxes (tools/footing_curves.py).
 
+--footing-side free ends the footing's held node columns at the surface (by default they reach
+the grid's top, and drag the material that heaves beside the footing's edge); --footing-base
+smooth imposes only the footing's vertical velocity (no x = 0 on its nodes).
+
 --material frictional puts the Drucker-Prager continuum of [mpm.elastic] (plane-strain
 Mohr-Coulomb, no dilatancy) in place of the RVEs, at the same isotropic initial stress: the
 footing whose limit load bearing-capacity theory gives (tools/bearing_capacity.py).
@@ -31,13 +35,15 @@ footing whose limit load bearing-capacity theory gives (tools/bearing_capacity.p
 """
 import argparse
 import math
+import re
 import sys
 
 from biaxial_make_jobs import grip_failures, staircase
 
 DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=0.005,
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
-                friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0)
+                friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0,
+                footing_side="held", footing_base="rough")
 LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
 
 
@@ -63,6 +69,18 @@ def self_test():
     t_end = 0.03 / 0.001
     bad = footing_grip_failures(0.1, 0.0125, 0.001, t_end, [(0, 0.1, 0.0)])
     assert bad and abs(bad[0][1] * 0.001 - 0.75 * 0.0125) < 1e-4, bad[:2]
+    # The footing's sides and base: "held" boxes reach the grid's top, "free" ones hold their own
+    # plane only (together every plane from the lowest engaged one up to the surface, none above);
+    # a smooth base imposes no x velocity.
+    held = footing_velocity_tables(-0.0125, 0.125, 0.1, 0.0125, 0.025, 0.001, 30.0)
+    free = footing_velocity_tables(-0.0125, 0.125, 0.1, 0.0125, 0.025, 0.001, 30.0, "free", "smooth")
+    tops = [float(m) for m in re.findall(r"^max = \[[^,]+, [^,]+, ([^\]]+)\]$", held, re.M)]
+    assert tops and all(abs(t - 0.125) < 1e-12 for t in tops), tops
+    lo = [float(m) for m in re.findall(r"^min = \[[^,]+, [^,]+, ([^\]]+)\]$", free, re.M)]
+    hi = [float(m) for m in re.findall(r"^max = \[[^,]+, [^,]+, ([^\]]+)\]$", free, re.M)]
+    assert lo == hi and max(hi) == 0.1 and len(hi) == len(tops), (lo, hi)
+    assert all(abs(a - b - 0.0125) < 1e-12 for a, b in zip(hi, hi[1:])), hi
+    assert "\nx = 0.0" in held and "\nx = 0.0" not in free
     print("footing_make_job self-test: the footing keeps its grip on cells of 25 / 12.5 / 6.25 mm "
           "to 30 mm of settlement; one held plane loses it %.2f cell down" % (bad[0][1] * 0.001 / 0.0125))
 
@@ -117,19 +135,31 @@ pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the f
 '''
 
 
-def footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end):
-    """The footing: box 0 on the surface's node plane, then one box per plane down (staircase)."""
+def footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, side="held", base="rough"):
+    """The footing: box 0 on the surface's node plane, then one box per plane down (staircase).
+    side "held": each box holds its node columns from its plane up to the grid's top zt, so the
+    material that heaves beside the footing's edge above the surface is dragged by the edge column
+    (a footing with a rough vertical side); "free": each box holds its own plane only (the boxes
+    together hold the planes from the lowest engaged one up to the surface, all the material under
+    the footing needs: no node above the surface is held, the heave beside the edge is free).
+    base "rough": the held nodes move with the footing in x too (no slip); "smooth": only their
+    vertical velocity is imposed (for a weightless layer Prandtl's N_q is the same for both)."""
+    if side not in ("held", "free"):
+        raise ValueError("footing_side must be held or free, not %r" % side)
+    if base not in ("rough", "smooth"):
+        raise ValueError("footing_base must be rough or smooth, not %r" % base)
+    slip = "x = 0.0\n" if base == "rough" else ""
     out = []
     for k, zk, tk in footing_boxes(depth, cell, speed, t_end):
-        head = ("[[mpm.velocity]]               # the footing: rigid, rough (no slip), pushed down" if k == 0
+        top = zt if side == "held" else zk
+        head = (f"[[mpm.velocity]]               # the footing: rigid, {base}{' (no slip)' if base == 'rough' else ''}, pushed down" if k == 0
                 else f"[[mpm.velocity]]               # the footing's next node plane, held from {tk:g} s")
         since = "" if k == 0 else f'\nfrom = "{fmt(tk)} s"'
         name = "footing" if k == 0 else "footing_%d" % k
         out.append(f'''{head}
 min = [{fmt(x0)}, 0.0, {fmt(zk)}]
-max = [{fmt(half_width)}, {fmt(cell)}, {fmt(zt)}]
-x = 0.0
-z = "{-speed * 1e3:g} mm/s"{since}
+max = [{fmt(half_width)}, {fmt(cell)}, {fmt(top)}]
+{slip}z = "{-speed * 1e3:g} mm/s"{since}
 name = "{name}"
 ''')
     return "\n".join(out)
@@ -137,7 +167,7 @@ name = "{name}"
 
 def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
              material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0,
-             dilatancy_angle=0.0):
+             dilatancy_angle=0.0, footing_side="held", footing_base="rough"):
     nx, nz = round(width / cell), round(depth / cell)
     if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
         raise ValueError("width and depth must be whole numbers of cells")
@@ -161,6 +191,8 @@ initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{press
     flags += "" if dilatancy_angle == 0 else f" --dilatancy-angle {dilatancy_angle:g}"
     flags += "" if above == 2 else f" --above {above}"
     flags += "" if mass_scaling == 10000 else f" --mass-scaling {mass_scaling:g}"
+    flags += "" if footing_side == "held" else f" --footing-side {footing_side}"
+    flags += "" if footing_base == "rough" else f" --footing-base {footing_base}"
     what = (f"{nx} x {nz} cells of [2, 1, 2] points ({rves} RVEs of {spheres} spheres)" if not frictional else
             f"{nx} x {nz} cells of [2, 1, 2] points (Drucker-Prager, phi = {friction_angle:g} deg, "
             + ("no dilatancy)" if dilatancy_angle == 0 else f"psi = {dilatancy_angle:g} deg)"))
@@ -235,7 +267,7 @@ max = [{fmt(xt)}, {fmt(cell)}, {fmt(zt)}]
 x = 0.0
 name = "far"
 
-{footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end)}
+{footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, footing_side, footing_base)}
 [[mpm.traction]]               # the surcharge on the surface's current area (under the footing too:
 face = "z+"                    # the footing's reaction includes it over its half-width)
 pressure = "{pressure / 1e3:g} kPa"
