@@ -218,6 +218,24 @@ TEST(GridSolve, MassThresholdZeroesLightNodes) {
   EXPECT_EQ(f.velocity[1], Vec3::Zero());
 }
 
+// One point in a column of two unit cells whose nodes are at rest (velocity and acceleration
+// zero): what G2P does to the point's own velocity and position.
+struct OnePointOnAGridAtRest {
+  mpm::Grid g{Vec3::Zero(), Vec3::Constant(1.0), common::Vec3i(1, 1, 2)};
+  mpm::MaterialPoints pts;
+  mpm::StencilCache cache;
+  mpm::GridFields f;
+  OnePointOnAGridAtRest(const Vec3& x, const Vec3& v) {
+    mpm::fill_box(pts, g, Vec3::Zero(), Vec3::Ones(), 1, 1000.0, 0);
+    pts.x[0] = x;
+    pts.v[0] = v;
+    f.resize(g);
+    EXPECT_EQ(mpm::compute_stencils(mpm::ShapeKind::linear, g, pts, cache), -1);
+    for (auto& a : f.velocity) a = Vec3::Zero();
+    for (auto& a : f.acceleration) a = Vec3::Zero();
+  }
+};
+
 }  // namespace
 
 // Position update (SolverConfig::grid_positions): a point just above a rigid base (its nodes held
@@ -225,19 +243,10 @@ TEST(GridSolve, MassThresholdZeroesLightNodes) {
 // one step; moving with the grid velocity (here zero at every node) leaves it in place, while its
 // velocity update is the same in both modes (exact: the same expressions).
 TEST(Transfers, GridPositionsKeepAPointAboveAHeldBase) {
-  mpm::Grid g{Vec3::Zero(), Vec3::Constant(1.0), common::Vec3i(1, 1, 2)};
   for (const bool grid_positions : {false, true}) {
-    mpm::MaterialPoints pts;
-    mpm::fill_box(pts, g, Vec3::Zero(), Vec3::Ones(), 1, 1000.0, 0);
-    pts.x[0] = Vec3(0.5, 0.5, 0.05);
-    pts.v[0] = Vec3(0.0, 0.0, -5.0);
-    mpm::StencilCache cache;
-    mpm::GridFields f;
-    f.resize(g);
-    ASSERT_EQ(mpm::compute_stencils(mpm::ShapeKind::linear, g, pts, cache), -1);
-    for (auto& v : f.velocity) v = Vec3::Zero();
-    for (auto& a : f.acceleration) a = Vec3::Zero();
-    mpm::g2p_update(g, cache, f, 0.0, true, 0.02, pts, grid_positions);
+    OnePointOnAGridAtRest s(Vec3(0.5, 0.5, 0.05), Vec3(0.0, 0.0, -5.0));
+    mpm::MaterialPoints& pts = s.pts;
+    mpm::g2p_update(s.g, s.cache, s.f, 0.0, true, 0.02, pts, grid_positions);
     EXPECT_EQ(pts.v[0], Vec3(0.0, 0.0, -5.0));
     if (grid_positions) {
       EXPECT_EQ(pts.x[0], Vec3(0.5, 0.5, 0.05));
@@ -253,22 +262,12 @@ TEST(Transfers, GridPositionsKeepAPointAboveAHeldBase) {
 TEST(Transfers, PicShareRelaxesInTimeWhateverTheStep) {
   EXPECT_EQ(mpm::pic_share(0.95, 0.0, 1e-3), 1.0 - 0.95);
   EXPECT_EQ(mpm::pic_share(1.0, 0.0, 1e-3), 0.0);
-  mpm::Grid g{Vec3::Zero(), Vec3::Constant(1.0), common::Vec3i(1, 1, 2)};
-  auto relax = [&](double share_of_step(double), double dt, int steps) {
-    mpm::MaterialPoints pts;
-    mpm::fill_box(pts, g, Vec3::Zero(), Vec3::Ones(), 1, 1000.0, 0);
-    pts.x[0] = Vec3(0.5, 0.5, 0.5);
-    pts.v[0] = Vec3(1.0, 0.0, -5.0);
-    mpm::StencilCache cache;
-    mpm::GridFields f;
-    f.resize(g);
-    EXPECT_EQ(mpm::compute_stencils(mpm::ShapeKind::linear, g, pts, cache), -1);
-    for (auto& v : f.velocity) v = Vec3::Zero();  // the grid at rest: v_pic = 0
-    for (auto& a : f.acceleration) a = Vec3::Zero();
+  auto relax = [](double share_of_step(double), double dt, int steps) {
+    OnePointOnAGridAtRest s(Vec3(0.5, 0.5, 0.5), Vec3(1.0, 0.0, -5.0));  // v_pic = 0
     for (int k = 0; k < steps; ++k) {
-      mpm::g2p_update(g, cache, f, share_of_step(dt), true, dt, pts, true);
+      mpm::g2p_update(s.g, s.cache, s.f, share_of_step(dt), true, dt, s.pts, true);
     }
-    return pts.v[0];
+    return s.pts.v[0];
   };
   constexpr double kTau = 0.05;
   auto in_time = [](double dt) { return mpm::pic_share(1.0, kTau, dt); };
