@@ -9,6 +9,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            ratio per output row, from RUN_DIR/results.h5) and DATA/STEM_core.csv
                            (the back-lower quarter's deformation and density per output row)
   --mobilised-table STEM   prints the page's table of DATA/STEM_mobilised.csv
+  --transfer-table         prints the page's table of the a = 2 column against the PIC share of the
+                           transfer (deposit and front), beside the grains'
   --core-table STEM...     prints the page's table of DATA/STEM_core.csv (the points that start in
                            the column's back-lower quarter: do they stay at rest, and dense?)
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
@@ -99,13 +101,13 @@ def core_series(results, L0, H0, out):
 
 
 def core_table(data, stems):
-    """Markdown table of STEM_core.csv for each stem (label, stem) at 1, 2, 3, 5 and 8 t*."""
+    """Markdown table of STEM_core.csv for each stem (label, stem) at 2, 5 and 8 t*."""
     lines = ["| run | t / t* | points moved > 0.1 L0 | volume ratio J, median / 90th percentile | "
              "distortion ln(l1/l2), median / 90th percentile | void ratio, median / 90th percentile | "
              "RVEs with contacts |", "|---|---|---|---|---|---|---|"]
     for label, stem in stems:
         rows = read_csv(os.path.join(data, f"{stem}_core.csv"))
-        for tt in (1, 2, 3, 5, 8):
+        for tt in (2, 5, 8):
             r = min(rows, key=lambda r: abs(float(r["t_over_tstar"]) - tt))
             lines.append(f"| {label} | {float(r['t_over_tstar']):.1f} | {r['moved']} of {r['points']} | "
                          f"{float(r['J_median']):.3f} / {float(r['J_p90']):.3f} | "
@@ -462,7 +464,7 @@ def size_figure(data, yade, fig_dir):
 
 
 # --core-table's row labels
-CORE_LABELS = {"a2_2x2_E3MPa_wallpts": "2 x 2, FLIP", "a2_2x2_E3MPa_wallpts_flip0.99": "2 x 2, FLIP 0.99",
+CORE_LABELS = {"a2_1ppc_E3MPa_wallpts": "1 point per cell, FLIP", "a2_2x2_E3MPa_wallpts": "2 x 2, FLIP", "a2_2x2_E3MPa_wallpts_flip0.99": "2 x 2, FLIP 0.99",
                "a2_2x2_E3MPa_wallpts_flip0.98": "2 x 2, FLIP 0.98", "a2_2x2_E3MPa_wallpts_flip0.995": "2 x 2, FLIP 0.995",
                "a2_1ppc_E3MPa_wallpts_flip0.99": "1 point per cell, FLIP 0.99"}
 
@@ -475,11 +477,17 @@ DEPOSIT = [(2, "pure DEM (YADE), L0 = 14.4 d50", "300 MPa", "yade", "dense_a2_n3
            (2, "MPM x DEM, 1 point per cell, L0 = 28.8 d50", "3 MPa", "mpm", "a2_1ppc_L28.8_E3MPa"),
            (2, "MPM x DEM, 1 point per cell, L0 = 14.4 d50, wall impulse on the points", "3 MPa", "mpm",
             "a2_1ppc_E3MPa_wallpts"),
+           (2, "MPM x DEM, 1 point per cell, L0 = 14.4 d50, wall impulse on the points, FLIP 0.99", "3 MPa", "mpm",
+            "a2_1ppc_E3MPa_wallpts_flip0.99"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "3 MPa", "mpm", "a2_2x2_E3MPa"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points", "3 MPa", "mpm",
             "a2_2x2_E3MPa_wallpts"),
+           (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points, FLIP 0.995", "3 MPa",
+            "mpm", "a2_2x2_E3MPa_wallpts_flip0.995"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points, FLIP 0.99", "3 MPa",
             "mpm", "a2_2x2_E3MPa_wallpts_flip0.99"),
+           (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50, wall impulse on the points, FLIP 0.98", "3 MPa",
+            "mpm", "a2_2x2_E3MPa_wallpts_flip0.98"),
            (2, "MPM x DEM, 2 x 2 points per cell, L0 = 14.4 d50", "300 MPa", "mpm", "a2_2x2")]
 
 
@@ -525,6 +533,43 @@ def deposit_table(data, yade):
     return "\n".join(lines)
 
 
+# The transfer family (--transfer-table): (label, stem), the 2 x 2 column with the wall impulse on
+# the points at the grains' size and E = 3 MPa, from FLIP to a PIC share of 2 % per step.
+TRANSFER = [("FLIP", "a2_2x2_E3MPa_wallpts"),
+            ("FLIP 0.995 (noise relaxed in 0.044 t*)", "a2_2x2_E3MPa_wallpts_flip0.995"),
+            ("FLIP 0.99 (0.022 t*)", "a2_2x2_E3MPa_wallpts_flip0.99"),
+            ("FLIP 0.98 (0.011 t*)", "a2_2x2_E3MPa_wallpts_flip0.98")]
+TRANSFER_YADE = ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"]
+
+
+def transfer_table(data, yade):
+    """Markdown table: the a = 2 column's deposit and front against the PIC share of the transfer,
+    beside the grains' columns of the same modulus (stdlib only)."""
+    lines = ["| column | centre of mass x / L0 | mass over the footprint | runout to h < 0.05 H0 | H_f/H0 | "
+             "continuous front at 1 / 2 / 3 t* |", "|---|---|---|---|---|---|"]
+    for tag in TRANSFER_YADE:
+        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        r5, _, xc, kept = deposit_measures(*final_profile(os.path.join(yade, f"{tag}_profiles.csv")), L0, H0)
+        f123 = " / ".join(f"{float(s[f'front{k}_cont_over_L0']):.2f}" for k in (1, 2, 3))
+        lines.append(f"| pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {xc:.3f} | {kept:.2f} | "
+                     f"{r5:.3f} | {float(s['Hf_over_H0']):.3f} | {f123} |")
+    for label, stem in TRANSFER:
+        path = os.path.join(data, f"{stem}_summary.csv")
+        if not os.path.exists(path):
+            continue
+        s = read_csv(path)[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        r5, _, xc, kept = deposit_measures(*final_profile(os.path.join(data, f"{stem}_profiles.csv")), L0, H0)
+        ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        t = [float(r["t_over_tstar"]) for r in ts]
+        L = [float(r["L_front_connected_m"]) for r in ts]
+        f123 = " / ".join(f"{(interp(k, t, L) - L0) / L0:.2f}" for k in (1, 2, 3))
+        lines.append(f"| MPM x DEM, 2 x 2, {label} | {xc:.3f} | {kept:.2f} | {r5:.3f} | "
+                     f"{float(s['Hf_over_H0']):.3f} | {f123} |")
+    return "\n".join(lines)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data",
@@ -540,6 +585,7 @@ def main():
     ap.add_argument("--deposit-table", action="store_true")
     ap.add_argument("--mobilised-table", metavar="STEM")
     ap.add_argument("--core-table", nargs="+", metavar="STEM")
+    ap.add_argument("--transfer-table", action="store_true")
     args = ap.parse_args()
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
@@ -559,8 +605,11 @@ def main():
         print(mobilised_table(args.data, args.mobilised_table))
     if args.core_table:
         print(core_table(args.data, [(CORE_LABELS.get(s, s), s) for s in args.core_table]))
+    if args.transfer_table:
+        print(transfer_table(args.data, args.yade))
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
-            or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table):
+            or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
+            or args.transfer_table):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 
