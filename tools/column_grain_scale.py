@@ -561,10 +561,7 @@ def transfer_table(data, yade):
         s = read_csv(path)[0]
         L0, H0 = float(s["L0_m"]), float(s["H0_m"])
         r5, _, xc, kept = deposit_measures(*final_profile(os.path.join(data, f"{stem}_profiles.csv")), L0, H0)
-        ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
-        t = [float(r["t_over_tstar"]) for r in ts]
-        L = [float(r["L_front_connected_m"]) for r in ts]
-        f123 = " / ".join(f"{(interp(k, t, L) - L0) / L0:.2f}" for k in (1, 2, 3))
+        f123 = " / ".join(f"{f:.2f}" for f in rows(data, yade, [(2, stem, "")])[(2, stem)]["f123"])
         lines.append(f"| MPM x DEM, 2 x 2, {label} | {xc:.3f} | {kept:.2f} | {r5:.3f} | "
                      f"{float(s['Hf_over_H0']):.3f} | {f123} |")
     return "\n".join(lines)
