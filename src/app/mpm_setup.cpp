@@ -125,6 +125,28 @@ MpmSetup mpm_setup(const Job& job) {
                       "in time (mpm.pic_time, with flip = 1), not both: remove one of the two"));
     }
   }
+  // XPIC shapes the PIC share: it needs one, and APIC has none.
+  const auto xpic = job.entries().find("mpm.xpic_order");
+  if (xpic != job.entries().end() && !xpic->second.defaulted &&
+      job.integer("mpm.xpic_order") > 1) {
+    if (cfg.transfer == mpm::Transfer::apic) {
+      throw common::InputError(
+          job.message("mpm.xpic_order",
+                      "does not apply with mpm.transfer = \"apic\" (XPIC shapes the PIC share "
+                      "of the FLIP/PIC update; APIC has its own): remove one of the two"));
+    }
+    const bool per_step =
+        flip != job.entries().end() && !flip->second.defaulted && job.number("mpm.flip") != 1.0;
+    const bool in_time = pic_time != job.entries().end() && !pic_time->second.defaulted &&
+                         job.number("mpm.pic_time") > 0.0;
+    if (!per_step && !in_time) {
+      throw common::InputError(
+          job.message("mpm.xpic_order",
+                      "needs a PIC share to shape: with mpm.flip = 1 and no mpm.pic_time the "
+                      "update is pure FLIP; set mpm.flip = 0 (XPIC alone), mpm.flip < 1 or "
+                      "mpm.pic_time > 0 (a blend with FLIP)"));
+    }
+  }
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
   cfg.damping_mode = job.text("mpm.damping_mode") == "component"
                          ? mpm::DampingMode::cundall_component

@@ -73,6 +73,17 @@ void SolverConfig::validate() const {
                              " s with mpm.transfer = \"apic\": the relaxation blends FLIP with "
                              "PIC; APIC has no FLIP part to relax");
   }
+  if (xpic_order > 1 && transfer == Transfer::apic) {
+    throw common::InputError("mpm.xpic_order = " + std::to_string(xpic_order) +
+                             " with mpm.transfer = \"apic\": XPIC shapes the PIC share of the "
+                             "FLIP/PIC update; APIC has its own");
+  }
+  if (xpic_order > 1 && flip == 1.0 && pic_time == 0.0) {
+    throw common::InputError("mpm.xpic_order = " + std::to_string(xpic_order) +
+                             " with mpm.flip = 1 and no mpm.pic_time: the update has no PIC share "
+                             "for XPIC to shape (flip = 0: XPIC alone; flip < 1 or pic_time > 0: "
+                             "a blend with FLIP)");
+  }
   if ((regularisation_length > 0.0) != (regularisation_modulus > 0.0)) {
     throw common::InputError(
         "mpm.regularisation.length = " + num_str(regularisation_length) +
@@ -535,9 +546,16 @@ void Solver::update_points(double dt) {
   } else {
     // The PIC share: 1 - flip (the expression the app computed from the job before, same bits),
     // or the relaxation of pic_time over this step.
-    g2p_update(config_.grid, cache_, fields_, pic_share(config_.flip, config_.pic_time, dt),
-               config_.move_points, dt, points_, config_.grid_positions,
-               config_.wall_impulse_on_points);
+    const double share = pic_share(config_.flip, config_.pic_time, dt);
+    // XPIC(m): the PIC share's grid velocity is V* instead of V.
+    const bool xpic = config_.xpic_order > 1 && share > 0.0;
+    if (xpic) {
+      xpic_velocity(config_.grid, cache_, bins_, points_, fields_, threshold_, config_.xpic_order,
+                    xpic_scratch_, xpic_velocity_);
+    }
+    g2p_update(config_.grid, cache_, fields_, share, config_.move_points, dt, points_,
+               config_.grid_positions, config_.wall_impulse_on_points,
+               xpic ? &xpic_velocity_ : nullptr);
   }
 }
 

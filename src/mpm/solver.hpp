@@ -22,6 +22,7 @@
 #include "mpm/shape_function.hpp"
 #include "mpm/strain_smoothing.hpp"
 #include "mpm/transfers.hpp"
+#include "mpm/xpic.hpp"
 
 namespace mpm {
 
@@ -45,6 +46,11 @@ struct SolverConfig {
   /// set in time, not per step, and a finer mesh (a shorter step) damps it no more; 0 = off (the
   /// share is then 1 - flip). Needs flip = 1 and Transfer::flip.
   double pic_time = 0.0;
+  /// Order m of the extended PIC update (xpic.hpp, Hammerquist & Nairn 2017) that the PIC share
+  /// (1 - flip, or pic_time's) takes: 1 = PIC; m > 1 filters the sub-cell noise as PIC does but
+  /// keeps a smooth mode that PIC keeps to lambda to 1 - (1 - lambda)^m. Needs a PIC share and
+  /// Transfer::flip [-].
+  int xpic_order = 1;
   /// flip: the FLIP/PIC blend above (the paper's); apic: affine PIC (transfers.hpp), which keeps
   /// a homogeneous deformation with one point per cell (docs/design/mpm.md, "Transfers").
   Transfer transfer = Transfer::flip;
@@ -126,6 +132,13 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
       "share 1 - exp(-dt / pic_time), a filter of the transfer's noise set in time, the same on "
       "any mesh (mpm.flip per step is not); needs flip = 1; 0 = off (docs/design/mpm.md, "
       "Transfers)."},
+     {"xpic_order", &SolverConfig::xpic_order, common::Unit::Dimensionless, common::in_cc(1, 8),
+      common::Source::job_default,
+      "Order m of the extended PIC update (XPIC(m), Hammerquist & Nairn 2017) that the PIC share "
+      "(1 - flip, or pic_time's) takes: 1 = PIC; m > 1 removes the sub-cell velocity noise as PIC "
+      "does but damps the grid's resolved motion far less (a mode PIC keeps to lambda is kept to "
+      "1 - (1 - lambda)^m), for m - 1 extra point-grid round trips per step. Needs flip < 1 or "
+      "pic_time > 0 (flip = 0: XPIC alone) (docs/design/mpm.md, Transfers)."},
      {"damping", &SolverConfig::damping, common::Unit::Dimensionless, common::in_co(0, 1),
       common::Source::job_default, "Cundall damping D of the nodal accelerations (eq. 8)."},
      {"dt", &SolverConfig::dt, common::Unit::Time, common::ge(0), common::Source::job_optional,
@@ -292,7 +305,9 @@ class Solver {
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
   std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
-  std::vector<double> density_node_m_, density_node_v_, density_rho_;     ///< FreeDensity::grid
+  XpicScratch xpic_scratch_;                 ///< xpic_velocity's work arrays
+  std::vector<common::Vec3> xpic_velocity_;  ///< V* of XPIC(m) on the grid [m/s]
+  std::vector<double> density_node_m_, density_node_v_, density_rho_;  ///< FreeDensity::grid
   std::vector<common::Mat3> force_stress_;                ///< the stress the internal forces use
   std::optional<GradientRegularisation> regularisation_;  ///< with regularisation_length > 0
   EnergyGuard guard_{0.0};                ///< energy-growth guard (config_.energy_guard)

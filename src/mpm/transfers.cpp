@@ -11,39 +11,6 @@
 #include "common/errors.hpp"
 
 namespace mpm {
-namespace {
-
-/// Runs kernel(p) for every point, colour by colour; bins of one colour in parallel. One
-/// parallel region per call; small problems run a plain loop in the same order, without a region
-/// (parallel.hpp: a region with a false if-clause still costs ~10 us here).
-template <class Fn>
-inline void for_points_coloured(const PointBins& bins, Fn&& kernel) {
-  const bool parallel = static_cast<std::int64_t>(bins.order.size()) >= kMinParallelPoints;
-  if (!parallel) {
-    for (const std::vector<std::int64_t>& colour : bins.by_colour) {
-      for (const std::int64_t b : colour) {
-        const auto bu = static_cast<std::size_t>(b);
-        for (std::int64_t o = bins.offset[bu]; o < bins.offset[bu + 1]; ++o) {
-          kernel(static_cast<std::size_t>(bins.order[static_cast<std::size_t>(o)]));
-        }
-      }
-    }
-    return;
-  }
-#pragma omp parallel
-  for (const std::vector<std::int64_t>& colour : bins.by_colour) {
-    const auto nb = static_cast<std::int64_t>(colour.size());
-#pragma omp for schedule(static)
-    for (std::int64_t q = 0; q < nb; ++q) {
-      const auto b = static_cast<std::size_t>(colour[static_cast<std::size_t>(q)]);
-      for (std::int64_t o = bins.offset[b]; o < bins.offset[b + 1]; ++o) {
-        kernel(static_cast<std::size_t>(bins.order[static_cast<std::size_t>(o)]));
-      }
-    }
-  }
-}
-
-}  // namespace
 
 std::int64_t compute_stencils(ShapeKind kind, const Grid& grid, const MaterialPoints& points,
                               StencilCache& cache, int linear_axis) {
@@ -296,7 +263,9 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, bool move_points, double dt, MaterialPoints& points,
-                bool grid_positions, bool wall_impulse) {
+                bool grid_positions, bool wall_impulse,
+                const std::vector<common::Vec3>* pic_velocity) {
+  const std::vector<common::Vec3>& V = pic_velocity != nullptr ? *pic_velocity : fields.velocity;
   const auto n = static_cast<std::int64_t>(points.size());
   for_each_index(n, [&](std::int64_t q) {
     const auto p = static_cast<std::size_t>(q);
@@ -307,7 +276,7 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
       for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
         const auto i = static_cast<std::size_t>(node_i);
         a_p += S * (fields.acceleration[i] + fields.wall_dv[i] / dt);
-        v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+        v_pic += S * (V[i] + dt * fields.acceleration[i]);
       });
     } else if (pic_fraction == 0.0 && !grid_positions) {
       for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
@@ -317,7 +286,7 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
       for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
         const auto i = static_cast<std::size_t>(node_i);
         a_p += S * fields.acceleration[i];
-        v_pic += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+        v_pic += S * (V[i] + dt * fields.acceleration[i]);
       });
     }
     const common::Vec3 v_flip = points.v[p] + dt * a_p;

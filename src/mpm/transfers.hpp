@@ -72,6 +72,36 @@ struct PointBins {
   std::vector<std::int64_t> scratch;                 ///< dense per-node counter, kept all -1
 };
 
+/// Runs kernel(p) for every point, colour by colour; bins of one colour in parallel. One
+/// parallel region per call; small problems run a plain loop in the same order, without a region
+/// (parallel.hpp: a region with a false if-clause still costs ~10 us here).
+template <class Fn>
+inline void for_points_coloured(const PointBins& bins, Fn&& kernel) {
+  const bool parallel = static_cast<std::int64_t>(bins.order.size()) >= kMinParallelPoints;
+  if (!parallel) {
+    for (const std::vector<std::int64_t>& colour : bins.by_colour) {
+      for (const std::int64_t b : colour) {
+        const auto bu = static_cast<std::size_t>(b);
+        for (std::int64_t o = bins.offset[bu]; o < bins.offset[bu + 1]; ++o) {
+          kernel(static_cast<std::size_t>(bins.order[static_cast<std::size_t>(o)]));
+        }
+      }
+    }
+    return;
+  }
+#pragma omp parallel
+  for (const std::vector<std::int64_t>& colour : bins.by_colour) {
+    const auto nb = static_cast<std::int64_t>(colour.size());
+#pragma omp for schedule(static)
+    for (std::int64_t q = 0; q < nb; ++q) {
+      const auto b = static_cast<std::size_t>(colour[static_cast<std::size_t>(q)]);
+      for (std::int64_t o = bins.offset[b]; o < bins.offset[b + 1]; ++o) {
+        kernel(static_cast<std::size_t>(bins.order[static_cast<std::size_t>(o)]));
+      }
+    }
+  }
+}
+
 /// Fills `cache` for every point. Returns the smallest slot whose stencil leaves the grid or
 /// whose position is not finite, or -1 when all are inside. uGIMP uses half_width0 / h.
 /// `linear_axis` (0-2, or -1 for none) uses the linear shape along that axis whatever `kind`:
@@ -128,9 +158,12 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 /// in the FLIP increment (not in v_pic, whose V_v already has it): v_flip then changes by
 /// sum_v S (V_v(t + dt) - V_v projected), and a point's velocity into a wall is taken away
 /// (SolverConfig::wall_impulse_on_points).
+/// `pic_velocity` (sized to the grid): the V_v of v_pic instead of fields.velocity, e.g. XPIC's
+/// V* (xpic.hpp); the FLIP increment is unchanged.
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, bool move_points, double dt, MaterialPoints& points,
-                bool grid_positions = false, bool wall_impulse = false);
+                bool grid_positions = false, bool wall_impulse = false,
+                const std::vector<common::Vec3>* pic_velocity = nullptr);
 
 /// The APIC point update: v_p <- sum_v S V'_v and C_p <- sum_v (V'_v - v_p) (x) grad S_v(x_p)
 /// with V'_v = V_v + dt a_v the end-of-step grid velocity, over the nodes that count in

@@ -276,6 +276,21 @@ TEST(Solver, ConfigErrorsNameKeyValueAndRule) {
   cfg = small_config(mpm::ShapeKind::linear);
   cfg.pic_time = -1.0;
   expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); }, {"mpm.pic_time = -1"});
+  // XPIC shapes the PIC share: it needs one (flip < 1 or pic_time), not with APIC, order 1-8.
+  cfg = small_config(mpm::ShapeKind::linear);
+  cfg.xpic_order = 3;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.xpic_order = 3", "no PIC share"});
+  cfg.transfer = mpm::Transfer::apic;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.xpic_order = 3", "apic"});
+  cfg = small_config(mpm::ShapeKind::linear);
+  cfg.flip = 0.0;
+  cfg.xpic_order = 0;
+  expect_message([&] { mpm::Solver(cfg, small_block(cfg.grid), {&mat}); },
+                 {"mpm.xpic_order = 0", "[1, 8]"});
+  cfg.xpic_order = 2;
+  EXPECT_NO_THROW(mpm::Solver(cfg, small_block(cfg.grid), {&mat}));
   cfg = small_config(mpm::ShapeKind::linear);
   mpm::MaterialPoints pts = small_block(cfg.grid);
   pts.material[0] = 1;
