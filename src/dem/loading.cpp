@@ -96,7 +96,7 @@ void MixedController::update(Simulation& sim) {
 
 void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
              const std::function<void(const Simulation&)>& observer) {
-  const std::int64_t refresh = sim.numerics().dt_refresh;
+  const std::int64_t refresh = sim.numerics().timestep_update_interval;
   const Simulation::StepHook between = [refresh, ctl](Simulation& s) {
     if (s.steps() % refresh == 0) s.refresh_dt();
     if (ctl != nullptr) ctl->update(s);

@@ -55,7 +55,7 @@ class MixedController {
   std::int64_t last_modulus_step_ = -1;
 };
 
-/// Run n steps: forces, servo (if any), integration; refresh dt every numerics().dt_refresh steps.
+/// Run n steps: forces, servo (if any), integration; refresh dt every numerics().timestep_update_interval steps.
 /// `observer` (optional) is called after each step.
 void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
              const std::function<void(const Simulation&)>& observer = {});

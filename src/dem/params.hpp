@@ -31,17 +31,17 @@ struct HertzMindlinMaterial {
 /// placeholders: the job file must give every entry of the law's tables (kMaterial, and kCohFrict
 /// or kHertzMindlin).
 struct Material {
-  double density = 0.0;       ///< rho [kg/m^3]
-  double young = 0.0;         ///< E [Pa]; CohFrict: k_n = 2 E R1 R2 / (R1 + R2) [N/m]; Hertz: grains' E
+  double density = 0.0;  ///< rho [kg/m^3]
+  double young = 0.0;    ///< E [Pa]; CohFrict: k_n = 2 E R1 R2 / (R1 + R2) [N/m]; Hertz: grains' E
   double friction_deg = 0.0;  ///< inter-particle friction angle phi [deg], in [0, 90)
   // CohFrict only (kCohFrict).
-  double ks_over_kn = 0.0;    ///< k_s / k_n [-] (YADE `poisson`)
-  double alpha_r = 0.0;       ///< rolling stiffness coefficient [-]: k_r = alpha_r k_s R1 R2
-  double eta_r = -1.0;        ///< rolling strength coefficient [-]; < 0: no cap
-  double alpha_t = 0.0;       ///< twisting stiffness coefficient [-]: k_t = alpha_t k_s R1 R2
-  double eta_t = -1.0;        ///< twisting strength coefficient [-]; < 0: no cap
+  double ks_over_kn = 0.0;  ///< k_s / k_n [-] (YADE `poisson`)
+  double alpha_r = 0.0;     ///< rolling stiffness coefficient [-]: k_r = alpha_r k_s R1 R2
+  double eta_r = -1.0;      ///< rolling strength coefficient [-]; < 0: no cap
+  double alpha_t = 0.0;     ///< twisting stiffness coefficient [-]: k_t = alpha_t k_s R1 R2
+  double eta_t = -1.0;      ///< twisting strength coefficient [-]; < 0: no cap
   ContactLawKind law = ContactLawKind::cohfrict;
-  HertzMindlinMaterial hm;    ///< Hertz-Mindlin only (kHertzMindlin)
+  HertzMindlinMaterial hm;  ///< Hertz-Mindlin only (kHertzMindlin)
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial, then
   /// the law's table).
@@ -58,8 +58,10 @@ struct Numerics {
   double dt_safety = 0.8;         ///< safety factor on the global-stiffness critical step [-]
   double skin_factor = 0.1;       ///< Verlet skin as a fraction of the largest radius [-]
   double skin_min_factor = 0.03;  ///< > 0: the skin adapts in [this, skin_factor] r_max [-]
-  std::int64_t dt_refresh = 100;  ///< steps between critical time step refreshes [-]
-  double max_skew = 0.5;          ///< re-map the cell when |c_b . c_a| / |c_a|^2 exceeds this [-]
+  /// DEM steps between critical time step refreshes of a standalone sample [-] (preparation,
+  /// loading; YADE's GlobalStiffnessTimeStepper.timeStepUpdateInterval). An RVE's: RveParams.
+  std::int64_t timestep_update_interval = 100;
+  double max_skew = 0.5;  ///< re-map the cell when |c_b . c_a| / |c_a|^2 exceeds this [-]
 
   /// Throws common::InputError naming the job key of the first invalid entry (kNumerics).
   void validate() const;
@@ -111,8 +113,8 @@ inline constexpr auto kHertzMindlin = common::make_table<HertzMindlinMaterial>(
      {"rolling_strength", &HertzMindlinMaterial::eta, Unit::Dimensionless, common::ge(0),
       Source::job_required,
       "eta: |Mb| <= eta (R1 + R2) / 2 Fn (YADE's eta); 0: no cap, as in YADE."},
-     {"twisting_stiffness", &HertzMindlinMaterial::ktwist, Unit::RotationalStiffness,
-      common::ge(0), Source::job_required,
+     {"twisting_stiffness", &HertzMindlinMaterial::ktwist, Unit::RotationalStiffness, common::ge(0),
+      Source::job_required,
       "kt, the same for every pair (YADE's ktwist); the twisting moment has no cap. 0: none."}});
 
 /// [dem.numerics]: the defaults are the member initializers of Numerics.
@@ -131,13 +133,14 @@ inline constexpr auto kNumerics = common::make_table<Numerics>(
       "physics). At most 1 (a skin of one radius: a list of most of the cell's neighbours)."},
      {"verlet_skin_min", &Numerics::skin_min_factor, Unit::Dimensionless, common::in_cc(0, 1),
       Source::job_default,
-      "0: the skin is verlet_skin (the fixed skin of older versions). Above 0: each RVE adapts its skin between "
+      "0: the skin is verlet_skin (the fixed skin of older versions). Above 0: each RVE adapts its "
+      "skin between "
       "this fraction of "
       "the largest radius and verlet_skin to how fast its spheres move (thin when they barely "
       "move, fewer pairs; wide in a flow, fewer rebuilds), from its own state: restarts, ranks "
       "and threads keep their bits (docs/design/dem.md \"Neighbour search\")."},
-     {"dt_refresh", &Numerics::dt_refresh, Unit::Dimensionless, common::ge(1), Source::cpp_only,
-      "Steps between critical time step refreshes."},
+     {"timestep_update_interval", &Numerics::timestep_update_interval, Unit::Dimensionless,
+      common::ge(1), Source::cpp_only, "Steps between critical time step refreshes."},
      {"max_skew", &Numerics::max_skew, Unit::Dimensionless, common::ge(0.5), Source::cpp_only,
       "Re-map the cell when |c_b . c_a| / |c_a|^2 exceeds this."}});
 

@@ -17,7 +17,8 @@ using common::Vec3;
 
 namespace {
 
-/// Parameters and contact properties as named fields, one per member (docs/reference/checkpoint.md).
+/// Parameters and contact properties as named fields, one per member
+/// (docs/reference/checkpoint.md).
 template <class S>
 struct Member {
   const char* name;
@@ -127,13 +128,15 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   for (const auto& f : kMaterialFields)
     common::write_scalar(w, pre + "params/material/" + f.name, mat.*f.member);
   if (!cohfrict) {
-    common::write_scalar(w, pre + "params/material/contact_law", static_cast<std::int64_t>(mat.law));
+    common::write_scalar(w, pre + "params/material/contact_law",
+                         static_cast<std::int64_t>(mat.law));
     for (const auto& f : kHertzMindlinFields)
       common::write_scalar(w, pre + "params/material/hertz_mindlin/" + f.name, mat.hm.*f.member);
   }
   for (const auto& f : kNumericsFields)
     common::write_scalar(w, pre + "params/numerics/" + f.name, num.*f.member);
-  common::write_scalar(w, pre + "params/numerics/dt_refresh", num.dt_refresh);
+  common::write_scalar(w, pre + "params/numerics/timestep_update_interval",
+                       num.timestep_update_interval);
   common::write_scalar(w, pre + "params/numerics/skin_min_factor", num.skin_min_factor);
   w.write(pre + "cell/h", flat(sim.cell().h));
   w.write(pre + "cell/l", flat(sim.cell().l));
@@ -214,7 +217,12 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   Numerics num;
   for (const auto& f : kNumericsFields)
     num.*f.member = rd.scalar(std::string("params/numerics/") + f.name);
-  num.dt_refresh = common::read_scalar_i64(r, pre + "params/numerics/dt_refresh");
+  // Written as dt_refresh before the RVEs' own dt_refresh took that name alone (same state
+  // version): read under either name.
+  const std::string interval = r.has(pre + "params/numerics/timestep_update_interval")
+                                   ? "params/numerics/timestep_update_interval"
+                                   : "params/numerics/dt_refresh";
+  num.timestep_update_interval = common::read_scalar_i64(r, pre + interval);
   // Written since the adaptive skin (2026-11-26, the same state version): absent, a fixed skin.
   if (r.has(pre + "params/numerics/skin_min_factor")) {
     num.skin_min_factor = rd.scalar("params/numerics/skin_min_factor");

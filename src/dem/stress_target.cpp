@@ -97,7 +97,7 @@ std::int64_t reach_stress(Simulation& sim, const StressTarget& t, const CheckObs
   TensorController ctl(s, t.max_rate, t.tau_steps);
   std::int64_t done = 0;
   while (done < t.max_steps) {
-    const std::int64_t refresh = sim.numerics().dt_refresh;
+    const std::int64_t refresh = sim.numerics().timestep_update_interval;
     const Simulation::StepHook between = [refresh, &ctl](Simulation& sm) {
       if (sm.steps() % refresh == 0) sm.refresh_dt();
       ctl.update(sm);

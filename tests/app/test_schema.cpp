@@ -224,7 +224,7 @@ TEST(Schema, JobValuesFillTheDemStructsAndAbsentKeysTakeTheStructDefaults) {
   EXPECT_EQ(n.skin_factor, 0.25);
   EXPECT_EQ(n.damping, dem::Numerics{}.damping);
   EXPECT_EQ(n.dt_safety, dem::Numerics{}.dt_safety);
-  EXPECT_EQ(n.dt_refresh, dem::Numerics{}.dt_refresh);
+  EXPECT_EQ(n.timestep_update_interval, dem::Numerics{}.timestep_update_interval);
   const dem::Preparation p = app::dem_preparation(job);
   EXPECT_EQ(p.friction_comp_deg, 10.0);
   EXPECT_EQ(p.target.pressure, 1e5);

@@ -46,8 +46,8 @@ TEST(Params, NumericsErrorsNameTheJobKeysOrTheMember) {
   n.dt_safety = 1.5;
   EXPECT_EQ(error_of(n), "dem.numerics.timestep_safety = 1.5: must be in [0.01, 1]");
   n = {};
-  n.dt_refresh = 0;
-  EXPECT_EQ(error_of(n), "dem::Numerics::dt_refresh = 0: must be >= 1");
+  n.timestep_update_interval = 0;
+  EXPECT_EQ(error_of(n), "dem::Numerics::timestep_update_interval = 0: must be >= 1");
 }
 
 TEST(Params, RveParamsErrorsNameTheCouplingKeys) {
@@ -86,8 +86,8 @@ TEST(Params, DefaultsLieInTheirRanges) {
   expect_defaults_in_range(dem::kRveParams);
 }
 
-// The settings jobs validated with (docs/validation/triaxial.md) are the C++ defaults: tests run what jobs
-// run.
+// The settings jobs validated with (docs/validation/triaxial.md) are the C++ defaults: tests run
+// what jobs run.
 TEST(Params, DefaultsOfTheDriftedSettings) {
   EXPECT_EQ(dem::Numerics{}.skin_factor, 0.1);
   EXPECT_EQ(dem::RveParams{}.max_strain_per_step, 1e-5);

@@ -32,7 +32,7 @@ dem::Rve distinct_rve() {
   p.numerics.dt_safety = 0.75;
   p.numerics.skin_factor = 0.13;
   p.numerics.skin_min_factor = 0.035;
-  p.numerics.dt_refresh = 77;
+  p.numerics.timestep_update_interval = 77;
   p.numerics.max_skew = 0.55;
   p.inertial_number = 3e-4;
   p.d50 = 0.0;  // taken from the spheres: rve/d50_used differs from rve/d50
@@ -120,7 +120,7 @@ TEST(State, ParametersAreNamedScalarFields) {
   for (const auto& [name, value] : expected) {
     EXPECT_EQ(s.read_f64(name), std::vector<double>{value}) << name;
   }
-  EXPECT_EQ(s.read_i64("params/numerics/dt_refresh"), std::vector<std::int64_t>{77});
+  EXPECT_EQ(s.read_i64("params/numerics/timestep_update_interval"), std::vector<std::int64_t>{77});
   EXPECT_EQ(s.read_i64("verlet/built_at_step"),
             std::vector<std::int64_t>{rve.simulation().verlet().built_at_step});
   EXPECT_EQ(s.read_i64("verlet/shell_pairs"),
@@ -137,6 +137,23 @@ TEST(State, ParametersAreNamedScalarFields) {
   common::StateStore again;
   back.save(again);
   EXPECT_TRUE(again.fields() == s.fields());
+}
+
+// The standalone sample's time-step interval was written as params/numerics/dt_refresh before the
+// RVEs' own dt_refresh took that name alone: a state of then is read with its value.
+TEST(State, TheTimestepIntervalIsReadUnderItsFormerName) {
+  const dem::Rve rve = distinct_rve();
+  common::StateStore s;
+  rve.save(s);
+  common::StateStore before;
+  for (const auto& [n, f] : s.fields()) {
+    const std::string name = n == "params/numerics/timestep_update_interval"
+                                 ? std::string("params/numerics/dt_refresh")
+                                 : n;
+    std::visit([&](const auto& v) { before.write(name, std::span(v.data(), v.size())); }, f);
+  }
+  ASSERT_FALSE(before.has("params/numerics/timestep_update_interval"));
+  EXPECT_EQ(dem::Rve::load(before).params().numerics.timestep_update_interval, 77);
 }
 
 TEST(State, ContactPropertiesAreNamedPerContactFields) {
