@@ -147,6 +147,27 @@ TEST(Xpic, DampsAResolvedModeByThePowerOfPicsLoss) {
   }
 }
 
+// Linear momentum: Q keeps sum_i m_i w_i (it is a mass-weighted P2G of a G2P), so V* has V's
+// momentum and the XPIC update keeps the points' momentum, as PIC does (no constraint here;
+// round-off of sums of ~100 terms of order 1: 1e-13 relative).
+TEST(Xpic, KeepsTheLinearMomentum) {
+  Bar bar(12);
+  Vec3 before = Vec3::Zero();
+  for (std::size_t p = 0; p < bar.pts.size(); ++p) {
+    bar.pts.v[p] = Vec3(std::sin(1.7 * p), std::cos(2.3 * p), std::sin(0.3 * p + 1.0));
+    before += bar.pts.mass[p] * bar.pts.v[p];
+  }
+  bar.project();
+  for (const int m : {2, 3, 6}) {
+    const std::vector<Vec3> v = bar.update(m);
+    Vec3 after = Vec3::Zero();
+    for (std::size_t p = 0; p < v.size(); ++p) after += bar.pts.mass[p] * v[p];
+    double scale = 0.0;
+    for (std::size_t p = 0; p < v.size(); ++p) scale += bar.pts.mass[p] * bar.pts.v[p].norm();
+    EXPECT_LT((after - before).norm(), 1e-13 * scale) << "m " << m;
+  }
+}
+
 // A prescribed component (fields.fixed) stays V's in V*, whatever the order.
 TEST(Xpic, KeepsThePrescribedComponents) {
   Bar bar(4);
