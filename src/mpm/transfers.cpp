@@ -293,8 +293,19 @@ void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& f
     points.v[p] =
         pic_fraction == 0.0 ? v_flip : (1.0 - pic_fraction) * v_flip + pic_fraction * v_pic;
     // Grid positions: the end-of-step grid velocity, which the walls constrain (a point cannot
-    // cross a held node plane within a CFL step); else the point's own (FLIP) velocity.
-    if (move_points) points.x[p] += dt * (grid_positions ? v_pic : points.v[p]);
+    // cross a held node plane within a CFL step); else the point's own (FLIP) velocity. With a
+    // pic_velocity (XPIC's V*) the grid's own V, the field whose gradient deformed the material,
+    // not V*.
+    if (move_points && grid_positions && pic_velocity != nullptr) {
+      common::Vec3 v_grid = common::Vec3::Zero();
+      for_each_node(grid, cache, p, [&](std::int64_t node_i, double S, const common::Vec3&) {
+        const auto i = static_cast<std::size_t>(node_i);
+        v_grid += S * (fields.velocity[i] + dt * fields.acceleration[i]);
+      });
+      points.x[p] += dt * v_grid;
+    } else if (move_points) {
+      points.x[p] += dt * (grid_positions ? v_pic : points.v[p]);
+    }
   });
 }
 

@@ -159,7 +159,8 @@ void g2p_velocity_gradient(const Grid& grid, const StencilCache& cache, const Gr
 /// sum_v S (V_v(t + dt) - V_v projected), and a point's velocity into a wall is taken away
 /// (SolverConfig::wall_impulse_on_points).
 /// `pic_velocity` (sized to the grid): the V_v of v_pic instead of fields.velocity, e.g. XPIC's
-/// V* (xpic.hpp); the FLIP increment is unchanged.
+/// V* (xpic.hpp); the FLIP increment is unchanged, and `grid_positions` still moves the points
+/// with the grid's own sum_v S (V_v + dt a_v).
 void g2p_update(const Grid& grid, const StencilCache& cache, const GridFields& fields,
                 double pic_fraction, bool move_points, double dt, MaterialPoints& points,
                 bool grid_positions = false, bool wall_impulse = false,
