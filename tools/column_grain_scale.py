@@ -9,8 +9,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            ratio per output row, from RUN_DIR/results.h5) and DATA/STEM_core.csv
                            (the back-lower quarter's deformation and density per output row)
   --mobilised-table STEM   prints the page's table of DATA/STEM_mobilised.csv
-  --transfer-table         prints the page's table of the a = 2 column against the PIC share of the
-                           transfer (deposit and front), beside the grains'
+  --transfer-table [A]     prints the page's table of the a = A column (default 2) against the
+                           transfer (FLIP, its PIC share, XPIC; deposit and front), beside the grains'
   --core-table STEM...     prints the page's table of DATA/STEM_core.csv (the points that start in
                            the column's back-lower quarter: do they stay at rest, and dense?)
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
@@ -466,7 +466,9 @@ def size_figure(data, yade, fig_dir):
 # --core-table's row labels
 CORE_LABELS = {"a2_1ppc_E3MPa_wallpts": "1 point per cell, FLIP", "a2_2x2_E3MPa_wallpts": "2 x 2, FLIP", "a2_2x2_E3MPa_wallpts_flip0.99": "2 x 2, FLIP 0.99",
                "a2_2x2_E3MPa_wallpts_flip0.98": "2 x 2, FLIP 0.98", "a2_2x2_E3MPa_wallpts_flip0.995": "2 x 2, FLIP 0.995",
-               "a2_1ppc_E3MPa_wallpts_flip0.99": "1 point per cell, FLIP 0.99"}
+               "a2_1ppc_E3MPa_wallpts_flip0.99": "1 point per cell, FLIP 0.99",
+               "a2_2x2_E3MPa_wallpts_flip0.99_xpic3": "2 x 2, FLIP 0.99, XPIC(3)",
+               "a2_2x2_E3MPa_wallpts_xpic5": "2 x 2, XPIC(5)"}
 
 
 # The deposit in continuum terms: (a, label, E, "yade" tag or "mpm" stem)
@@ -533,36 +535,53 @@ def deposit_table(data, yade):
     return "\n".join(lines)
 
 
-# The transfer family (--transfer-table): (label, stem), the 2 x 2 column with the wall impulse on
-# the points at the grains' size and E = 3 MPa, from FLIP to a PIC share of 2 % per step.
-TRANSFER = [("FLIP", "a2_2x2_E3MPa_wallpts"),
-            ("FLIP 0.995 (noise relaxed in 0.044 t*)", "a2_2x2_E3MPa_wallpts_flip0.995"),
-            ("FLIP 0.99 (0.022 t*)", "a2_2x2_E3MPa_wallpts_flip0.99"),
-            ("FLIP 0.98 (0.011 t*)", "a2_2x2_E3MPa_wallpts_flip0.98")]
-TRANSFER_YADE = ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"]
+# The transfer family (--transfer-table [A]): (label, stem) of the column of aspect A with the wall
+# impulse on the points at the grains' size and E = 3 MPa, from FLIP to a PIC share of 2 % per step
+# and the XPIC updates, with 2 x 2 or one point per cell, and (a = 1) on cells half as large with
+# one point per cell (the same points as 2 x 2 on the coarse grid).
+TRANSFER = {
+    2: [("2 x 2, FLIP", "a2_2x2_E3MPa_wallpts"),
+        ("2 x 2, FLIP 0.995 (noise relaxed in 0.044 t*)", "a2_2x2_E3MPa_wallpts_flip0.995"),
+        ("2 x 2, FLIP 0.99 (0.022 t*)", "a2_2x2_E3MPa_wallpts_flip0.99"),
+        ("2 x 2, FLIP 0.98 (0.011 t*)", "a2_2x2_E3MPa_wallpts_flip0.98"),
+        ("2 x 2, FLIP 0.99, its PIC share XPIC(3)", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3"),
+        ("2 x 2, XPIC(5) (flip 0)", "a2_2x2_E3MPa_wallpts_xpic5"),
+        ("1 point per cell, FLIP", "a2_1ppc_E3MPa_wallpts"),
+        ("1 point per cell, FLIP 0.99", "a2_1ppc_E3MPa_wallpts_flip0.99")],
+    1: [("2 x 2, FLIP", "a1_2x2_E3MPa_wallpts"),
+        ("2 x 2, FLIP 0.99", "a1_2x2_E3MPa_wallpts_flip0.99"),
+        ("2 x 2, FLIP 0.99, XPIC(3)", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3"),
+        ("2 x 2, XPIC(5) (flip 0)", "a1_2x2_E3MPa_wallpts_xpic5"),
+        ("cells of L0/16, 1 point per cell, FLIP", "a1_h16_E3MPa_wallpts")]}
+TRANSFER_YADE = {2: ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"], 1: ["dense_a1_l14.4_E3e6"]}
 
 
-def transfer_table(data, yade):
-    """Markdown table: the a = 2 column's deposit and front against the PIC share of the transfer,
-    beside the grains' columns of the same modulus (stdlib only)."""
+def transfer_table(data, yade, a=2):
+    """Markdown table: the column's deposit and front (aspect a) against the transfer, beside the
+    grains' columns of the same modulus (stdlib only)."""
     lines = ["| column | centre of mass x / L0 | mass over the footprint | runout to h < 0.05 H0 | H_f/H0 | "
              "continuous front at 1 / 2 / 3 t* |", "|---|---|---|---|---|---|"]
-    for tag in TRANSFER_YADE:
+    for tag in TRANSFER_YADE[a]:
         s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
         L0, H0 = float(s["L0_m"]), float(s["H0_m"])
         r5, _, xc, kept = deposit_measures(*final_profile(os.path.join(yade, f"{tag}_profiles.csv")), L0, H0)
         f123 = " / ".join(f"{float(s[f'front{k}_cont_over_L0']):.2f}" for k in (1, 2, 3))
         lines.append(f"| pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {xc:.3f} | {kept:.2f} | "
                      f"{r5:.3f} | {float(s['Hf_over_H0']):.3f} | {f123} |")
-    for label, stem in TRANSFER:
+    for label, stem in TRANSFER[a]:
         path = os.path.join(data, f"{stem}_summary.csv")
         if not os.path.exists(path):
             continue
         s = read_csv(path)[0]
         L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        t_end = float(s["t_end_over_tstar"])
+        f123 = " / ".join(f"{f:.2f}" if k <= t_end else "-" for k, f in
+                          zip((1, 2, 3), rows(data, yade, [(a, stem, "")])[(a, stem)]["f123"]))
+        if t_end < 9.5:  # a run that stopped early (exit 3): no deposit to measure
+            lines.append(f"| MPM x DEM, {label}: stopped at {t_end:.1f} t* | - | - | - | - | {f123} |")
+            continue
         r5, _, xc, kept = deposit_measures(*final_profile(os.path.join(data, f"{stem}_profiles.csv")), L0, H0)
-        f123 = " / ".join(f"{f:.2f}" for f in rows(data, yade, [(2, stem, "")])[(2, stem)]["f123"])
-        lines.append(f"| MPM x DEM, 2 x 2, {label} | {xc:.3f} | {kept:.2f} | {r5:.3f} | "
+        lines.append(f"| MPM x DEM, {label} | {xc:.3f} | {kept:.2f} | {r5:.3f} | "
                      f"{float(s['Hf_over_H0']):.3f} | {f123} |")
     return "\n".join(lines)
 
@@ -582,7 +601,7 @@ def main():
     ap.add_argument("--deposit-table", action="store_true")
     ap.add_argument("--mobilised-table", metavar="STEM")
     ap.add_argument("--core-table", nargs="+", metavar="STEM")
-    ap.add_argument("--transfer-table", action="store_true")
+    ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     args = ap.parse_args()
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
@@ -603,7 +622,7 @@ def main():
     if args.core_table:
         print(core_table(args.data, [(CORE_LABELS.get(s, s), s) for s in args.core_table]))
     if args.transfer_table:
-        print(transfer_table(args.data, args.yade))
+        print(transfer_table(args.data, args.yade, args.transfer_table))
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
             or args.transfer_table):
