@@ -100,45 +100,41 @@ MpmSetup mpm_setup(const Job& job) {
   cfg.grid_positions = job.text("mpm.position_update") == "grid";
   cfg.wall_impulse_on_points = job.text("mpm.wall_impulse") == "points";
   cfg.transfer = mpm::transfer_from_string(job.text("mpm.transfer"));
-  const auto flip = job.entries().find("mpm.flip");
-  if (cfg.transfer == mpm::Transfer::apic && flip != job.entries().end() &&
-      !flip->second.defaulted) {
+  // Keys the job sets itself (not their defaults): the rules between the transfer's knobs.
+  auto given = [&job](const char* key) {
+    const auto it = job.entries().find(key);
+    return it != job.entries().end() && !it->second.defaulted;
+  };
+  const bool apic = cfg.transfer == mpm::Transfer::apic;
+  if (apic && given("mpm.flip")) {
     throw common::InputError(
         job.message("mpm.flip",
                     "does not apply with mpm.transfer = \"apic\" (APIC's point velocity is the "
                     "grid's, PIC, with the affine part carried by C_p): remove one of the two"));
   }
   // The PIC share is set per step (flip < 1) or in time (pic_time > 0), not both; APIC has none.
-  const auto pic_time = job.entries().find("mpm.pic_time");
-  if (pic_time != job.entries().end() && !pic_time->second.defaulted &&
-      job.number("mpm.pic_time") > 0.0) {
-    if (cfg.transfer == mpm::Transfer::apic) {
-      throw common::InputError(
-          job.message("mpm.pic_time",
-                      "does not apply with mpm.transfer = \"apic\" (it relaxes the FLIP part "
-                      "of the FLIP/PIC blend towards PIC; APIC has no FLIP part)"));
-    }
-    if (flip != job.entries().end() && !flip->second.defaulted && job.number("mpm.flip") != 1.0) {
-      throw common::InputError(
-          job.message("mpm.pic_time",
-                      "with mpm.flip < 1: the PIC share is set either per step (mpm.flip) or "
-                      "in time (mpm.pic_time, with flip = 1), not both: remove one of the two"));
-    }
+  const bool per_step = given("mpm.flip") && job.number("mpm.flip") != 1.0;
+  const bool in_time = given("mpm.pic_time") && job.number("mpm.pic_time") > 0.0;
+  if (in_time && apic) {
+    throw common::InputError(
+        job.message("mpm.pic_time",
+                    "does not apply with mpm.transfer = \"apic\" (it relaxes the FLIP part "
+                    "of the FLIP/PIC blend towards PIC; APIC has no FLIP part)"));
+  }
+  if (in_time && per_step) {
+    throw common::InputError(
+        job.message("mpm.pic_time",
+                    "with mpm.flip < 1: the PIC share is set either per step (mpm.flip) or "
+                    "in time (mpm.pic_time, with flip = 1), not both: remove one of the two"));
   }
   // XPIC shapes the PIC share: it needs one, and APIC has none.
-  const auto xpic = job.entries().find("mpm.xpic_order");
-  if (xpic != job.entries().end() && !xpic->second.defaulted &&
-      job.integer("mpm.xpic_order") > 1) {
-    if (cfg.transfer == mpm::Transfer::apic) {
+  if (given("mpm.xpic_order") && job.integer("mpm.xpic_order") > 1) {
+    if (apic) {
       throw common::InputError(
           job.message("mpm.xpic_order",
                       "does not apply with mpm.transfer = \"apic\" (XPIC shapes the PIC share "
                       "of the FLIP/PIC update; APIC has its own): remove one of the two"));
     }
-    const bool per_step =
-        flip != job.entries().end() && !flip->second.defaulted && job.number("mpm.flip") != 1.0;
-    const bool in_time = pic_time != job.entries().end() && !pic_time->second.defaulted &&
-                         job.number("mpm.pic_time") > 0.0;
     if (!per_step && !in_time) {
       throw common::InputError(
           job.message("mpm.xpic_order",
