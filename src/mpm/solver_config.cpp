@@ -9,7 +9,6 @@ namespace mpm {
 
 using messages::num_str;
 using messages::short_str;
-using messages::vec_str;
 
 void SolverConfig::validate() const {
   grid.validate();
