@@ -552,7 +552,8 @@ TRANSFER = {
         ("2 x 2, FLIP 0.99", "a1_2x2_E3MPa_wallpts_flip0.99"),
         ("2 x 2, FLIP 0.99, XPIC(3)", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3"),
         ("2 x 2, XPIC(5) (flip 0)", "a1_2x2_E3MPa_wallpts_xpic5"),
-        ("cells of L0/16, 1 point per cell, FLIP", "a1_h16_E3MPa_wallpts")]}
+        ("cells of L0/16, 1 point per cell, FLIP", "a1_h16_E3MPa_wallpts"),
+        ("cells of L0/16, 1 point per cell, FLIP 0.99, XPIC(3)", "a1_h16_E3MPa_wallpts_flip0.99_xpic3")]}
 TRANSFER_YADE = {2: ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"], 1: ["dense_a1_l14.4_E3e6"]}
 
 
