@@ -12,6 +12,15 @@ if(MPMXDEM_SANITIZE)
   target_link_options(mpmxdem_options INTERFACE -fsanitize=address,undefined)
 endif()
 
+# mpmxdem_skip_when_sanitized(<target>...): benchmarks, studies and the verification tests are
+# left out of the sanitizer build's default target: `tools/dev test` runs its unit and mpi labels
+# only (build them by name there where wanted).
+function(mpmxdem_skip_when_sanitized)
+  if(MPMXDEM_SANITIZE)
+    set_target_properties(${ARGN} PROPERTIES EXCLUDE_FROM_ALL TRUE)
+  endif()
+endfunction()
+
 # mpmxdem_module(<name> SOURCES ... [PUBLIC_LINK ...] [PRIVATE_LINK ...])
 # Creates library target mpmxdem_<name> (alias mpmxdem::<name>). Its headers are reachable as
 # "<name>/file.hpp" only through a per-module include root in the build tree, so a module that does

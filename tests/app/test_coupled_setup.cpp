@@ -106,7 +106,8 @@ TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
 // [output.grains] without `every` takes the C++ default, and the schema says the same number (it
 // said 100 while GrainViewOptions said 10).
 TEST(CoupledSetup, GrainViewsWithoutEveryTakeTheOneDefault) {
-  const std::string text = std::string(kJob) + "\n[output.grains]\nrves = [0]\n";
+  std::string text = kJob;
+  text += "\n[output.grains]\nrves = [0]\n";
   const farm::CoupledConfig c = app::coupled_setup(app::Job::parse(text, "grains.toml"), {"out", 4});
   ASSERT_EQ(c.grains.rves, std::vector<std::int64_t>{0});
   EXPECT_EQ(c.grains.every, farm::GrainViewOptions{}.every);

@@ -116,7 +116,8 @@ TEST(Job, AdaptiveSkinRangeIsChecked) {
 }
 
 TEST(Job, OptionalPhysicsNeedsAllItsParametersOnceSwitchedOn) {
-  const std::string text = std::string(kDemJob) + "\n[dem.material.twisting]\nstiffness = 0.5\n";
+  std::string text = kDemJob;
+  text += "\n[dem.material.twisting]\nstiffness = 0.5\n";
   const std::string err = error_of(text);
   EXPECT_NE(err.find("dem.material.twisting.strength is missing: required"), std::string::npos)
       << err;

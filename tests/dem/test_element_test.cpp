@@ -17,8 +17,7 @@ namespace {
 using common::Mat3;
 
 dem::Simulation small_sample() {
-  const dem::Packing pk = dem::read_packing(std::string(MPMXDEM_SOURCE_DIR) +
-                                            "/tests/farm/data/packing_N70_seed12.txt");
+  const dem::Packing pk = dem::read_packing(std::string(MPMXDEM_SOURCE_DIR "/tests/farm/data/packing_N70_seed12.txt"));
   return dem::make_simulation(pk, dem_test::reference_material(), dem::Numerics{});
 }
 
