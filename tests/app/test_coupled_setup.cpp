@@ -108,7 +108,8 @@ TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
 TEST(CoupledSetup, GrainViewsWithoutEveryTakeTheOneDefault) {
   std::string text = kJob;
   text += "\n[output.grains]\nrves = [0]\n";
-  const farm::CoupledConfig c = app::coupled_setup(app::Job::parse(text, "grains.toml"), {"out", 4});
+  const farm::CoupledConfig c =
+      app::coupled_setup(app::Job::parse(text, "grains.toml"), {"out", 4});
   ASSERT_EQ(c.grains.rves, std::vector<std::int64_t>{0});
   EXPECT_EQ(c.grains.every, farm::GrainViewOptions{}.every);
   EXPECT_EQ(c.grains.every, 100);

@@ -133,7 +133,8 @@ TEST(Job, ContactLawKeysAreRequiredWithTheLawAndRefusedWithAnother) {
             std::string::npos)
       << err;
   // Hertz-Mindlin: the CohFrict keys are refused, its own table is required.
-  const std::string hm = replace(kDemJob, "[dem.material]\n", "[dem.material]\ncontact_law = \"hertz_mindlin\"\n");
+  const std::string hm =
+      replace(kDemJob, "[dem.material]\n", "[dem.material]\ncontact_law = \"hertz_mindlin\"\n");
   const std::string err2 = error_of(hm);
   EXPECT_NE(err2.find("job.toml:6: dem.material.stiffness_ratio = 0.5: not used with "
                       "dem.material.contact_law = \"hertz_mindlin\": remove it or change the law"),
@@ -145,8 +146,8 @@ TEST(Job, ContactLawKeysAreRequiredWithTheLawAndRefusedWithAnother) {
             std::string::npos)
       << err2;
   std::string ok = hm;
-  for (const char* k : {"stiffness_ratio = 0.5\n", "rolling_stiffness = 2.0\n",
-                        "rolling_strength = 0.3\n"}) {
+  for (const char* k :
+       {"stiffness_ratio = 0.5\n", "rolling_stiffness = 2.0\n", "rolling_strength = 0.3\n"}) {
     ok = replace(ok, k, "");
   }
   const std::string table =
