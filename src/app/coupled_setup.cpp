@@ -53,12 +53,7 @@ dem::RveParams rve_params(const Job& job) {
   p.material = dem_material(job);
   p.numerics = dem_numerics(job);
   fill_from_job(job, dem::kRveParams, p);
-  p.carry_end_forces = job.text("dem.coupling.end_forces") == "carried";
-  p.rate =
-      job.text("dem.coupling.rate") == "coupling" ? dem::RveRate::coupling : dem::RveRate::material;
-  p.contact_loss = job.text("dem.coupling.contact_loss") == "strained"
-                       ? dem::ContactLoss::strained
-                       : dem::ContactLoss::disconnected;
+  fill_choices_from_job(job, dem::kRveChoices, p);  // end_forces, rate, contact_loss
   p.initial_pressure = 0.0;  // the prototype is prepared by prepared_sample()
   p.validate();
   return p;
@@ -188,9 +183,8 @@ farm::CoupledConfig coupled_setup(const Job& job, MpmSetup setup, const RunLimit
   }
   fill_from_job(job, farm::kCheckpointOptions, c.checkpoint);
   fill_from_job(job, farm::kBalanceOptions, c.balance);
-  c.farm.wait = farm::wait_mode_from(job.text("farm.wait"));
+  fill_choices_from_job(job, farm::kFarmChoices, c.farm);  // wait, partition
   c.farm.rank0_rves = job.flag("farm.rank0_rves");
-  c.farm.partition = farm::parse_partition_style(job.text("farm.partition"));
   c.validate();
   return c;
 }

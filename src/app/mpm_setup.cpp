@@ -8,6 +8,7 @@
 
 #include "app/schema_params.hpp"
 #include "common/errors.hpp"
+#include "mpm/solver_choices.hpp"
 
 namespace app {
 
@@ -92,14 +93,7 @@ MpmSetup mpm_setup(const Job& job) {
   const auto& cells = job.integers("mpm.grid.cells");
   cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]),
                                  static_cast<int>(cells[2]));
-  cfg.shape = mpm::shape_kind_from_string(job.text("mpm.shape_function"));
-  cfg.stress_update =
-      job.text("mpm.update") == "musl" ? mpm::StressUpdate::musl : mpm::StressUpdate::usf;
-  cfg.strain_smoothing = mpm::strain_smoothing_from_string(job.text("mpm.strain_smoothing"));
-  cfg.free_density = mpm::free_density_from_string(job.text("mpm.free_density"));
-  cfg.grid_positions = job.text("mpm.position_update") == "grid";
-  cfg.wall_impulse_on_points = job.text("mpm.wall_impulse") == "points";
-  cfg.transfer = mpm::transfer_from_string(job.text("mpm.transfer"));
+  fill_choices_from_job(job, mpm::kSolverChoices, cfg);  // shape, update, transfer, ...
   // Keys the job sets itself (not their defaults): the rules between the transfer's knobs.
   auto given = [&job](const char* key) {
     const auto it = job.entries().find(key);
@@ -144,13 +138,9 @@ MpmSetup mpm_setup(const Job& job) {
     }
   }
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
-  cfg.damping_mode = job.text("mpm.damping_mode") == "component"
-                         ? mpm::DampingMode::cundall_component
-                         : mpm::DampingMode::cundall_vector;
   fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold, ...
   if (job.has("mpm.plane_strain")) cfg.plane_strain_axis = job.text("mpm.plane_strain")[0] - 'x';
   cfg.move_points = job.flag("mpm.move_points");
-  cfg.formulation = mpm::formulation_from_string(job.text("mpm.formulation"));
   setup.end_time = job.number("mpm.end_time");
 
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {

@@ -82,32 +82,7 @@ void add_dem_sections(Schema& s) {
 
   s.add("dem.coupling", Type::Table, "The RVE step of MPM x DEM (paper eqs. 11-12).");
   add_params(s, dem::kRveParams);
-  s.add("dem.coupling.end_forces", Type::String,
-        "The forces that end an RVE step (docs/design/dem.md \"RVE step\"): separate (the "
-        "step of older versions: a force evaluation of zero length gives the stress; the next RVE step "
-        "computes the forces of the same state again, with its own dt) or carried (the default: "
-        "the end state's forces are computed "
-        "with the step's dt and L, the shear, rolling and twisting increments of its last DEM "
-        "step included; they give the stress and drive the next RVE step's first DEM step: one "
-        "force evaluation fewer per RVE step, other bits).")
-      .one_of({"separate", "carried"})
-      .or_default(std::string("carried"));
-  s.add("dem.coupling.rate", Type::String,
-        "How fast an RVE is sheared (docs/design/rve_step.md): material (the default: over "
-        "min(T_p, dt), so that its inertial number is the larger of inertial_number and the "
-        "material's own, I = |D| d50 sqrt(rho / p): a flow keeps the rate dependence of its "
-        "friction, a slow material stays quasi-static) or coupling (always over T_p of eq. 11, at "
-        "inertial_number, however fast the material flows: the paper's step).")
-      .one_of({"material", "coupling"})
-      .or_default(std::string("material"));
-  s.add("dem.coupling.contact_loss", Type::String,
-        "An RVE that has lost every contact (docs/design/rve_step.md): disconnected (the "
-        "default: a stress-free material, Dunatunga & Kamrin 2015; a dilation goes to a free "
-        "volume and the cell is held; a compression closes the free volume first, then strains "
-        "the cell from the state in which it lost its contacts) or strained (the cell follows "
-        "every increment, however far a stress-free point is stretched).")
-      .one_of({"disconnected", "strained"})
-      .or_default(std::string("disconnected"));
+  add_choices(s, dem::kRveChoices);  // end_forces, rate, contact_loss
 
   s.add("dem.sparing", Type::Table,
         "Sparing of idle RVEs in `run` (docs/design/sparing.md): off unless `tolerance` > 0.");

@@ -4,75 +4,19 @@
 #include "app/schema.hpp"
 #include "app/schema_params.hpp"
 #include "mpm/solver.hpp"
+#include "mpm/solver_choices.hpp"
 
 namespace app {
 
 void add_mpm_sections(Schema& s) {
   using Q = Quantity;
   s.add("mpm", Type::Table, "The material point method at the scale of the structure (`run`).");
-  s.add("mpm.shape_function", Type::String,
-        "Shape functions: linear (the paper's), uGIMP or quadratic B-spline.")
-      .one_of({"linear", "ugimp", "bspline2"})
-      .or_default(std::string("linear"));
-  s.add("mpm.update", Type::String,
-        "Stress update: Update Stress First (the paper's) or Modified USL.")
-      .one_of({"usf", "musl"})
-      .or_default(std::string("usf"));
+  add_choices(s, mpm::kSolverChoices);  // shape_function, update, transfer, ...
   s.add("mpm.move_points", Type::Bool,
         "false: points keep their initial positions (eq. 10 skipped): only for element tests whose "
         "cell is the "
         "sample, e.g. the paper's single-cell triaxial (see docs/design/mpm.md, Fixed points).")
       .or_default(true);
-  s.add("mpm.damping_mode", Type::String,
-        "vector: eq. 8 as written (one norm per node); component: per component, as YADE/PFC.")
-      .one_of({"vector", "component"})
-      .or_default(std::string("vector"));
-  s.add("mpm.strain_smoothing", Type::String,
-        "cell: every point of a grid cell gets the cell's volume-averaged velocity gradient before "
-        "the material update, and the internal forces come from the cell's mean stress (cures "
-        "the checkerboard of softening single-cell tests, but also suppresses real localisation "
-        "within a cell; docs/design/mpm.md, Strain smoothing). none: off.")
-      .one_of({"none", "cell"})
-      .or_default(std::string("none"));
-  s.add("mpm.free_density", Type::String,
-        "The dilation of a stress-free point (a disconnected material: an RVE without contacts, a "
-        "pulled-apart frictional continuum). point: its own velocity gradient's, as every other "
-        "point. grid: its own, but not beyond the density of the material around it (the mass "
-        "over the volume that the grid's nodes collect from the points near it): a point that "
-        "carries no stress has no force to resist a spurious dilation; its compression, "
-        "deviatoric rate and spin stay its own (docs/design/mpm.md, Density of stress-free "
-        "points).")
-      .one_of({"point", "grid"})
-      .or_default(std::string("point"));
-  s.add("mpm.formulation", Type::String,
-        "total_lagrangian: the grid is the reference configuration (needs mpm.move_points = "
-        "false): L = Fdot F^-1 and internal forces from sigma F^-T, so that a single-cell sample "
-        "holds its confining pressure at any strain instead of p / F_xx (docs/design/mpm.md, Total "
-        "Lagrangian formulation). updated_lagrangian: classical MPM.")
-      .one_of({"updated_lagrangian", "total_lagrangian"})
-      .or_default(std::string("updated_lagrangian"));
-  s.add("mpm.position_update", Type::String,
-        "point: the points move with their own (FLIP/PIC) velocity (eq. 10, the paper's); grid: "
-        "with the end-of-step grid velocity, which the walls hold, so no point crosses a rigid "
-        "base (docs/design/mpm.md, Position update).")
-      .one_of({"point", "grid"})
-      .or_default(std::string("point"));
-  s.add("mpm.wall_impulse", Type::String,
-        "grid: a wall's correction of the projected start-of-step velocity (the momentum stage "
-        "of Bardenhagen's contact) is only the step's kinematics, and a pure-FLIP point keeps a "
-        "velocity into a rigid base that never moves it (as before); points: it is an impulse on "
-        "the points, seen by their FLIP velocity and the wall's reaction, one contact impulse per "
-        "step (docs/design/mpm.md, Frictional boundaries; a frictional no_penetration wall then "
-        "holds "
-        "a block less well). Only walls (friction, contact) have it.")
-      .one_of({"grid", "points"})
-      .or_default(std::string("grid"));
-  s.add("mpm.transfer", Type::String,
-        "flip: the FLIP/PIC velocity blend of mpm.flip (the paper's); apic: affine PIC (Jiang et "
-        "al. 2015), each point also carries the grid's velocity gradient, so a homogeneous "
-        "deformation survives with one point per cell (docs/design/mpm.md, Transfers).")
-      .one_of({"flip", "apic"})
-      .or_default(std::string("flip"));
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.regularisation", Type::Table,
         "Nonlocal strain-gradient regularisation of a softening material: length and modulus "

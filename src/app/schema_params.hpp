@@ -1,13 +1,18 @@
-// Parameter tables of the modules (common/param_table.hpp) in the job schema: their rows become
-// schema keys, and a validated job fills their structs. The key, unit, range, default and meaning
-// of such a setting are written once, in its module's table.
+// Parameter and choice tables of the modules (common/param_table.hpp, common/choice_table.hpp) in
+// the job schema: their rows become schema keys, and a validated job fills their structs. The key,
+// unit, range or names, default and meaning of such a setting are written once, in its module's
+// table.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "app/job.hpp"
 #include "app/schema.hpp"
+#include "common/choice_table.hpp"
+#include "common/errors.hpp"
 #include "common/param_table.hpp"
 
 namespace app {
@@ -58,6 +63,32 @@ void fill_from_job(const Job& job, const common::ParamTable<S, N>& table, S& s) 
     } else {
       p.set(s, job.number(key));
     }
+  }
+}
+
+/// Adds every row of a choice table as a string key of the schema, in table order: its names are
+/// the allowed values, the struct's member initializer names the default.
+template <class S, std::size_t N>
+void add_choices(Schema& s, const common::ChoiceTable<S, N>& table) {
+  for (const auto& c : table) {
+    s.add(table.name(c), Type::String, std::string(c.doc))
+        .one_of(std::vector<std::string>(c.names.begin(),
+                                         c.names.begin() + static_cast<std::ptrdiff_t>(c.count)))
+        .or_default(std::string(c.default_name()));
+  }
+}
+
+/// Sets every member of `s` that a row of the choice table names, from the job (a defaulted key
+/// holds the default's name). The schema has checked the names; a name the row lacks (a schema
+/// and table out of step) throws common::InputError naming the key.
+template <class S, std::size_t N>
+void fill_choices_from_job(const Job& job, const common::ChoiceTable<S, N>& table, S& s) {
+  for (const auto& c : table) {
+    const std::string key = table.name(c);
+    if (!job.has(key)) continue;
+    const auto i = c.find(job.text(key));
+    if (!i) throw common::InputError(job.message(key, "is not one of the names of this setting"));
+    c.assign(s, *i);
   }
 }
 

@@ -4,6 +4,7 @@
 #include "app/schema_params.hpp"
 #include "farm/grain_views.hpp"
 #include "farm/run_options.hpp"
+#include "farm/rve_farm.hpp"
 
 namespace app {
 
@@ -27,11 +28,7 @@ void add_run_sections(Schema& s) {
 
   s.add("farm", Type::Table, "Distribution of the RVEs over MPI ranks.");
   add_params(s, farm::kBalanceOptions);  // rebalance_threshold, rebalance_check_every
-  s.add("farm.wait", Type::String,
-        "How a rank waits for the others: auto (spin where every thread of the node's ranks has a "
-        "core, sleep where they share cores; the log says which), spin, or sleep.")
-      .one_of({"auto", "spin", "sleep"})
-      .or_default(std::string("auto"));
+  add_choices(s, farm::kFarmChoices);    // wait, partition
   s.add("farm.rank0_rves", Type::Bool,
         "Rank 0 steps RVEs besides the MPM (true), or, with more than one rank, runs only the MPM "
         "and the exchange while ranks 1.. step the RVEs (false: for many ranks, where rank 0's "
@@ -39,13 +36,6 @@ void add_run_sections(Schema& s) {
         "docs/design/farm.md). "
         "Results are the same bits either way.")
       .or_default(true);
-  s.add("farm.partition", Type::String,
-        "How the RVEs are grouped on ranks: spread (neighbouring points on different ranks: their "
-        "step costs rise and fall together, so a rank of neighbours swings; balance 0.85-0.99 "
-        "where cells gives 0.68-0.93 on 2-16 ranks, docs/design/farm.md) or cells (METIS's "
-        "contiguous parts of the grid's cell graph). Results are the same bits either way.")
-      .one_of({"spread", "cells"})
-      .or_default(std::string("spread"));
 }
 
 }  // namespace app

@@ -5,9 +5,11 @@
 // Love-Weber Cauchy stress, TENSION POSITIVE (the seam convention).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 
+#include "common/choice_table.hpp"
 #include "common/state_io.hpp"
 #include "common/types.hpp"
 #include "dem/packing_io.hpp"
@@ -39,6 +41,14 @@ enum class ContactLoss : std::uint8_t {
   /// is a dense gas and follows every increment.
   disconnected,
 };
+
+/// The job's names (dem.coupling.rate, dem.coupling.contact_loss, dem.coupling.end_forces).
+inline constexpr std::array<common::Named<RveRate>, 2> kRveRateNames{
+    {{"material", RveRate::material}, {"coupling", RveRate::coupling}}};
+inline constexpr std::array<common::Named<ContactLoss>, 2> kContactLossNames{
+    {{"disconnected", ContactLoss::disconnected}, {"strained", ContactLoss::strained}}};
+inline constexpr std::array<common::Named<bool>, 2> kEndForcesNames{
+    {{"separate", false}, {"carried", true}}};
 
 /// Parameters of an RVE: material, numerics and the quasi-static step control. The member
 /// initializers are the defaults of the job keys too (kRveParams).
@@ -112,6 +122,34 @@ inline constexpr auto kRveParams = common::make_table<RveParams>(
       Source::cpp_only, "Cap on the DEM steps of one step()."},
      {"initial_pressure", &RveParams::initial_pressure, Unit::Pressure, common::ge(0),
       Source::cpp_only, "> 0: equilibrate isotropically at construction."}});
+
+/// [dem.coupling]: the settings of RveParams that are a name out of a list
+/// (common/choice_table.hpp).
+inline constexpr common::ChoiceTable<RveParams, 3> kRveChoices{
+    "dem.coupling",
+    {common::choice<&RveParams::carry_end_forces, kEndForcesNames>(
+         "end_forces",
+         "The forces that end an RVE step (docs/design/dem.md \"RVE step\"): separate (the "
+         "step of older versions: a force evaluation of zero length gives the stress; the next RVE "
+         "step computes the forces of the same state again, with its own dt) or carried (the "
+         "default: the end state's forces are computed with the step's dt and L, the shear, "
+         "rolling and twisting increments of its last DEM step included; they give the stress and "
+         "drive the next RVE step's first DEM step: one force evaluation fewer per RVE step, other "
+         "bits)."),
+     common::choice<&RveParams::rate, kRveRateNames>(
+         "rate",
+         "How fast an RVE is sheared (docs/design/rve_step.md): material (the default: over "
+         "min(T_p, dt), so that its inertial number is the larger of inertial_number and the "
+         "material's own, I = |D| d50 sqrt(rho / p): a flow keeps the rate dependence of its "
+         "friction, a slow material stays quasi-static) or coupling (always over T_p of eq. 11, at "
+         "inertial_number, however fast the material flows: the paper's step)."),
+     common::choice<&RveParams::contact_loss, kContactLossNames>(
+         "contact_loss",
+         "An RVE that has lost every contact (docs/design/rve_step.md): disconnected (the "
+         "default: a stress-free material, Dunatunga & Kamrin 2015; a dilation goes to a free "
+         "volume and the cell is held; a compression closes the free volume first, then strains "
+         "the cell from the state in which it lost its contacts) or strained (the cell follows "
+         "every increment, however far a stress-free point is stretched).")}};
 
 /// Bits of StepReport::guards.
 enum RveGuard : std::uint32_t {

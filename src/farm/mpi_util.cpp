@@ -28,7 +28,8 @@ void wait_for(MPI_Request& request, WaitMode mode) {
   // rank 0's MPM step, rank 0 waiting for a slightly slower worker) and end with no latency.
   // Then sleep with an exponential back-off capped at 100 us, so a long wait leaves its core to
   // the DEM of another rank yet notices its end within ~0.15 ms (with Linux timer slack).
-  // Measured (docs/design/farm.md): 20 polls only cost 0.16 ms of latency per MPM step, this 0.03 ms.
+  // Measured (docs/design/farm.md): 20 polls only cost 0.16 ms of latency per MPM step, this 0.03
+  // ms.
   const auto start = std::chrono::steady_clock::now();
   while (done == 0 && std::chrono::steady_clock::now() - start < kPollBudget) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
@@ -123,22 +124,13 @@ std::vector<std::string> allgather_strings(MPI_Comm comm, const std::vector<std:
 }
 
 const char* to_string(WaitMode mode) {
-  switch (mode) {
-    case WaitMode::automatic:
-      return "auto";
-    case WaitMode::spin:
-      return "spin";
-    case WaitMode::sleep:
-      return "sleep";
-  }
-  return "?";
+  return common::name_of(kWaitModeNames, mode).data();  // the names are literals
 }
 
 WaitMode wait_mode_from(const std::string& text) {
-  for (const WaitMode m : {WaitMode::automatic, WaitMode::spin, WaitMode::sleep}) {
-    if (text == to_string(m)) return m;
-  }
-  throw common::InputError("wait mode '" + text + "': must be one of auto, spin, sleep");
+  if (const auto m = common::value_of(kWaitModeNames, text)) return *m;
+  throw common::InputError("wait mode '" + text + "': must be one of " +
+                           common::names_list(kWaitModeNames));
 }
 
 WaitMode resolve_wait_mode(MPI_Comm comm, WaitMode mode) {

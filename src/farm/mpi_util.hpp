@@ -4,9 +4,12 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "common/choice_table.hpp"
 
 namespace farm {
 
@@ -18,6 +21,9 @@ enum class WaitMode {
   sleep,      ///< polls MPI_Test for up to 200 us, then sleeps with a back-off from 10 us to
               ///< 100 us (a long wait frees the core)
 };
+/// The job's names (farm.wait).
+inline constexpr std::array<common::Named<WaitMode>, 3> kWaitModeNames{
+    {{"auto", WaitMode::automatic}, {"spin", WaitMode::spin}, {"sleep", WaitMode::sleep}}};
 
 /// "auto", "spin", "sleep".
 const char* to_string(WaitMode mode);

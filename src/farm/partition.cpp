@@ -105,12 +105,14 @@ std::vector<int> partition_metis(const RveGraph& graph, const std::vector<double
   return owner;
 }
 
-const char* to_string(PartitionStyle s) { return s == PartitionStyle::cells ? "cells" : "spread"; }
+const char* to_string(PartitionStyle s) {
+  return common::name_of(kPartitionStyleNames, s).data();  // the names are literals
+}
 
 PartitionStyle parse_partition_style(const std::string& s) {
-  if (s == "cells") return PartitionStyle::cells;
-  if (s == "spread") return PartitionStyle::spread;
-  throw common::InputError("partition style '" + s + "': must be cells or spread");
+  if (const auto p = common::value_of(kPartitionStyleNames, s)) return *p;
+  throw common::InputError("partition style '" + s + "': must be one of " +
+                           common::names_list(kPartitionStyleNames));
 }
 
 std::vector<int> partition_spread(const RveGraph& graph, const std::vector<double>& cost,

@@ -3,10 +3,12 @@
 // the current owners, plus simple reference splits.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/types.hpp"
 #include "mpm/grid.hpp"
 
@@ -37,6 +39,9 @@ struct RveGraph {
 /// swings far more than a spread part's (docs/design/farm.md, "Balancing"). RVEs exchange
 /// nothing with each other: the grouping changes no result and no message size.
 enum class PartitionStyle { cells, spread };
+/// The job's names (farm.partition).
+inline constexpr std::array<common::Named<PartitionStyle>, 2> kPartitionStyleNames{
+    {{"spread", PartitionStyle::spread}, {"cells", PartitionStyle::cells}}};
 /// "cells" / "spread"; parse_partition_style throws common::InputError on other text.
 [[nodiscard]] const char* to_string(PartitionStyle s);
 [[nodiscard]] PartitionStyle parse_partition_style(const std::string& s);

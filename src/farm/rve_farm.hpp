@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/state_store.hpp"
 #include "farm/checkpoint.hpp"
 #include "farm/cost_ledger.hpp"
@@ -39,6 +40,20 @@ struct FarmOptions {
   /// How the RVEs are grouped on ranks (`farm.partition`; partition.hpp, PartitionStyle).
   PartitionStyle partition = PartitionStyle::spread;
 };
+
+/// [farm]: the settings of FarmOptions that are a name out of a list (common/choice_table.hpp).
+inline constexpr common::ChoiceTable<FarmOptions, 2> kFarmChoices{
+    "farm",
+    {common::choice<&FarmOptions::wait, kWaitModeNames>(
+         "wait",
+         "How a rank waits for the others: auto (spin where every thread of the node's ranks has a "
+         "core, sleep where they share cores; the log says which), spin, or sleep."),
+     common::choice<&FarmOptions::partition, kPartitionStyleNames>(
+         "partition",
+         "How the RVEs are grouped on ranks: spread (neighbouring points on different ranks: their "
+         "step costs rise and fall together, so a rank of neighbours swings; balance 0.85-0.99 "
+         "where cells gives 0.68-0.93 on 2-16 ranks, docs/design/farm.md) or cells (METIS's "
+         "contiguous parts of the grid's cell graph). Results are the same bits either way.")}};
 
 class RveFarm final : public mpm::MaterialModel {
  public:

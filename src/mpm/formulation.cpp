@@ -10,15 +10,12 @@
 namespace mpm {
 
 Formulation formulation_from_string(std::string_view name) {
-  if (name == "updated_lagrangian") return Formulation::updated_lagrangian;
-  if (name == "total_lagrangian") return Formulation::total_lagrangian;
-  throw common::InputError("mpm.formulation = \"" + std::string(name) +
-                           "\": must be one of updated_lagrangian, total_lagrangian");
+  if (const auto f = common::value_of(kFormulationNames, name)) return *f;
+  throw common::InputError("mpm.formulation = \"" + std::string(name) + "\": must be one of " +
+                           common::names_list(kFormulationNames));
 }
 
-std::string_view to_string(Formulation f) {
-  return f == Formulation::total_lagrangian ? "total_lagrangian" : "updated_lagrangian";
-}
+std::string_view to_string(Formulation f) { return common::name_of(kFormulationNames, f); }
 
 void to_spatial_gradient(const std::vector<common::Mat3>& F, std::vector<common::Mat3>& L) {
   for (std::size_t p = 0; p < L.size(); ++p) L[p] = L[p] * F[p].inverse();

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/types.hpp"
 
 namespace mpm {
@@ -15,6 +16,10 @@ enum class Formulation {
   updated_lagrangian,  ///< L = sum_v V_v (x) grad S_v, forces V sigma grad S (the default)
   total_lagrangian,    ///< grad S maps through F^-T: L = Fdot F^-1, forces V sigma F^-T grad S
 };
+/// The job's names (mpm.formulation).
+inline constexpr std::array<common::Named<Formulation>, 2> kFormulationNames{
+    {{"updated_lagrangian", Formulation::updated_lagrangian},
+     {"total_lagrangian", Formulation::total_lagrangian}}};
 
 /// "updated_lagrangian" or "total_lagrangian"; throws common::InputError otherwise.
 [[nodiscard]] Formulation formulation_from_string(std::string_view name);

@@ -10,13 +10,13 @@
 namespace mpm {
 
 FreeDensity free_density_from_string(std::string_view name) {
-  if (name == "point") return FreeDensity::point;
-  if (name == "grid") return FreeDensity::grid;
-  throw common::InputError("mpm.free_density must be \"point\" or \"grid\", not \"" +
-                           std::string(name) + "\"");
+  if (const auto f = common::value_of(kFreeDensityNames, name)) return *f;
+  throw common::InputError("mpm.free_density must be one of " +
+                           common::names_list(kFreeDensityNames) + ", not \"" + std::string(name) +
+                           "\"");
 }
 
-std::string_view to_string(FreeDensity f) { return f == FreeDensity::grid ? "grid" : "point"; }
+std::string_view to_string(FreeDensity f) { return common::name_of(kFreeDensityNames, f); }
 
 void grid_density(const Grid& grid, const StencilCache& cache, const MaterialPoints& points,
                   std::vector<double>& node_m, std::vector<double>& node_v,

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/transfers.hpp"
@@ -18,6 +19,9 @@ enum class FreeDensity {
   /// its own L, but no dilation beyond its neighbourhood's density m_p / rho_grid(x_p)
   grid,
 };
+/// The job's names (mpm.free_density).
+inline constexpr std::array<common::Named<FreeDensity>, 2> kFreeDensityNames{
+    {{"point", FreeDensity::point}, {"grid", FreeDensity::grid}}};
 
 /// "point" or "grid"; throws common::InputError otherwise.
 [[nodiscard]] FreeDensity free_density_from_string(std::string_view name);

@@ -2,6 +2,9 @@
 // (Duverger et al. 2022, eq. 8), with a small-mass threshold.
 #pragma once
 
+#include <array>
+
+#include "common/choice_table.hpp"
 #include "mpm/grid.hpp"
 
 namespace mpm {
@@ -13,6 +16,9 @@ enum class DampingMode {
   /// Per component, as YADE/PFC's local non-viscous damping: a_k = (f_k - D |f_k| sign(V_k)) / m.
   cundall_component,
 };
+/// The job's names (mpm.damping_mode).
+inline constexpr std::array<common::Named<DampingMode>, 2> kDampingModeNames{
+    {{"vector", DampingMode::cundall_vector}, {"component", DampingMode::cundall_component}}};
 
 /// Mean nodal mass over the active nodes [kg] (0 when none).
 double typical_nodal_mass(const GridFields& fields);

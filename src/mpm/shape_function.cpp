@@ -7,24 +7,12 @@
 
 namespace mpm {
 
-std::string_view to_string(ShapeKind kind) {
-  switch (kind) {
-    case ShapeKind::linear:
-      return "linear";
-    case ShapeKind::ugimp:
-      return "ugimp";
-    case ShapeKind::bspline2:
-      return "bspline2";
-  }
-  return "?";
-}
+std::string_view to_string(ShapeKind kind) { return common::name_of(kShapeKindNames, kind); }
 
 ShapeKind shape_kind_from_string(std::string_view name) {
-  if (name == "linear") return ShapeKind::linear;
-  if (name == "ugimp") return ShapeKind::ugimp;
-  if (name == "bspline2") return ShapeKind::bspline2;
-  throw common::InputError("mpm shape function '" + std::string(name) +
-                           "': must be one of linear, ugimp, bspline2");
+  if (const auto k = common::value_of(kShapeKindNames, name)) return *k;
+  throw common::InputError("mpm shape function '" + std::string(name) + "': must be one of " +
+                           common::names_list(kShapeKindNames));
 }
 
 int stencil_width(ShapeKind kind) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <string_view>
 
+#include "common/choice_table.hpp"
 #include "mpm/shape_bspline2.hpp"
 #include "mpm/shape_linear.hpp"
 #include "mpm/shape_ugimp.hpp"
@@ -12,6 +13,11 @@ namespace mpm {
 
 /// Shape function of a run (selected in SolverConfig::shape).
 enum class ShapeKind { linear, ugimp, bspline2 };
+/// The job's names of the shape functions (mpm.shape_function).
+inline constexpr std::array<common::Named<ShapeKind>, 3> kShapeKindNames{
+    {{"linear", ShapeKind::linear},
+     {"ugimp", ShapeKind::ugimp},
+     {"bspline2", ShapeKind::bspline2}}};
 
 /// "linear", "ugimp", "bspline2".
 std::string_view to_string(ShapeKind kind);

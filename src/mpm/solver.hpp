@@ -2,11 +2,13 @@
 // MUSL, NFLIP velocity update (eqs. 9-10) with an optional PIC blend, Cundall damping (eq. 8).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/param_table.hpp"
 #include "common/state_io.hpp"
 #include "mpm/boundary.hpp"
@@ -31,6 +33,15 @@ enum class StressUpdate {
   usf,   ///< Update Stress First: L from the start-of-step nodal velocities (the paper)
   musl,  ///< Modified Update Stress Last: L from re-projected end-of-step point velocities
 };
+/// The job's names (mpm.update).
+inline constexpr std::array<common::Named<StressUpdate>, 2> kStressUpdateNames{
+    {{"usf", StressUpdate::usf}, {"musl", StressUpdate::musl}}};
+/// The job's names of SolverConfig::grid_positions (mpm.position_update).
+inline constexpr std::array<common::Named<bool>, 2> kPositionUpdateNames{
+    {{"point", false}, {"grid", true}}};
+/// The job's names of SolverConfig::wall_impulse_on_points (mpm.wall_impulse).
+inline constexpr std::array<common::Named<bool>, 2> kWallImpulseNames{
+    {{"grid", false}, {"points", true}}};
 
 /// Plain run configuration (the app maps the job file onto it). Units in each comment. The member
 /// initializers of the numeric knobs are the defaults of their job keys too (kSolverConfig).

@@ -1,4 +1,5 @@
-// Cell-averaged velocity gradient (see strain_smoothing.hpp, docs/design/mpm.md "Strain smoothing").
+// Cell-averaged velocity gradient (see strain_smoothing.hpp, docs/design/mpm.md "Strain
+// smoothing").
 #include "mpm/strain_smoothing.hpp"
 
 #include <algorithm>
@@ -10,15 +11,12 @@
 namespace mpm {
 
 StrainSmoothing strain_smoothing_from_string(std::string_view name) {
-  if (name == "none") return StrainSmoothing::none;
-  if (name == "cell") return StrainSmoothing::cell;
-  throw common::InputError("mpm.strain_smoothing = \"" + std::string(name) +
-                           "\": must be \"none\" or \"cell\"");
+  if (const auto s = common::value_of(kStrainSmoothingNames, name)) return *s;
+  throw common::InputError("mpm.strain_smoothing = \"" + std::string(name) + "\": must be one of " +
+                           common::names_list(kStrainSmoothingNames));
 }
 
-std::string_view to_string(StrainSmoothing s) {
-  return s == StrainSmoothing::cell ? "cell" : "none";
-}
+std::string_view to_string(StrainSmoothing s) { return common::name_of(kStrainSmoothingNames, s); }
 
 std::int64_t cell_of(const Grid& grid, const common::Vec3& x) {
   std::int64_t ijk[3] = {0, 0, 0};

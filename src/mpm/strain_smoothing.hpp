@@ -1,6 +1,7 @@
 // Strain smoothing: every material point of a grid cell gets the cell's volume-averaged velocity
 // gradient before the material update (the cell-based averaging of Anura3D's mixed integration;
-// docs/design/mpm.md, "Strain smoothing"). A cure for the checkerboard of softening single-cell tests.
+// docs/design/mpm.md, "Strain smoothing"). A cure for the checkerboard of softening single-cell
+// tests.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/types.hpp"
 #include "mpm/grid.hpp"
 
@@ -19,6 +21,9 @@ enum class StrainSmoothing {
   cell,  ///< each point the volume-weighted mean L of the points in its grid cell, and the
          ///< internal forces from the cell's mean stress (no hourglass forces; docs/design/mpm.md)
 };
+/// The job's names (mpm.strain_smoothing).
+inline constexpr std::array<common::Named<StrainSmoothing>, 2> kStrainSmoothingNames{
+    {{"none", StrainSmoothing::none}, {"cell", StrainSmoothing::cell}}};
 
 /// "none" or "cell"; throws common::InputError otherwise.
 [[nodiscard]] StrainSmoothing strain_smoothing_from_string(std::string_view name);

@@ -181,13 +181,12 @@ void activate_nodes(const Grid& grid, const StencilCache& cache, const PointBins
 }
 
 Transfer transfer_from_string(std::string_view name) {
-  if (name == "flip") return Transfer::flip;
-  if (name == "apic") return Transfer::apic;
-  throw common::InputError("mpm.transfer = \"" + std::string(name) +
-                           "\": must be \"flip\" or \"apic\"");
+  if (const auto t = common::value_of(kTransferNames, name)) return *t;
+  throw common::InputError("mpm.transfer = \"" + std::string(name) + "\": must be one of " +
+                           common::names_list(kTransferNames));
 }
 
-std::string_view to_string(Transfer t) { return t == Transfer::apic ? "apic" : "flip"; }
+std::string_view to_string(Transfer t) { return common::name_of(kTransferNames, t); }
 
 double pic_share(double flip, double pic_time, double dt) {
   return pic_time > 0.0 ? -std::expm1(-dt / pic_time) : 1.0 - flip;

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/parallel.hpp"
@@ -24,6 +25,9 @@ enum class Transfer {
   /// 8 nodes get the one point's velocity)
   apic,
 };
+/// The job's names of the transfers (mpm.transfer).
+inline constexpr std::array<common::Named<Transfer>, 2> kTransferNames{
+    {{"flip", Transfer::flip}, {"apic", Transfer::apic}}};
 [[nodiscard]] Transfer transfer_from_string(std::string_view name);  ///< "flip" | "apic"
 
 /// PIC share of a FLIP/PIC step of length dt [s]: 1 - exp(-dt / pic_time) when pic_time > 0 (a

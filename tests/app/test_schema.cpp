@@ -12,6 +12,7 @@
 #include "app/dem_setup.hpp"
 #include "app/job.hpp"
 #include "app/schema_params.hpp"
+#include "common/choice_table.hpp"
 #include "common/errors.hpp"
 #include "common/param_table.hpp"
 #include "dem/loading.hpp"
@@ -21,6 +22,7 @@
 #include "farm/run_options.hpp"
 #include "farm/rve_farm.hpp"
 #include "mpm/solver.hpp"
+#include "mpm/solver_choices.hpp"
 
 TEST(Schema, EveryKeyHasADocumentedParentSection) {
   const auto& s = app::job_schema();
@@ -129,19 +131,65 @@ TEST(Schema, MpmAndFarmTablesAreTheSchemaOfTheirKeys) {
   expect_rows_in_schema(farm::kBalanceOptions);
 }
 
-// The [mpm] keys that are no table rows (names, not numbers): their job defaults are the
-// SolverConfig defaults too.
-TEST(Schema, MpmChoiceDefaultsAreTheSolverConfigDefaults) {
+// A choice table's rows are schema keys whose names are the row's and whose default is the
+// struct's; a job of the table's keys alone (their own schema, no cross-key rules) sets each name
+// and leaves the other rows at their defaults.
+template <class S, std::size_t N>
+void expect_choices_in_schema(const common::ChoiceTable<S, N>& table) {
   const auto& s = app::job_schema();
-  const mpm::SolverConfig cfg;
-  const auto text = [&](const char* key) { return std::get<std::string>(*s.find(key)->fallback); };
-  EXPECT_EQ(mpm::shape_kind_from_string(text("mpm.shape_function")), cfg.shape);
-  EXPECT_EQ(text("mpm.update") == "musl", cfg.stress_update == mpm::StressUpdate::musl);
-  EXPECT_EQ(text("mpm.damping_mode") == "component",
-            cfg.damping_mode == mpm::DampingMode::cundall_component);
-  EXPECT_EQ(std::get<bool>(*s.find("mpm.move_points")->fallback), cfg.move_points);
+  const S defaults{};
+  for (const auto& row : table) {
+    const std::string key = table.name(row);
+    const app::Key* k = s.find(key);
+    ASSERT_NE(k, nullptr) << key;
+    EXPECT_EQ(k->type, app::Type::String) << key;
+    EXPECT_EQ(k->doc, row.doc) << key;
+    ASSERT_EQ(k->choices.size(), row.count) << key;
+    for (std::size_t i = 0; i < row.count; ++i) EXPECT_EQ(k->choices[i], row.names[i]) << key;
+    ASSERT_TRUE(k->fallback.has_value()) << key;
+    EXPECT_EQ(std::get<std::string>(*k->fallback), row.name_in(defaults)) << key;
+  }
+  app::Schema only_choices;
+  const std::string section(table.section);
+  for (std::size_t dot = section.find('.'); dot != std::string::npos;
+       dot = section.find('.', dot + 1)) {
+    only_choices.add(section.substr(0, dot), app::Type::Table, "a parent section");
+  }
+  only_choices.add(section, app::Type::Table, "the section");
+  app::add_choices(only_choices, table);
+  for (const auto& row : table) {
+    for (std::size_t i = 0; i < row.count; ++i) {
+      std::string text = "[" + section + "]\n";
+      text += std::string(row.key) + " = \"" + std::string(row.names[i]) + "\"\n";
+      S cfg{};
+      app::fill_choices_from_job(app::Job::parse(text, "choice.toml", only_choices, false), table,
+                                 cfg);
+      EXPECT_EQ(row.name_in(cfg), row.names[i]) << row.key;
+      for (const auto& other : table) {
+        if (other.key != row.key) {
+          EXPECT_EQ(other.name_in(cfg), other.name_in(defaults)) << other.key;
+        }
+      }
+    }
+  }
+}
+
+TEST(Schema, ChoiceTablesAreTheSchemaOfTheirKeysAndFillTheirStructs) {
+  expect_choices_in_schema(mpm::kSolverChoices);
+  expect_choices_in_schema(dem::kRveChoices);
+  expect_choices_in_schema(farm::kFarmChoices);
+}
+
+// The other [mpm] keys that are no table rows keep the struct's defaults too, and the names the
+// mpm module prints are the table's.
+TEST(Schema, MpmKeysOutsideTheTablesHaveTheSolverConfigDefaults) {
+  const auto& s = app::job_schema();
+  const mpm::SolverConfig defaults;
+  EXPECT_EQ(mpm::kSolverChoices.row("shape_function")->name_in(defaults),
+            mpm::to_string(defaults.shape));
+  EXPECT_EQ(std::get<bool>(*s.find("mpm.move_points")->fallback), defaults.move_points);
   EXPECT_EQ(s.find("mpm.gravity")->fallback.has_value(), false);
-  EXPECT_TRUE(cfg.gravity.isZero());
+  EXPECT_TRUE(defaults.gravity.isZero());
   EXPECT_EQ(farm::wait_mode_from(std::get<std::string>(*s.find("farm.wait")->fallback)),
             farm::FarmOptions{}.wait);
 }
