@@ -17,15 +17,8 @@ namespace dem_test {
 
 using dem::reference_material;
 
-/// PREFIX + rest, appended (GCC 12 sees a false -Warray-bounds in string's operator+ on a
-/// temporary once the tests' headers come precompiled: tests/CMakeLists.txt).
-inline std::string joined(std::string prefix, const std::string& rest) {
-  prefix.append(rest);
-  return prefix;
-}
-
 inline std::string data_path(const std::string& name) {
-  return joined(MPMXDEM_TEST_DATA "/dem/", name);
+  return std::string(MPMXDEM_TEST_DATA "/dem/") + name;
 }
 
 /// The reference 1000-sphere YADE packing; its one copy is the one the jobs use.

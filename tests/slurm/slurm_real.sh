@@ -25,7 +25,7 @@ exe=$(realpath "$1") mpiexec=$2 h5diff=$3 python=$4 dir=$(realpath -m "$5")
 fail() { echo "FAIL: $*"; exit 1; }
 skip() { echo "SKIP: $*"; exit 77; }
 rm -rf "$dir" && mkdir -p "$dir"
-started=$SECONDS deadline=$((SECONDS + 840))  # before ctest's TIMEOUT (900 s) kills us, trap and all
+started=$SECONDS deadline=$((SECONDS + 840))  # a bound of our own, well inside ctest's hour: the trap cleans up
 [ "$(id -u)" -eq 0 ] || skip "needs root: slurmd starts the jobs' processes as their user"
 "$python" -c "import h5py" || fail "$python: no h5py (Debian: python3-h5py)"
 
