@@ -120,7 +120,6 @@ def analyse(run):
     runout_c = (front_c[-1] - L0) / L0
     target_c = front_c[0] + 0.99 * (front_c[-1] - front_c[0])
     t99_c = t[np.argmax(front_c >= target_c)] / tstar if front_c[-1] > front_c[0] else np.nan
-    gate = 0.02
     summ = dict(tag=f"a{a:g}", a=a, rves=x.shape[1], L0_m=L0, H0_m=H0, cell_m=dx, tstar_s=tstar,
                 L_f_m=front[-1], H_f_m=hback[-1], runout_over_L0=runout,
                 Hf_over_L0=hback[-1] / L0, Hf_over_H0=hback[-1] / H0, t99_over_tstar=t99,
@@ -132,7 +131,6 @@ def analyse(run):
                 I_max=np.nanmax(inert), I_p95_max=np.nanmax(np.nanpercentile(inert[1:], 95, axis=1)),
                 flight_max=int(flight.max()), lowp_max=int(lowp.max()), mpm_steps=int(steps[-1]),
                 dem_steps=int(f["rve/dem_steps"][:].sum()))
-    del gate
     return dict(t=t, tstar=tstar, L0=L0, H0=H0, a=a, front=front, front_c=front_c, hback=hback, ek=ek_norm,
                 ek_motion=ek_motion,
                 inert=inert, flight=flight, lowp=lowp, profile=profile, x=x, p=p_pt, summ=summ,
