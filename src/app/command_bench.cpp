@@ -14,6 +14,7 @@
 #include "dem/packing_io.hpp"
 #include "dem/reference_material.hpp"
 #include "mpm/benchmark.hpp"
+#include "mpm/shape_function.hpp"
 
 namespace app {
 
@@ -80,9 +81,9 @@ int command_bench(const Options& o, const Comm& comm) {
       }
     }
     std::printf("# mpm: material-point updates per second, USF, elastic block under gravity\n");
-    for (const char* shape : {"linear", "ugimp", "bspline2"}) {
+    for (const auto& shape : mpm::kShapeKindNames) {
       for (int t = 1; t <= std::max(2, max_threads); t *= 2) {
-        const auto r = mpm::run_benchmark(points, t, steps, shape);
+        const auto r = mpm::run_benchmark(points, t, steps, std::string(shape.name));
         std::printf("%s\n", mpm::to_string(r).c_str());
       }
     }

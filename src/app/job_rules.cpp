@@ -12,6 +12,8 @@
 #include "app/memory_check.hpp"
 #include "common/errors.hpp"
 #include "dem/params.hpp"
+#include "mpm/formulation.hpp"
+#include "mpm/shape_function.hpp"
 
 namespace app {
 
@@ -230,7 +232,7 @@ void mpm_rules(const Job& job, Rules& r) {
       const bool thickness =
           job.has("mpm.plane_strain") && job.text("mpm.plane_strain")[0] - 'x' == a;
       const double tol = 1e-9 * h[a];
-      if (job.text("mpm.shape_function") == "ugimp" && !thickness &&
+      if (job.text("mpm.shape_function") == mpm::to_string(mpm::ShapeKind::ugimp) && !thickness &&
           (lo[a] <= origin[a] + tol || hi[a] >= top - tol)) {
         r.fail(
             lo[a] <= origin[a] + tol ? base + "min" : base + "max",
@@ -274,7 +276,8 @@ void mpm_rules(const Job& job, Rules& r) {
                          nodes, points, need / 1e9, mem / 1e9));
     }
   }
-  if (job.text("mpm.formulation") == "total_lagrangian" && job.flag("mpm.move_points")) {
+  if (job.text("mpm.formulation") == mpm::to_string(mpm::Formulation::total_lagrangian) &&
+      job.flag("mpm.move_points")) {
     r.fail("mpm.formulation",
            "needs mpm.move_points = false (the grid is the reference configuration only while "
            "the points keep their initial positions: an element test whose cell is the sample)");
