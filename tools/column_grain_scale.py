@@ -23,6 +23,11 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            size (runout to a height of 0.05 and 0.02 H0, centre of mass)
   --size-figure            writes FIG/column_size_a2.png: the a = 2 columns with E = 3 MPa at
                            L0 = 14.4 and 28.8 d50, MPM x DEM (one point per cell) over YADE
+  --self-test              checks the gate's release time and the shifted time axes
+
+Times: the MPM x DEM jobs hold their gate until the `until` of the velocity condition named "gate"
+in DATA/STEM.toml, the YADE columns release theirs at t = 0; every MPM x DEM time (fronts at
+1 / 2 / 3 t*, the rows picked for the tables, the figures' curves) counts from the release.
 
 Usage: /usr/bin/python3 tools/column_grain_scale.py [--data D] [--yade Y] [--fig F] MODE
 Defaults: D = docs/data/column_collapse_mpm_grain_scale, Y = docs/data/column_collapse_yade,
@@ -36,6 +41,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # (a, stem of the MPM x DEM run at L0 = 14.4 d50, its label), in table order
@@ -64,6 +70,62 @@ def analyse(run, stem, data):
     mobilised_series(os.path.join(run, "results.h5"), H0, os.path.join(data, f"{stem}_mobilised.csv"))
     core_series(os.path.join(run, "results.h5"), L0, H0, os.path.join(data, f"{stem}_core.csv"))
     print(f"wrote {data}/{stem}_*.csv")
+
+
+def gate_release(job_path):
+    """The time (s) at which a column job releases its column: the `until` of its velocity
+    condition named "gate" (0 without one). The YADE columns remove their gate at t = 0, so every
+    MPM x DEM time axis compared with theirs starts at the release."""
+    with open(job_path, "rb") as f:
+        job = tomllib.load(f)
+    for bc in job.get("mpm", {}).get("velocity", []):
+        if bc.get("name") == "gate" and "until" in bc:
+            until = bc["until"]
+            if isinstance(until, (int, float)):
+                return float(until)
+            value, _, unit = str(until).partition(" ")
+            if unit not in SECONDS:
+                sys.exit(f"{job_path}: gate until {until!r}: expected a time in s or ms")
+            return float(value) * SECONDS[unit]
+    return 0.0
+
+
+SECONDS = {"s": 1.0, "ms": 1e-3}
+
+
+def self_test():
+    """gate_release and released_times on a job written here (the stored jobs say "... s")."""
+    with tempfile.TemporaryDirectory() as tmp:
+        job = ('[mpm]\n[[mpm.velocity]]\nname = "back_wall"\nuntil = "1 s"\n'
+               '[[mpm.velocity]]\nname = "gate"\nx = 0\nuntil = "{}"\n')
+        for until, want in (("20 ms", 0.02), ("0.00151789 s", 0.00151789)):
+            with open(os.path.join(tmp, "c.toml"), "w") as f:
+                f.write(job.format(until))
+            got = gate_release(os.path.join(tmp, "c.toml"))
+            assert abs(got - want) < 1e-15, (until, got)
+        with open(os.path.join(tmp, "c_summary.csv"), "w") as f:
+            f.write("tstar_s\n0.2\n")
+        rows_ = [{"t_over_tstar": "0.1"}, {"t_over_tstar": "1.1"}]
+        got = released_times(tmp, "c", rows_)  # the gate of c.toml: 0.00151789 s
+        want = [0.1 - 0.00151789 / 0.2, 1.1 - 0.00151789 / 0.2]
+        assert all(abs(g - w) < 1e-12 for g, w in zip(got, want)), got
+        with open(os.path.join(tmp, "c.toml"), "w") as f:
+            f.write('[mpm]\n[[mpm.velocity]]\nname = "wall"\nuntil = "1 s"\n')
+        assert gate_release(os.path.join(tmp, "c.toml")) == 0.0  # no gate: no shift
+    print("column_grain_scale self-test: gate release in s and ms, time axes shifted, no gate no shift")
+
+
+def gate_shift(data, stem):
+    """The gate's release time of STEM (DATA/STEM.toml) in units of its t* (DATA/STEM_summary.csv)."""
+    summary = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
+    return gate_release(os.path.join(data, f"{stem}.toml")) / float(summary["tstar_s"])
+
+
+def released_times(data, stem, rows_):
+    """t / t* of each row (a CSV of STEM with a t_over_tstar column), counted from the gate's
+    release."""
+    shift = gate_shift(data, stem)
+    return [float(r["t_over_tstar"]) - shift for r in rows_]
 
 
 def core_series(results, L0, H0, out):
@@ -107,9 +169,11 @@ def core_table(data, stems):
              "RVEs with contacts |", "|---|---|---|---|---|---|---|"]
     for label, stem in stems:
         rows = read_csv(os.path.join(data, f"{stem}_core.csv"))
+        t = released_times(data, stem, rows)
         for tt in (2, 5, 8):
-            r = min(rows, key=lambda r: abs(float(r["t_over_tstar"]) - tt))
-            lines.append(f"| {label} | {float(r['t_over_tstar']):.1f} | {r['moved']} of {r['points']} | "
+            k = min(range(len(rows)), key=lambda k: abs(t[k] - tt))
+            r = rows[k]
+            lines.append(f"| {label} | {t[k]:.1f} | {r['moved']} of {r['points']} | "
                          f"{float(r['J_median']):.3f} / {float(r['J_p90']):.3f} | "
                          f"{float(r['distortion_median']):.3f} / {float(r['distortion_p90']):.3f} | "
                          f"{float(r['void_ratio_median']):.2f} / {float(r['void_ratio_p90']):.2f} | "
@@ -149,9 +213,11 @@ def mobilised_table(data, stem):
     rows = read_csv(os.path.join(data, f"{stem}_mobilised.csv"))
     lines = ["| t / t* | RVEs with contacts | mobilised friction angle, median / 90th percentile | "
              "void ratio, median / 90th percentile |", "|---|---|---|---|"]
+    t = released_times(data, stem, rows)
     for tt in (0.15, 0.5, 1, 2, 3, 5):
-        r = min(rows, key=lambda r: abs(float(r["t_over_tstar"]) - tt))
-        lines.append(f"| {float(r['t_over_tstar']):.2f} | {r['rves_with_contacts']} of {r['rves']} | "
+        k = min(range(len(rows)), key=lambda k: abs(t[k] - tt))
+        r = rows[k]
+        lines.append(f"| {t[k]:.2f} | {r['rves_with_contacts']} of {r['rves']} | "
                      f"{float(r['angle_median_deg']):.0f} / {float(r['angle_p90_deg']):.0f} deg | "
                      f"{float(r['void_ratio_median']):.2f} / {float(r['void_ratio_p90']):.2f} |")
     return "\n".join(lines)
@@ -229,7 +295,7 @@ def rows(data, yade, runs=None):
         s = read_csv(path)[0]
         ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
         L0 = float(s["L0_m"])
-        t = [float(r["t_over_tstar"]) for r in ts]
+        t = released_times(data, stem, ts)
         L = [float(r["L_front_connected_m"]) for r in ts]
         y = out[(a, "yade")]
         prof = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
@@ -238,8 +304,7 @@ def rows(data, yade, runs=None):
                               cont=float(s["runout_connected_over_L0"]), hf=float(s["Hf_over_H0"]),
                               f123=[(interp(k, t, L) - L0) / L0 for k in (1, 2, 3)], rms=rms,
                               back=back_mass_height(prof, L0, float(s["H0_m"])),
-                              rest=float(s["Ekend_motion_over_MgH0"]),
-                              t_end=float(s["t_end_over_tstar"]))
+                              rest=float(s["Ekend_motion_over_MgH0"]), t_end=t[-1])
     return out
 
 
@@ -343,9 +408,10 @@ def stiffness_table(data, yade):
             continue
         m = r[(a, stem)]
         ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
-        t = [float(x["t_over_tstar"]) for x in ts]
+        summary = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
+        t = released_times(data, stem, ts)
         nc = [float(x["rves_no_contact"]) for x in ts]
-        rves = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]["rves"]
+        rves = summary["rves"]
         lines.append(f"| {a} | {label} | {modulus} | {m['front']:.3f} | {m['cont']:.3f} | {m['hf']:.3f} | "
                      f"{m['back']:.2f} | " + " / ".join(f"{v:.2f}" for v in m["f123"])
                      + f" | {interp(0.15, t, nc):.0f} / {interp(1.0, t, nc):.0f} of {rves} |")
@@ -393,7 +459,8 @@ def figure(data, yade, fig_dir):
             ax_p.plot(last["x_m"] / L0m, last["h_vol_m"] / H0m, label=f"MPM x DEM, 14.4 d50, {label}",
                       **style)
             tsm = pd.read_csv(base + "_timeseries.csv")
-            ax_f.plot(tsm["t_over_tstar"], (tsm["L_front_connected_m"] - L0m) / L0m,
+            ax_f.plot(tsm["t_over_tstar"] - gate_shift(data, stem),
+                      (tsm["L_front_connected_m"] - L0m) / L0m,
                       label=f"MPM x DEM, 14.4 d50, {label}", **style)
         folder, stem = LARGE[a]
         base = os.path.join(os.path.dirname(data), folder, stem)
@@ -414,7 +481,7 @@ def style_axes(ax_p, ax_f, title, x_max):
     ax_p.axvline(1.0, color="0.6", lw=0.8)
     ax_p.set_title(f"{title}: final deposit")
     ax_p.legend(fontsize=7)
-    ax_f.set_xlabel("t / t*")
+    ax_f.set_xlabel("t / t* from the release")
     ax_f.set_ylabel("(L - L0) / L0, continuous deposit")
     ax_f.set_xlim(0, 10)
     ax_f.set_title(f"{title}: front")
@@ -456,7 +523,7 @@ def size_figure(data, yade, fig_dir):
         ax_p.plot([x / L0m for x in xs], [h / H0m for h in hs],
                   color="tab:red", lw=width, ls="--", label=f"MPM x DEM, 1 point per cell, {size:g} d50")
         tsm = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
-        ax_f.plot([float(r["t_over_tstar"]) for r in tsm],
+        ax_f.plot(released_times(data, stem, tsm),
                   [(float(r["L_front_connected_m"]) - L0m) / L0m for r in tsm], color="tab:red", lw=width,
                   ls="--", label=f"MPM x DEM, 1 point per cell, {size:g} d50")
     style_axes(ax_p, ax_f, "a = 2, E = 3 MPa", 3.2)
@@ -576,9 +643,9 @@ def transfer_table(data, yade, a=2):
             continue
         s = read_csv(path)[0]
         L0, H0 = float(s["L0_m"]), float(s["H0_m"])
-        t_end = float(s["t_end_over_tstar"])
-        f123 = " / ".join(f"{f:.2f}" if k <= t_end else "-" for k, f in
-                          zip((1, 2, 3), rows(data, yade, [(a, stem, "")])[(a, stem)]["f123"]))
+        r = rows(data, yade, [(a, stem, "")])[(a, stem)]
+        t_end = r["t_end"]
+        f123 = " / ".join(f"{f:.2f}" if k <= t_end else "-" for k, f in zip((1, 2, 3), r["f123"]))
         if t_end < 9.5:  # a run that stopped early (exit 3): no deposit to measure
             lines.append(f"| MPM x DEM, {label}: stopped at {t_end:.1f} t* | - | - | - | - | {f123} |")
             continue
@@ -604,7 +671,11 @@ def main():
     ap.add_argument("--mobilised-table", metavar="STEM")
     ap.add_argument("--core-table", nargs="+", metavar="STEM")
     ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
+    ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
+    if args.self_test:
+        self_test()
+        return
     if args.analyse:
         analyse(args.analyse[0], args.analyse[1], args.data)
     if args.table:

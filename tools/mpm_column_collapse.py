@@ -8,7 +8,9 @@ YADE reference series of docs/data/column_collapse_yade (the longest-running one
 
 Usage: /usr/bin/python3 tools/mpm_column_collapse.py RUN_DIR [RUN_DIR ...] [--data D] [--fig F]
 
-Definitions (docs/validation/column_collapse.md): t* = sqrt(H0 / g); every point carries the volume of its
+Definitions (docs/validation/column_collapse.md): t* = sqrt(H0 / g); the figures count time from the
+release (the `until` of the velocity condition named "gate" in RUN_DIR/job.toml; YADE's columns
+release at t = 0), the CSVs from the start of the run; every point carries the volume of its
 initial cell share, so the front is the farthest point plus its initial half-width, shifted so
 that L(0) = L0 (as YADE's front is corrected by its t = 0 offset); H is the highest point top in
 the first cell column at the back wall, shifted so that H(0) = H0. The connected front (dotted)
@@ -30,6 +32,8 @@ import sys
 
 import h5py
 import matplotlib
+
+from column_grain_scale import gate_release
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -131,7 +135,10 @@ def analyse(run):
                 I_max=np.nanmax(inert), I_p95_max=np.nanmax(np.nanpercentile(inert[1:], 95, axis=1)),
                 flight_max=int(flight.max()), lowp_max=int(lowp.max()), mpm_steps=int(steps[-1]),
                 dem_steps=int(f["rve/dem_steps"][:].sum()))
-    return dict(t=t, tstar=tstar, L0=L0, H0=H0, a=a, front=front, front_c=front_c, hback=hback, ek=ek_norm,
+    job = os.path.join(run, "job.toml")
+    release = gate_release(job) / tstar if os.path.exists(job) else 0.0
+    return dict(t=t, tstar=tstar, release=release, L0=L0, H0=H0, a=a, front=front, front_c=front_c,
+                hback=hback, ek=ek_norm,
                 ek_motion=ek_motion,
                 inert=inert, flight=flight, lowp=lowp, profile=profile, x=x, p=p_pt, summ=summ,
                 dx=dx, dz=dz)
@@ -217,12 +224,12 @@ def main():
     # Figures.
     fig, axs = plt.subplots(1, 3, figsize=(14, 4))
     for r in runs:
-        c = axs[0].plot(r["t"] / r["tstar"], (r["front"] - r["L0"]) / r["L0"],
+        tr = r["t"] / r["tstar"] - r["release"]  # from the gate's release, as YADE's
+        c = axs[0].plot(tr, (r["front"] - r["L0"]) / r["L0"],
                         label=f"MPM x DEM a = {r['a']:.2g}")[0].get_color()
-        axs[0].plot(r["t"] / r["tstar"], (r["front_c"] - r["L0"]) / r["L0"], ":", color=c,
-                    label="  continuous deposit")
-        axs[1].plot(r["t"] / r["tstar"], r["hback"] / r["H0"], color=c)
-        axs[2].plot(r["t"] / r["tstar"], r["ek"], color=c)
+        axs[0].plot(tr, (r["front_c"] - r["L0"]) / r["L0"], ":", color=c, label="  continuous deposit")
+        axs[1].plot(tr, r["hback"] / r["H0"], color=c)
+        axs[2].plot(tr, r["ek"], color=c)
         y = yade_for(r["a"])
         if y:
             ts = np.genfromtxt(y[0] + "_timeseries.csv", delimiter=",", names=True)
@@ -237,7 +244,7 @@ def main():
     axs[2].set_ylabel("E_k / (M g H0)")
     axs[2].set_yscale("log")
     for ax in axs:
-        ax.set_xlabel("t / t*")
+        ax.set_xlabel("t / t* from the release (MPM x DEM: after the gate's `until`)")
         ax.grid(alpha=0.3)
     axs[0].legend(fontsize=7)
     fig.suptitle("Column collapse: MPM x DEM (solid, translational E_k) against YADE (dashed)")
@@ -277,18 +284,18 @@ def main():
 
     fig, axs = plt.subplots(1, 2, figsize=(11, 4))
     for r in runs:
-        tt = r["t"][1:] / r["tstar"]
-        c = axs[0].plot(tt, np.nanmedian(r["inert"][1:], axis=1), label=f"a = {r['a']:.2g} median")[
+        tr = r["t"] / r["tstar"] - r["release"]
+        c = axs[0].plot(tr[1:], np.nanmedian(r["inert"][1:], axis=1), label=f"a = {r['a']:.2g} median")[
             0].get_color()
-        axs[0].plot(tt, np.nanpercentile(r["inert"][1:], 95, axis=1), "--", color=c, label="95 %")
-        axs[1].plot(r["t"] / r["tstar"], r["flight"], color=c, label=f"a = {r['a']:.2g} no contact")
-        axs[1].plot(r["t"] / r["tstar"], r["lowp"], ":", color=c, label=f"p < {P_LOW:g} Pa")
+        axs[0].plot(tr[1:], np.nanpercentile(r["inert"][1:], 95, axis=1), "--", color=c, label="95 %")
+        axs[1].plot(tr, r["flight"], color=c, label=f"a = {r['a']:.2g} no contact")
+        axs[1].plot(tr, r["lowp"], ":", color=c, label=f"p < {P_LOW:g} Pa")
     axs[0].set_yscale("log")
     axs[0].axhline(1e-3, color="k", lw=0.8)
     axs[0].set_ylabel("macro inertial number I (points)")
     axs[1].set_ylabel("RVEs")
     for ax in axs:
-        ax.set_xlabel("t / t*")
+        ax.set_xlabel("t / t* from the release (MPM x DEM: after the gate's `until`)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     fig.tight_layout()
