@@ -19,10 +19,10 @@ namespace {
 
 using common::Mat3;
 
-constexpr double kP0 = 1e5;        // normal stress held [Pa] (the packing's own pressure)
-constexpr double kBeta = 0.1;      // servo gain: L_zz = -kBeta gdot (sigma_zz + p0) / p0
-constexpr double kStrain = 6.0;    // shear strain of each run
-constexpr double kAverageFrom = 1.0;  // steady flow from here on: averaged
+constexpr double kP0 = 1e5;             // normal stress held [Pa] (the packing's own pressure)
+constexpr double kBeta = 0.1;           // servo gain: L_zz = -kBeta gdot (sigma_zz + p0) / p0
+constexpr double kStrain = 6.0;         // shear strain of each run (the coupling-rate one: half)
+constexpr double kAverageFrom = 1.0;    // steady flow from here on: averaged
 constexpr double kMpmIncrement = 1e-3;  // shear increment of one "MPM step"
 constexpr double kCouplingI = 1e-2;     // dem.coupling.inertial_number of the column jobs
 
@@ -81,7 +81,8 @@ Shear pure_dem(const dem::Packing& pk, double inertial) {
   return r;
 }
 
-Shear rve_driven(const dem::Packing& pk, double inertial, dem::RveRate rate) {
+Shear rve_driven(const dem::Packing& pk, double inertial, dem::RveRate rate,
+                 double strain = kStrain) {
   dem::RveParams p;
   p.material = dem_test::reference_material();
   p.inertial_number = kCouplingI;
@@ -95,7 +96,7 @@ Shear rve_driven(const dem::Packing& pk, double inertial, dem::RveRate rate) {
   Averager avg;
   Shear r;
   double gamma = 0.0;
-  while (gamma < kStrain) {
+  while (gamma < strain) {
     const dem::StepReport rep = rve.step(shear_with_servo(gdot, rve.stress()), dt);
     r.dem_steps += rep.dem_steps;
     gamma += kMpmIncrement;
@@ -134,9 +135,12 @@ TEST(MuOfI, RveAtTheMaterialRateGivesThePureDemFriction) {
   // The test can tell: mu grows with I by more than the tolerance, and the paper's step, which
   // shears every RVE at I_n = 0.01, misses it at I = 0.3.
   EXPECT_GT(mu_high, 1.15 * mu_low);
-  const Shear old = rve_driven(pk, 0.3, dem::RveRate::coupling);
+  // Over half the strain: at I_n = 0.01 it takes 30 times the DEM steps of the I = 0.3 runs,
+  // and the gap (11 % over a strain of 5, 12 % over 2: mu 0.664 against 0.754) is twice the
+  // tolerance either way.
+  const Shear old = rve_driven(pk, 0.3, dem::RveRate::coupling, kStrain / 2);
   print("RVE, rate = coupling", 0.3, old);
-  EXPECT_GT(std::abs(old.mu - mu_high), 0.05 * mu_high);  // measured: 11 % low
+  EXPECT_GT(std::abs(old.mu - mu_high), 0.05 * mu_high);
 }
 
 }  // namespace
