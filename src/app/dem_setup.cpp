@@ -23,11 +23,8 @@ dem::Material dem_material(const Job& job) {
   dem::Material m;
   fill_from_job(job, dem::kMaterial, m);
   fill_from_job(job, dem::kCohFrict, m);
-  if (job.has("dem.material.contact_law") &&
-      job.text("dem.material.contact_law") == dem::contact_law_name(dem::ContactLawKind::hertz_mindlin)) {
-    m.law = dem::ContactLawKind::hertz_mindlin;
-    fill_from_job(job, dem::kHertzMindlin, m.hm);
-  }
+  fill_choices_from_job(job, dem::kMaterialChoices, m);
+  if (m.law == dem::ContactLawKind::hertz_mindlin) fill_from_job(job, dem::kHertzMindlin, m.hm);
   m.validate();
   return m;
 }

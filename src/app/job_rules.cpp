@@ -115,11 +115,12 @@ void sample_rules(const Job& job, Rules& r) {
 // The keys of one contact law are required with it and refused with another.
 void material_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.material")) return;
-  const std::string law =
-      job.has("dem.material.contact_law") ? job.text("dem.material.contact_law") : "cohfrict";
+  const std::string law = job.has("dem.material.contact_law")
+                              ? job.text("dem.material.contact_law")
+                              : std::string(dem::contact_law_name(dem::Material{}.law));
   const std::string why = fmt::format("with dem.material.contact_law = \"{}\"", law);
   const std::string refuse = fmt::format("not used {}: remove it or change the law", why);
-  if (law == "cohfrict") {
+  if (law == dem::contact_law_name(dem::ContactLawKind::cohfrict)) {
     for (const auto& p : dem::kCohFrict) {
       // The rows of the optional [dem.material.twisting] table are required by the schema.
       if (p.key.find('.') == std::string_view::npos) r.require(dem::kCohFrict.name(p), why);

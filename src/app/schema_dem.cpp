@@ -20,13 +20,7 @@ void add_dem_sections(Schema& s) {
         "Grain and contact parameters: the linear CohFrict law with rolling resistance (YADE "
         "CohFrictMat, Aboul Hosn et al. 2017) or Hertz-Mindlin (YADE's Mindlin law).")
       .need();
-  s.add("dem.material.contact_law", Type::String,
-        "The contact law: \"cohfrict\" (YADE Law2_ScGeom6D_CohFrictPhys_CohesionMoment, linear, "
-        "with rolling resistance: the keys below marked cohfrict) or \"hertz_mindlin\" (YADE "
-        "Law2_ScGeom_MindlinPhys_Mindlin with its moments: [dem.material.hertz_mindlin]); "
-        "docs/design/dem.md \"Contact laws\".")
-      .one_of({"cohfrict", "hertz_mindlin"})
-      .or_default(std::string("cohfrict"));
+  add_choices(s, dem::kMaterialChoices);  // contact_law
   add_params(s, dem::kMaterial);
   constexpr std::string_view kWithCohFrict = "with contact_law = \"cohfrict\"";
   add_params(s, dem::kCohFrict, {}, kWithCohFrict);

@@ -16,7 +16,7 @@ void add_mpm_sections(Schema& s) {
         "false: points keep their initial positions (eq. 10 skipped): only for element tests whose "
         "cell is the "
         "sample, e.g. the paper's single-cell triaxial (see docs/design/mpm.md, Fixed points).")
-      .or_default(true);
+      .or_default(mpm::SolverConfig{}.move_points);
   add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.regularisation", Type::Table,
         "Nonlocal strain-gradient regularisation of a softening material: length and modulus "

@@ -35,7 +35,7 @@ void add_run_sections(Schema& s) {
         "MPM is on every step's critical path; give rank 0 the node's threads, "
         "docs/design/farm.md). "
         "Results are the same bits either way.")
-      .or_default(true);
+      .or_default(farm::FarmOptions{}.rank0_rves);
 }
 
 }  // namespace app

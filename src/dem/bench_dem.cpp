@@ -8,19 +8,23 @@
 #include <exception>
 #include <string>
 
+#include "common/choice_table.hpp"
 #include "dem/benchmark.hpp"
+#include "dem/params.hpp"
 #include "dem/reference_material.hpp"
 
 int main(int argc, char** argv) {
   try {
-    const std::string law = argc > 5 ? argv[5] : "cohfrict";
-    if (law != "cohfrict" && law != "hertz_mindlin") {
-      std::fprintf(stderr, "bench_dem: law '%s': must be cohfrict or hertz_mindlin\n", law.c_str());
+    const std::string name = argc > 5 ? argv[5] : "cohfrict";
+    const auto law = common::value_of(dem::kContactLawNames, name);
+    if (!law) {
+      std::fprintf(stderr, "bench_dem: law '%s': must be one of %s\n", name.c_str(),
+                   common::names_list(dem::kContactLawNames).c_str());
       return 2;
     }
     dem::Material mat = dem::reference_material();
     std::string fallback = dem::reference_packing_path();
-    if (law == "hertz_mindlin") {
+    if (*law == dem::ContactLawKind::hertz_mindlin) {
       mat = dem::hertz_mindlin_reference_material();
       fallback = fallback.substr(0, fallback.rfind('/')) + "/packing_N1000_hertz_mindlin.txt";
     }
@@ -29,8 +33,7 @@ int main(int argc, char** argv) {
     cfg.tiles = argc > 2 ? std::atoi(argv[2]) : 1;
     cfg.threads = argc > 3 ? std::atoi(argv[3]) : 1;
     cfg.steps = argc > 4 ? std::atoll(argv[4]) : 3000;
-    const auto r = dem::run_benchmark(dem::read_packing(path), mat,
-                                      dem::benchmark_numerics(), cfg);
+    const auto r = dem::run_benchmark(dem::read_packing(path), mat, dem::benchmark_numerics(), cfg);
     std::printf("spheres %lld threads %d team %d steps %lld wall %.3f s cpu %.3f s\n",
                 static_cast<long long>(r.spheres), r.threads, r.team,
                 static_cast<long long>(r.steps), r.wall_s, r.cpu_s);

@@ -21,10 +21,6 @@ void Material::validate() const {
                            std::to_string(static_cast<int>(law)));
 }
 
-const char* contact_law_name(ContactLawKind k) {
-  return k == ContactLawKind::hertz_mindlin ? "hertz_mindlin" : "cohfrict";
-}
-
 void Numerics::validate() const {
   common::check_ranges(kNumerics, *this);
   if (skin_min_factor > skin_factor) {

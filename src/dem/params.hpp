@@ -4,8 +4,10 @@
 // file. Contact law: Aboul Hosn et al. 2017, Granular Matter 19(1).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
+#include "common/choice_table.hpp"
 #include "common/param_table.hpp"
 
 namespace dem {
@@ -14,6 +16,9 @@ namespace dem {
 /// Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Aboul Hosn et al. 2017) or Hertz-Mindlin (YADE
 /// Law2_ScGeom_MindlinPhys_Mindlin with its moments). Job key dem.material.contact_law.
 enum class ContactLawKind : std::int8_t { cohfrict = 0, hertz_mindlin = 1 };
+/// The job file's names of the laws.
+inline constexpr std::array<common::Named<ContactLawKind>, 2> kContactLawNames{
+    {{"cohfrict", ContactLawKind::cohfrict}, {"hertz_mindlin", ContactLawKind::hertz_mindlin}}};
 
 /// Hertz-Mindlin parameters (YADE FrictMat and Ip2_FrictMat_FrictMat_MindlinPhys, one material):
 /// kno = 4/3 E* sqrt(R*), kso = 2 sqrt(4 R*) G / (2 - nu) with E* = E / (2 (1 - nu^2)),
@@ -48,8 +53,21 @@ struct Material {
   void validate() const;
 };
 
-/// "cohfrict", "hertz_mindlin": the job file's names of the laws.
-[[nodiscard]] const char* contact_law_name(ContactLawKind k);
+/// [dem.material]: the settings of Material that are a name out of a list
+/// (common/choice_table.hpp).
+inline constexpr common::ChoiceTable<Material, 1> kMaterialChoices{
+    "dem.material",
+    {common::choice<&Material::law, kContactLawNames>(
+        "contact_law",
+        "The contact law: cohfrict (YADE Law2_ScGeom6D_CohFrictPhys_CohesionMoment, linear, with "
+        "rolling resistance: the keys below marked cohfrict) or hertz_mindlin (YADE "
+        "Law2_ScGeom_MindlinPhys_Mindlin with its moments: [dem.material.hertz_mindlin]); "
+        "docs/design/dem.md \"Contact laws\".")}};
+
+/// "cohfrict", "hertz_mindlin": the job file's name of a law (kContactLawNames).
+[[nodiscard]] constexpr std::string_view contact_law_name(ContactLawKind k) {
+  return common::name_of(kContactLawNames, k);
+}
 
 /// Numerical parameters of the integrator and neighbour search. The member initializers are the
 /// defaults of the job keys too (kNumerics).

@@ -178,6 +178,7 @@ TEST(Schema, ChoiceTablesAreTheSchemaOfTheirKeysAndFillTheirStructs) {
   expect_choices_in_schema(mpm::kSolverChoices);
   expect_choices_in_schema(dem::kRveChoices);
   expect_choices_in_schema(farm::kFarmChoices);
+  expect_choices_in_schema(dem::kMaterialChoices);
 }
 
 // The other [mpm] keys that are no table rows keep the struct's defaults too, and the names the
@@ -192,6 +193,7 @@ TEST(Schema, MpmKeysOutsideTheTablesHaveTheSolverConfigDefaults) {
   EXPECT_TRUE(defaults.gravity.isZero());
   EXPECT_EQ(farm::wait_mode_from(std::get<std::string>(*s.find("farm.wait")->fallback)),
             farm::FarmOptions{}.wait);
+  EXPECT_EQ(std::get<bool>(*s.find("farm.rank0_rves")->fallback), farm::FarmOptions{}.rank0_rves);
 }
 
 std::string error_of(const std::function<void()>& f) {
