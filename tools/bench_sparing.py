@@ -38,6 +38,7 @@ DEM steps against error, to --out.
 """
 import argparse
 import csv
+import json
 import os
 import re
 import statistics
@@ -63,7 +64,7 @@ SCENES = {
     "biaxial": ("jobs/biaxial_plane_strain_4x8.toml", [], "biaxial"),
     # The strip footing (tools/footing_make_job.py): 512 RVEs on a 200 x 100 mm layer, and the
     # same footing on layers 2 and 3 times as wide and deep (2048 and 4608 RVEs), whose far field
-    # idles more. Outputs every 10th step as the job (the work counts come from the log).
+    # idles more. Outputs every 10th step as the job (the work counts come from run_summary.json).
     "footing": ("jobs/footing_plane_strain.toml", [], "footing"),
     "footing_wide": (dict(width=0.4, depth=0.2), [], "footing"),
     "footing_wider": (dict(width=0.6, depth=0.3), [], "footing"),
@@ -108,9 +109,9 @@ def run(args, scene, tol, max_spared, rep, perturbed=False):
     os.makedirs(os.path.dirname(job), exist_ok=True)
     with open(job, "w") as f:
         f.write(job_text(scene, tol, max_spared, perturbed))
-    log_txt = os.path.join(out, "log.txt")
-    if args.reuse and os.path.exists(log_txt) and "] info: work: " in open(log_txt).read():
-        return (out,) + parse_log(open(log_txt).read())
+    summary = os.path.join(out, "run_summary.json")
+    if args.reuse and os.path.exists(summary):
+        return (out,) + read_summary(summary)
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
     cmd = ["nice", "-n", "5", "mpirun", "-n", str(args.np), args.exe, "run", job, "--out", out,
@@ -118,16 +119,18 @@ def run(args, scene, tol, max_spared, rep, perturbed=False):
     log = subprocess.run(cmd, env=env, cwd=ROOT, capture_output=True, text=True)
     if log.returncode != 0:
         sys.exit("run failed: %s\n%s" % (" ".join(cmd), log.stderr[-3000:]))
-    return (out,) + parse_log(log.stdout + log.stderr)
+    return (out,) + read_summary(summary)
 
 
-def parse_log(text):
-    """(loop wall [s], critical RVE time [s], work) from a run's log."""
-    m = re.search(r"done: .* wall ([\d.]+) s; RVE time ([\d.]+) s", text)
-    w = re.search(r"work: (\d+) DEM steps in (\d+) RVE steps .*; (\d+) RVE step\(s\) spared",
-                  text)
-    work = {"dem_steps": int(w.group(1)), "rve_steps": int(w.group(2)), "spared_steps": int(w.group(3))}
-    return float(m.group(1)), float(m.group(2)), work
+def read_summary(path):
+    """(loop wall [s], critical RVE time [s], work) from a run's run_summary.json."""
+    with open(path) as f:
+        s = json.load(f)
+    if s["ended"] != "end_time":
+        sys.exit(f"{path}: the run ended by {s['ended']} {s['error']}")
+    work = {"dem_steps": s["dem_steps"], "rve_steps": s["rve_steps"],
+            "spared_steps": s["spared_rve_steps"]}
+    return s["wall_s"], s["rve_time_critical_rank_s"], work
 
 
 def measures(out, kind, work):
@@ -135,7 +138,7 @@ def measures(out, kind, work):
         names = f["constraints"].attrs["names"]
         names = (names.decode() if isinstance(names, bytes) else str(names)).split(",")
         d = {
-            # the whole run's (the log's "work:" line), not only the written rows'
+            # the whole run's (run_summary.json), not only the written rows'
             "dem_steps": work["dem_steps"],
             "spared": work["spared_steps"] / max(work["rve_steps"], 1),
             "reaction": f["constraints/reaction"][:, names.index("footing") if kind == "footing"

@@ -27,6 +27,7 @@ difference of eps_v at --strain (percentage points). Strains are logarithmic (co
 positive); MPM x DEM means are converted as in tools/plot_triaxial.py.
 """
 import argparse
+import json
 import math
 import os
 import platform
@@ -126,13 +127,14 @@ def run_dem(exe, work, n, inertia, strain, packing):
     return d, float(series["wall_s"][-1])  # loading wall time, preparation excluded
 
 
-def mpm_done(log):
-    with open(log) as f:
-        text = f.read()
-    m = re.search(r"done: (\d+) MPM steps, t = ([0-9.eE+-]+) s, wall ([0-9.]+) s", text)
-    if not m:
-        sys.exit(f"bench_speed_error: no 'done:' line in {log}")
-    return int(m.group(1)), float(m.group(2)), float(m.group(3))
+def mpm_done(run_dir):
+    """(MPM steps, time [s], loop wall [s]) of a run, from its run_summary.json."""
+    path = os.path.join(run_dir, "run_summary.json")
+    if not os.path.exists(path):
+        sys.exit(f"bench_speed_error: no {path}")
+    with open(path) as f:
+        s = json.load(f)
+    return s["mpm_steps"], s["time_s"], s["wall_s"]
 
 
 def run_mpm(exe, work, n, inertia, strain, packing, shape, ranks, max_steps=None):
@@ -145,7 +147,7 @@ def run_mpm(exe, work, n, inertia, strain, packing, shape, ranks, max_steps=None
     if max_steps:
         cmd += ["--max-steps", str(max_steps)]
     run(cmd, mpirun_env(), d + ".log")
-    steps, t, wall = mpm_done(d + ".log")
+    steps, t, wall = mpm_done(d)
     return d, steps, t, wall
 
 

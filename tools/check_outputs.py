@@ -18,6 +18,8 @@ them against results.h5.
                       row, the arrays id, p, q, stress, void_ratio, z, volume, velocity,
                       displacement, F with results.h5's values
   checkpoint_*.h5     h5py: format attribute, step among the rows' steps
+  run_summary.json    json: the run reached its end time (exit 0), its MPM steps and time are the
+                      last row's
   job.toml, job.resolved.toml   tomllib
 
 --require names clients whose absence is a failure (default: only h5py). Exit status: 0 all
@@ -301,6 +303,22 @@ def check_jobs(d):
     log("job.toml, job.resolved.toml (tomllib): parsed")
 
 
+def check_run_summary(path, r):
+    """run_summary.json (json): a run that reached its end time, its last row the last step."""
+    with open(path) as fh:
+        s = json.load(fh)
+    expect(s["format"] == "mpmxdem run summary" and s["format_version"] == 1,
+           "run_summary.json: format")
+    expect(s["ended"] == "end_time" and s["exit_code"] == 0 and s["error"] == "",
+           f"run_summary.json: ended {s['ended']}, exit_code {s['exit_code']}")
+    expect(s["mpm_steps"] == int(r["step"][-1]) and s["time_s"] == float(r["time"][-1]),
+           f"run_summary.json: step {s['mpm_steps']}, t {s['time_s']} against the last row's "
+           f"{int(r['step'][-1])}, {float(r['time'][-1])}")
+    expect(s["rve_steps"] > 0 and s["dem_steps"] >= 0 and s["wall_s"] > 0, "run_summary.json: work")
+    log(f"run_summary.json (json): ended {s['ended']}, {s['mpm_steps']} MPM steps = the last row's, "
+        f"{s['dem_steps']} DEM steps, wall {s['wall_s']:.2f} s")
+
+
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "--paraview-child":
         paraview_child(sys.argv[2])
@@ -339,6 +357,7 @@ def main():
             check_xmf_text(os.path.join(d, "points.xmf"), r, np)
         check_checkpoints(d, r, h5py)
         check_jobs(d)
+        check_run_summary(os.path.join(d, "run_summary.json"), r)
     except (Failure, KeyError, OSError) as e:
         log(f"FAILED: {type(e).__name__}: {e}")
         return 1

@@ -11,13 +11,16 @@ root with `mpmxdem` replaced by BUILD/mpmxdem, `mpirun` by `mpiexec --bind-to no
 --allow-run-as-root) and --out by OUT/<job name>; a job still running after FACTOR times its
 header's wall time (or 2 hours without one) is stopped and reported as such. Without JOB
 arguments: every jobs/*.toml. The table gives, per job: exit code, wall time, the header's, their
-ratio, and "ok" when the exit code is 0 and the ratio at most 2 (the promise a header makes).
+ratio, and "ok" when the exit code is 0 and the ratio at most 2 (the promise a header makes), and
+for a `run` job how it ended (its run_summary.json: the end time reached, or the numerical
+failure's message).
 --dry-run prints the commands and the header times only (every job must have a Run line: exit 1
 otherwise).
 """
 import argparse
 import csv
 import glob
+import json
 import os
 import re
 import shlex
@@ -43,6 +46,18 @@ def header(path):
             if m and wall is None:
                 wall = float(m.group(1)) * UNITS[m.group(2)]
     return run, wall
+
+
+def how_it_ended(out_dir):
+    """How a `run` job ended, from its run_summary.json ("" for `dem` jobs, or none written)."""
+    path = os.path.join(out_dir, "run_summary.json")
+    if not os.path.exists(path):
+        return ""
+    with open(path, encoding="utf-8") as f:
+        s = json.load(f)
+    if s["ended"] == "numerical_failure":
+        return "numerical failure: " + s["error"].split("\n")[0][:160]
+    return f"ended at {s['ended']}, t = {s['time_s']:.6g} s of {s['end_time_s']:.6g} s"
 
 
 def command(tokens, build, out_dir):
@@ -106,6 +121,9 @@ def main():
             except subprocess.TimeoutExpired:
                 rc, status = -1, f"stopped after {limit:.0f} s"
         wall = time.monotonic() - t0
+        ended = how_it_ended(os.path.join(args.out, name))
+        if ended:
+            status = (status + " " + ended).strip()
         ratio = wall / wall_h if wall_h else float("nan")
         ok = rc == 0 and (wall_h is None or ratio <= 2.0)
         rows.append({"job": name, "exit": rc, "wall_s": round(wall, 1),

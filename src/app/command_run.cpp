@@ -19,6 +19,7 @@
 #include "app/mpm_setup.hpp"
 #include "app/restart_check.hpp"
 #include "app/restart_latest.hpp"
+#include "app/run_summary.hpp"
 #include "app/stop_signals.hpp"
 #include "app/wall_budget.hpp"
 #include "common/errors.hpp"
@@ -67,9 +68,8 @@ StartPlacement start_placement(const MpmSetup& setup, const farm::CoupledConfig&
   StartPlacement p;
   p.by_id.resize(setup.points.size());
   for (std::size_t i = 0; i < p.by_id.size(); ++i) p.by_id[i] = i;
-  std::sort(p.by_id.begin(), p.by_id.end(), [&](std::size_t a, std::size_t b) {
-    return setup.points.id[a] < setup.points.id[b];
-  });
+  std::sort(p.by_id.begin(), p.by_id.end(),
+            [&](std::size_t a, std::size_t b) { return setup.points.id[a] < setup.points.id[b]; });
   const int first_worker = !cfg.farm.rank0_rves && comm.size > 1 ? 1 : 0;
   p.rank = farm::partition_blocks(p.by_id.size(), comm.size - first_worker);
   for (int& r : p.rank) r += first_worker;
@@ -187,10 +187,9 @@ void check_wave_speed_limits(const Job& job, const Options& o, const farm::Coupl
                     "the explicit step would blow up; lower it, or leave dt out to "
                     "use the CFL step",
                     h / c, h, c,
-                    s != 1.0
-                        ? fmt::format(" with mpm.mass_scaling = {:.6g}: {:.4g} / sqrt({:.6g})", s,
-                                      wave_speed, s)
-                        : std::string())));
+                    s != 1.0 ? fmt::format(" with mpm.mass_scaling = {:.6g}: {:.4g} / sqrt({:.6g})",
+                                           s, wave_speed, s)
+                             : std::string())));
   }
 }
 
@@ -215,8 +214,7 @@ std::function<int()> stop_request(std::optional<WallBudget>& budget) {
 // Rank 0's closing lines: work, balance, outputs, and how to continue a stopped run.
 void log_summary(const farm::RunSummary& s, const Options& given, const std::filesystem::path& out,
                  const std::optional<WallBudget>& budget) {
-  const double busy =
-      s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
+  const double busy = s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
   spdlog::info(
       "done: {} MPM steps, t = {:.6g} s, wall {:.2f} s; RVE time {:.2f} s of the critical rank, "
       "balance (mean/max busy) {:.3f}, {} migration(s) moving {} RVE(s) in {:.2f} s; {} "
@@ -240,8 +238,7 @@ void log_summary(const farm::RunSummary& s, const Options& given, const std::fil
     spdlog::warn(
         "stopped by {} at step {}, t = {:.6g} s, before the end{}; continue with `mpmxdem run "
         "{} --out {} --restart latest` (exit {})",
-        wall ? "--max-wall " + farm::format_duration(budget->seconds())
-             : signal_name(s.stopped_by),
+        wall ? "--max-wall " + farm::format_duration(budget->seconds()) : signal_name(s.stopped_by),
         s.steps, s.time, s.checkpoints.empty() ? "" : ": checkpoint " + s.checkpoints.back(),
         given.job, out.string(),
         wall ? std::to_string(kExitWallBudget)
@@ -298,11 +295,37 @@ int command_run(const Options& given, const Comm& comm) {
   std::optional<WallBudget> budget;
   if (o.max_wall_s > 0.0) budget.emplace(o.max_wall_s, started);
   config->stop_requested = stop_request(budget);
-  const farm::RunSummary s = o.restart.empty() ? farm::run_coupled(cfg, comm.comm)
-                                               : farm::restart_coupled(cfg, o.restart, comm.comm);
+  RunRecord record;
+  record.job = given.job;
+  record.restart = o.restart;
+  record.ranks = comm.size;
+  record.threads = omp_get_max_threads();
+  record.end_time = cfg.end_time;
+  record.max_steps = cfg.max_steps;
+  try {
+    record.summary = o.restart.empty() ? farm::run_coupled(cfg, comm.comm)
+                                       : farm::restart_coupled(cfg, o.restart, comm.comm);
+  } catch (const common::NumericalError& e) {
+    // Every rank throws the same failure (the farm's error agreement): rank 0 records it, and a
+    // record it cannot store does not hide the failure.
+    if (comm.rank == 0) {
+      record.exit_code = 3;
+      record.error = e.what();
+      try {
+        write_run_summary(out, record);
+      } catch (const common::IoError& io) {
+        spdlog::warn("{} not written: {}", kRunSummaryFile, io.what());
+      }
+    }
+    throw;
+  }
+  const farm::RunSummary& s = *record.summary;
   if (comm.rank == 0) log_summary(s, given, out, budget);
-  if (s.stopped_by == kStopWallBudget) return kExitWallBudget;
-  return s.stopped_by != 0 ? 128 + s.stopped_by : 0;
+  record.exit_code = s.stopped_by == kStopWallBudget ? kExitWallBudget
+                     : s.stopped_by != 0             ? 128 + s.stopped_by
+                                                     : 0;
+  on_root(comm, [&] { write_run_summary(out, record); });  // an I/O failure: every rank's exit 4
+  return record.exit_code;
 }
 
 }  // namespace app

@@ -24,3 +24,13 @@ expect_failure("${rc}" "${err}" 2 "shock.toml:36: mpm.velocity[1].z = \"-1000 m/
 if(EXISTS "${DIR}/shock")
   message(FATAL_ERROR "the refused run wrote ${DIR}/shock")
 endif()
+
+# The failed run's run_summary.json (docs/reference/outputs.md) says how it ended, with the message.
+file(READ "${DIR}/out/run_summary.json" summary)
+string(JSON ended GET "${summary}" ended)
+string(JSON code GET "${summary}" exit_code)
+string(JSON error GET "${summary}" error)
+if(NOT ended STREQUAL "numerical_failure" OR NOT code EQUAL 3 OR NOT error MATCHES "point id .* has left the grid")
+  message(FATAL_ERROR "run_summary.json of the failed run: ended ${ended}, exit_code ${code}, error '${error}'")
+endif()
+message(STATUS "run_summary.json: ended ${ended}, exit_code ${code}")

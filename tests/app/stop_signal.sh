@@ -58,6 +58,11 @@ finish() {  # name code signal
   [ -f "$dir/$1/checkpoint_$(printf %010d "$step").h5" ] || fail "$1: no checkpoint of step $step: $(ls "$dir/$1")"
   grep -q "checkpoint_$(printf %010d "$step").h5; continue with" <<< "$line" || fail "$1: $line"
   echo "$1: stopped by $3 at step $step, exit $rc"
+  local ended=(ended=signal "signal=$3")
+  [ "$rc" -eq 75 ] && ended=(ended=max_wall signal=)
+  "$python" tests/app/check_run_summary.py "$dir/$1" "${ended[@]}" "exit_code=$rc" \
+    "mpm_steps=$step" "checkpoints~checkpoint_$(printf %010d "$step").h5" ||
+    fail "$1: run_summary.json"
 }
 
 start usr1
@@ -86,6 +91,8 @@ for run in usr1 term wall; do
   "$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/$run" --restart latest --max-steps "$end" \
     > "$dir/$run.restart.out" 2>&1 || fail "$run: restart: $(tail -20 "$dir/$run.restart.out")"
   grep -q "continuing from $dir/$run/checkpoint_" "$dir/$run.restart.out" || fail "$run: restart did not continue"
+  "$python" tests/app/check_run_summary.py "$dir/$run" ended=max_steps exit_code=0 "mpm_steps=$end" \
+    "restart~$dir/$run/checkpoint_" || fail "$run: run_summary.json of the continued run"
   "$mpiexec" -n 2 "$exe" run "$dir/job.toml" --out "$dir/$run.straight" --max-steps "$end" \
     > "$dir/$run.straight.out" 2>&1 || fail "$run: straight run: $(tail -20 "$dir/$run.straight.out")"
   "$python" tests/app/same_rows.py "$dir/$run.straight/results.h5" "$dir/$run/results.h5" \
