@@ -1,10 +1,15 @@
 // Packing text format: the reference file, exact round trip, input errors with file:line.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "dem/loading.hpp"
@@ -267,6 +272,58 @@ TEST(PackingIo, YadeExportTakesTheCellFromTheJob) {
     EXPECT_NE(m.find(path + ":2: this cell line disagrees with the job's cell"), std::string::npos)
         << m;
   }
+}
+
+// The sphere lines of a text file as YADE's ymport.text reads them: '#' lines skipped, the
+// first four numbers of every other line (Python's float: correctly rounded, as strtod).
+std::vector<std::array<double, 4>> ymport_text(const std::string& path) {
+  std::vector<std::array<double, 4>> spheres;
+  std::ifstream f(path);
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream in(line);
+    std::array<double, 4> s{};
+    std::string word;
+    for (double& v : s) {
+      in >> word;
+      v = std::strtod(word.c_str(), nullptr);
+    }
+    spheres.push_back(s);
+  }
+  return spheres;
+}
+
+// YADE -> mpmxdem -> YADE: YADE's export, read as an RVE sample and written by write_packing,
+// reads back in YADE (ymport.text's parse) with every sphere bit for bit (17 digits, cell lines as
+// comments).
+TEST(PackingIo, YadeRoundTripKeepsEverySphereBitForBit) {
+  const std::string yade_file = dem_test::data_path("yade_export_periodic.txt");
+  const dem::Packing pk = dem::read_packing(yade_file);
+  const std::string path = testing::TempDir() + "/dem_yade_roundtrip.txt";
+  dem::write_packing(path, pk, "round trip");
+  const auto before = ymport_text(yade_file);
+  const auto after = ymport_text(path);
+  ASSERT_EQ(before.size(), 30u);
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      EXPECT_EQ(std::memcmp(&after[i][k], &before[i][k], sizeof(double)), 0)
+          << "sphere " << i << " number " << k << ": " << after[i][k] << " != " << before[i][k];
+    }
+  }
+  EXPECT_EQ(dem::read_packing(path).cell.h, pk.cell.h);  // and the cell, for mpmxdem
+  // A sample with every digit (YADE's export has 6; a state in memory has 17): what YADE reads
+  // of our file is the state itself.
+  const dem::Packing full = dem_test::reference_packing();
+  dem::write_packing(path, full, "round trip");
+  const auto read = ymport_text(path);
+  ASSERT_EQ(read.size(), full.r.size());
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    const std::array<double, 4> want{full.x[i].x(), full.x[i].y(), full.x[i].z(), full.r[i]};
+    EXPECT_EQ(std::memcmp(read[i].data(), want.data(), sizeof want), 0) << "sphere " << i;
+  }
+  std::remove(path.c_str());
 }
 
 }  // namespace
