@@ -23,6 +23,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            size (runout to a height of 0.05 and 0.02 H0, centre of mass)
   --size-figure            writes FIG/column_size_a2.png: the a = 2 columns with E = 3 MPa at
                            L0 = 14.4 and 28.8 d50, MPM x DEM (one point per cell) over YADE
+  --onset-table [A]        prints the page's table of the kinetic energy of the a = A columns (default
+                           2) of the transfer family against the time from the release, beside the grains'
   --self-test              checks the gate's release time and the shifted time axes
 
 Times: the MPM x DEM jobs hold their gate until the `until` of the velocity condition named "gate"
@@ -613,6 +615,7 @@ TRANSFER = {
         ("2 x 2, FLIP 0.98 (0.011 t*)", "a2_2x2_E3MPa_wallpts_flip0.98"),
         ("2 x 2, FLIP 0.99, its PIC share XPIC(3)", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3"),
         ("2 x 2, XPIC(5) (flip 0)", "a2_2x2_E3MPa_wallpts_xpic5"),
+        ("cells of L0/16, 1 point per cell, FLIP", "a2_h16_E3MPa_wallpts"),
         ("cells of L0/16, 1 point per cell, FLIP 0.99, XPIC(3)", "a2_h16_E3MPa_wallpts_flip0.99_xpic3"),
         ("1 point per cell, FLIP", "a2_1ppc_E3MPa_wallpts"),
         ("1 point per cell, FLIP 0.99", "a2_1ppc_E3MPa_wallpts_flip0.99")],
@@ -621,7 +624,8 @@ TRANSFER = {
         ("2 x 2, FLIP 0.99, XPIC(3)", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3"),
         ("2 x 2, XPIC(5) (flip 0)", "a1_2x2_E3MPa_wallpts_xpic5"),
         ("cells of L0/16, 1 point per cell, FLIP", "a1_h16_E3MPa_wallpts"),
-        ("cells of L0/16, 1 point per cell, FLIP 0.99, XPIC(3)", "a1_h16_E3MPa_wallpts_flip0.99_xpic3")]}
+        ("cells of L0/16, 1 point per cell, FLIP 0.99, XPIC(3)", "a1_h16_E3MPa_wallpts_flip0.99_xpic3"),
+        ("cells of L0/16, 2 x 2, FLIP 0.99, XPIC(3)", "a1_h16_2x2_E3MPa_wallpts_flip0.99_xpic3")]}
 TRANSFER_YADE = {2: ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"], 1: ["dense_a1_l14.4_E3e6"]}
 
 
@@ -655,6 +659,34 @@ def transfer_table(data, yade, a=2):
     return "\n".join(lines)
 
 
+ONSET_TIMES = (0.2, 0.4, 0.6, 1.0, 1.5)
+
+
+def onset_table(data, yade, a=2):
+    """Markdown table: the kinetic energy of the a = A columns of the transfer family against the
+    time from the release, beside the grains' of the same modulus (stdlib only)."""
+    lines = ["| column | kinetic energy / (M g H0) at " + " / ".join(f"{x:g}" for x in ONSET_TIMES)
+             + " t* after the release | peak: value, at t* |", "|---|---|---|"]
+
+    def row(label, t, k):
+        peak = max(range(len(k)), key=lambda i: k[i])
+        lines.append(f"| {label} | " + " / ".join(f"{interp(x, t, k):.4f}" for x in ONSET_TIMES)
+                     + f" | {k[peak]:.4f}, {t[peak]:.2f} |")
+
+    for tag in TRANSFER_YADE[a]:
+        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+        ts = read_csv(os.path.join(yade, f"{tag}_timeseries.csv"))
+        row(f"pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50",
+            [float(r["t_over_tstar"]) for r in ts], [float(r["kinetic_over_MgH0"]) for r in ts])
+    for label, stem in TRANSFER[a]:
+        if not os.path.exists(os.path.join(data, f"{stem}_timeseries.csv")):
+            continue
+        ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        row(f"MPM x DEM, {label}", released_times(data, stem, ts),
+            [float(r["kinetic_over_MgH0"]) for r in ts])
+    return "\n".join(lines)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data",
@@ -671,6 +703,7 @@ def main():
     ap.add_argument("--mobilised-table", metavar="STEM")
     ap.add_argument("--core-table", nargs="+", metavar="STEM")
     ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
+    ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
     if args.self_test:
@@ -696,9 +729,11 @@ def main():
         print(core_table(args.data, [(CORE_LABELS.get(s, s), s) for s in args.core_table]))
     if args.transfer_table:
         print(transfer_table(args.data, args.yade, args.transfer_table))
+    if args.onset_table:
+        print(onset_table(args.data, args.yade, args.onset_table))
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
-            or args.transfer_table):
+            or args.transfer_table or args.onset_table):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 
