@@ -58,16 +58,14 @@ static_assert(sizeof(RveRecord) == 160 && sizeof(RveRecord) % sizeof(double) == 
 /// outputs at step 0, the wave speed and the cost estimate. Doubles only, so that a bitwise OR
 /// over ranks (each entry set by its owner, zero elsewhere) assembles it exactly.
 struct InitRecord {
-  double stress[9] = {};       ///< row-major [Pa, tension positive]
-  double p = 0.0;              ///< [Pa]
-  double q = 0.0;              ///< [Pa]
-  double void_ratio = 0.0;     ///< [-]
-  double z = 0.0;              ///< [-]
+  double stress[9] = {};  ///< row-major [Pa, tension positive]
+  /// The report's state fields (the rows of kReportFields with `state`, in their order).
+  double state[report_state_fields()] = {};
   double wave_speed = 0.0;     ///< [m/s]
   double cost_estimate = 0.0;  ///< MicroModel::cost_estimate [arbitrary]
 };
 static_assert(std::is_trivially_copyable_v<InitRecord>);
-static_assert(sizeof(InitRecord) == 15 * sizeof(double));
+static_assert(sizeof(InitRecord) == (11 + report_state_fields()) * sizeof(double));
 
 /// What Command::measure gathers per RVE (the doubles of kMeasureFields, whose size check is in
 /// micro_model.hpp), only when an output row is written: the step's RveRecord does not carry it,

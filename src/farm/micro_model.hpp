@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -32,6 +33,85 @@ struct MicroReport {
   std::uint32_t guards = 0;    ///< guard bits (dem::RveGuard for DemMicro) [-]
   double wall_s = 0.0;         ///< wall-clock seconds of the step [s] (timing only, never state)
 };
+
+/// How a member of MicroReport is stored (a count and the guard bits are written as int64).
+enum class ReportType : std::uint8_t { real, int64, uint32 };
+
+/// One member of MicroReport as the outputs know it: results.h5's /rve/<name> [row, rve] on every
+/// row; with a point_description, also /points/<name> [row, point] (the value of the point's RVE)
+/// and the points' Xdmf Scalar <name>. `state`: a property of the RVE's state, known before any
+/// step (every rank gathers it at the start, farm/exchange.hpp InitRecord); otherwise a property
+/// of the last step (0 before the first). wall_s is timing, never output.
+struct ReportField {
+  const char* name;               ///< dataset name under /rve (and /points)
+  std::size_t offset;             ///< offsetof(MicroReport, member)
+  ReportType type;                ///< the member's type
+  bool state;                     ///< known from the state (true) or from a step (false)
+  const char* unit;               ///< attribute "unit" ("-": dimensionless, "": a count or bits)
+  const char* description;        ///< attribute "description" of /rve/<name>
+  const char* point_description;  ///< of /points/<name>; nullptr: the RVEs' series only
+};
+
+/// The per-step fields in the order results.h5 creates them: a new one is a member of MicroReport,
+/// its row here, and where the models set it.
+inline constexpr ReportField kReportFields[] = {
+    {"p", offsetof(MicroReport, p), ReportType::real, true, "Pa",
+     "mean stress p = -tr(sigma)/3, compression positive",
+     "p of the point's RVE (/rve/p), compression positive"},
+    {"q", offsetof(MicroReport, q), ReportType::real, true, "Pa",
+     "von Mises deviatoric stress q = sqrt(3/2 s:s), s = sigma + p I (always >= 0)",
+     "q of the point's RVE (/rve/q), von Mises"},
+    {"void_ratio", offsetof(MicroReport, void_ratio), ReportType::real, true, "-",
+     "void ratio e = V_voids / V_solids", "void ratio of the point's RVE"},
+    {"z", offsetof(MicroReport, z), ReportType::real, true, "-",
+     "coordination number 2 Nc / N (0 for continuum models)",
+     "coordination number of the point's RVE"},
+    {"t_p", offsetof(MicroReport, t_p), ReportType::real, false, "s",
+     "quasi-static time of the step, eq. (11)", nullptr},
+    {"dem_steps", offsetof(MicroReport, dem_steps), ReportType::int64, false, "",
+     "DEM steps run for the MPM step", nullptr},
+    {"guards", offsetof(MicroReport, guards), ReportType::uint32, false, "",
+     "guard bits (dem::RveGuard, docs/design/dem.md; bit 16 farm::kGuardSpared: the DEM was not "
+     "stepped, docs/design/sparing.md)",
+     nullptr},
+};
+
+/// The rows of kReportFields with `state` (they must be reals: InitRecord is doubles only).
+constexpr std::size_t report_state_fields() {
+  std::size_t n = 0;
+  for (const ReportField& f : kReportFields) n += f.state ? 1 : 0;
+  return n;
+}
+
+constexpr bool report_states_are_real() {
+  for (const ReportField& f : kReportFields) {
+    if (f.state && f.type != ReportType::real) return false;
+  }
+  return true;
+}
+static_assert(report_states_are_real(), "InitRecord carries the state fields as doubles");
+
+/// The value of a real field of `r`; of an integer one, as an int64.
+inline double report_real(const MicroReport& r, const ReportField& f) {
+  double v = 0.0;
+  std::memcpy(&v, reinterpret_cast<const char*>(&r) + f.offset, sizeof v);
+  return v;
+}
+inline std::int64_t report_int(const MicroReport& r, const ReportField& f) {
+  const char* at = reinterpret_cast<const char*>(&r) + f.offset;
+  if (f.type == ReportType::uint32) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, at, sizeof v);
+    return v;
+  }
+  std::int64_t v = 0;
+  std::memcpy(&v, at, sizeof v);
+  return v;
+}
+/// Sets a real field of `r`.
+inline void set_report_real(MicroReport& r, const ReportField& f, double v) {
+  std::memcpy(reinterpret_cast<char*>(&r) + f.offset, &v, sizeof v);
+}
 
 /// Grain-scale measures of an RVE's current state (dem::Measures): computed only when an output
 /// row is written (RveFarm::measure, one command of its own), never on the other MPM steps.

@@ -355,29 +355,23 @@ void ResultsWriter::append(std::int64_t step, double time,
   std::vector<double> buf(9 * std::max(n, m));
   for (std::size_t k = 0; k < n; ++k) mat9(rve_stress[k], buf.data() + 9 * k);
   stage_row("rve/stress", buf.data());
-  auto rve_scalar = [&](const char* name, auto get) {
-    std::vector<double> v(n);
+  // The per-step fields (farm::kReportFields): /rve/<name>, and the points' copy where it has one.
+  auto stage_report = [&](const ReportField& f, auto get) {
+    std::vector<decltype(get(reports[0]))> v(n);
     for (std::size_t k = 0; k < n; ++k) v[k] = get(reports[k]);
-    stage_row(name, v.data());
-    std::vector<double> w(m);
+    stage_row(std::string("rve/") + f.name, v.data());
+    if (f.point_description == nullptr) return;
+    decltype(v) w(m);
     for (std::size_t p = 0; p < m; ++p) w[p] = v[rve_of_point_[p]];
-    stage_row(std::string("points/") + (name + 4), w.data());
+    stage_row(std::string("points/") + f.name, w.data());
   };
-  rve_scalar("rve/p", [](const MicroReport& r) { return r.p; });
-  rve_scalar("rve/q", [](const MicroReport& r) { return r.q; });
-  rve_scalar("rve/void_ratio", [](const MicroReport& r) { return r.void_ratio; });
-  rve_scalar("rve/z", [](const MicroReport& r) { return r.z; });
-  std::vector<double> tp(n);
-  std::vector<std::int64_t> ds(n);
-  std::vector<std::int64_t> gd(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    tp[k] = reports[k].t_p;
-    ds[k] = reports[k].dem_steps;
-    gd[k] = reports[k].guards;
+  for (const ReportField& f : kReportFields) {
+    if (f.type == ReportType::real) {
+      stage_report(f, [&f](const MicroReport& r) { return report_real(r, f); });
+    } else {
+      stage_report(f, [&f](const MicroReport& r) { return report_int(r, f); });
+    }
   }
-  stage_row("rve/t_p", tp.data());
-  stage_row("rve/dem_steps", ds.data());
-  stage_row("rve/guards", gd.data());
   // Grain-scale measures (RveFarm::measure, for output rows only); NaN when not given.
   MPMXDEM_CHECK(measures.empty() || measures.size() == n, "one MicroMeasures per RVE");
   for (const MeasureField& f : kMeasureFields) {

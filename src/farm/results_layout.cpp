@@ -26,25 +26,11 @@ constexpr SeriesSpec kSeriesTable[] = {
     {"rve/stress", false, 9, 'r', "Pa",
      "Cauchy stress of every RVE (order of /rve/id), row-major 3x3 [row, rve, 9], TENSION "
      "positive"},
-    {"rve/p", false, 1, 'r', "Pa", "mean stress p = -tr(sigma)/3, compression positive"},
-    {"rve/q", false, 1, 'r', "Pa",
-     "von Mises deviatoric stress q = sqrt(3/2 s:s), s = sigma + p I (always >= 0)"},
-    {"rve/void_ratio", false, 1, 'r', "-", "void ratio e = V_voids / V_solids"},
-    {"rve/z", false, 1, 'r', "-", "coordination number 2 Nc / N (0 for continuum models)"},
-    {"rve/t_p", false, 1, 'r', "s", "quasi-static time of the step, eq. (11)"},
-    {"rve/dem_steps", true, 1, 'r', "", "DEM steps run for the MPM step"},
-    {"rve/guards", true, 1, 'r', "",
-     "guard bits (dem::RveGuard, docs/design/dem.md; bit 16 farm::kGuardSpared: the DEM was not "
-     "stepped, docs/design/sparing.md)"},
     {"points/x", false, 3, 'p', "m",
      "position of every material point (order of /points/id) [row, point, xyz]"},
     {"points/stress", false, 9, 'p', "Pa",
      "Cauchy stress of every point, row-major 3x3 [row, point, 9], TENSION positive"},
     {"points/volume", false, 1, 'p', "m^3", "current volume of every point (J V0)"},
-    {"points/p", false, 1, 'p', "Pa", "p of the point's RVE (/rve/p), compression positive"},
-    {"points/q", false, 1, 'p', "Pa", "q of the point's RVE (/rve/q), von Mises"},
-    {"points/void_ratio", false, 1, 'p', "-", "void ratio of the point's RVE"},
-    {"points/z", false, 1, 'p', "-", "coordination number of the point's RVE"},
     {"means/eps_ax", false, 0, '-', "-",
      "axial strain 1 - mean_p F_aa (a = output.axial_axis of the job), compression positive; "
      "NOT logarithmic: -ln(1 - eps_ax) is the logarithmic strain"},
@@ -163,23 +149,44 @@ void write_static(hid_t file, const char* name, const std::vector<std::int64_t>&
   }
 }
 
-// The grain-scale measures (farm::kMeasureFields) come after this series.
+// The RVEs' per-step fields (farm::kReportFields) come after the first series, the points'
+// copies of them after the second, the grain-scale measures (farm::kMeasureFields) after the third.
+constexpr std::string_view kReportsAfter = "rve/stress";
+constexpr std::string_view kPointReportsAfter = "points/volume";
 constexpr std::string_view kMeasuresAfter = "means/q";
 
 std::span<const SeriesSpec> series() {
-  static const std::vector<std::string> measure_names = [] {
+  // The datasets' names, alive as long as the table that points at them.
+  static const std::vector<std::string> names = [] {
     std::vector<std::string> v;
+    for (const ReportField& f : kReportFields) v.push_back(std::string("rve/") + f.name);
+    for (const ReportField& f : kReportFields) v.push_back(std::string("points/") + f.name);
     for (const MeasureField& f : kMeasureFields) v.push_back(std::string("rve/") + f.name);
     return v;
   }();
   static const std::vector<SeriesSpec> all = [] {
+    const std::size_t nr = std::size(kReportFields);
     std::vector<SeriesSpec> v;
     for (const SeriesSpec& s : kSeriesTable) {
       v.push_back(s);
-      if (s.name != kMeasuresAfter) continue;
-      for (std::size_t i = 0; i < std::size(kMeasureFields); ++i) {
-        const MeasureField& f = kMeasureFields[i];
-        v.push_back({measure_names[i].c_str(), false, f.components, 'r', f.unit, f.description});
+      if (s.name == kReportsAfter) {
+        for (std::size_t i = 0; i < nr; ++i) {
+          const ReportField& f = kReportFields[i];
+          v.push_back(
+              {names[i].c_str(), f.type != ReportType::real, 1, 'r', f.unit, f.description});
+        }
+      } else if (s.name == kPointReportsAfter) {
+        for (std::size_t i = 0; i < nr; ++i) {
+          const ReportField& f = kReportFields[i];
+          if (f.point_description == nullptr) continue;
+          v.push_back({names[nr + i].c_str(), f.type != ReportType::real, 1, 'p', f.unit,
+                       f.point_description});
+        }
+      } else if (s.name == kMeasuresAfter) {
+        for (std::size_t i = 0; i < std::size(kMeasureFields); ++i) {
+          const MeasureField& f = kMeasureFields[i];
+          v.push_back({names[2 * nr + i].c_str(), false, f.components, 'r', f.unit, f.description});
+        }
       }
     }
     return v;

@@ -44,9 +44,14 @@ void ResultsWriter::write_xdmf() const {
   for (const char* a : vectors) vec.push_back(slab((std::string("points/") + a).c_str(), 3));
   std::vector<Slab> ten;
   for (const char* a : tensors) ten.push_back(slab((std::string("points/") + a).c_str(), 9));
-  const char* scalars[] = {"p", "q", "void_ratio", "z", "volume"};
+  // The points' copies of the RVEs' per-step fields (farm::kReportFields), then their volume.
+  std::vector<std::string> scalars;
+  for (const ReportField& f : kReportFields) {
+    if (f.point_description != nullptr) scalars.emplace_back(f.name);
+  }
+  scalars.emplace_back("volume");
   std::vector<Slab> sc;
-  for (const char* a : scalars) sc.push_back(slab((std::string("points/") + a).c_str(), 1));
+  for (const std::string& a : scalars) sc.push_back(slab(("points/" + a).c_str(), 1));
   // The RVEs' grain-scale measures, where points and RVEs are one to one (the same ids in the
   // same order: every point a DEM point): ParaView colours the points by them.
   bool one_to_one = rve_ids_.size() == m;

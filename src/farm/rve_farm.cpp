@@ -146,10 +146,10 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
     InitRecord& r = init[k];
     common::row_major_out(r.stress) = m.stress();
     const MicroReport rep = m.report();
-    r.p = rep.p;
-    r.q = rep.q;
-    r.void_ratio = rep.void_ratio;
-    r.z = rep.z;
+    std::size_t i = 0;
+    for (const ReportField& f : kReportFields) {
+      if (f.state) r.state[i++] = report_real(rep, f);
+    }
     r.wave_speed = m.wave_speed();
     r.cost_estimate = m.cost_estimate();
   }
@@ -160,10 +160,10 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
   stresses_.assign(n, common::Mat3::Zero());
   for (std::size_t k = 0; k < n; ++k) {
     stresses_[k] = common::row_major(init[k].stress);
-    reports_[k].p = init[k].p;
-    reports_[k].q = init[k].q;
-    reports_[k].void_ratio = init[k].void_ratio;
-    reports_[k].z = init[k].z;
+    std::size_t i = 0;
+    for (const ReportField& f : kReportFields) {
+      if (f.state) set_report_real(reports_[k], f, init[k].state[i++]);
+    }
     wave_[k] = init[k].wave_speed;
     est[k] = init[k].cost_estimate;
   }
