@@ -615,7 +615,6 @@ TRANSFER = {
         ("2 x 2, FLIP 0.98 (0.011 t*)", "a2_2x2_E3MPa_wallpts_flip0.98"),
         ("2 x 2, FLIP 0.99, its PIC share XPIC(3)", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3"),
         ("2 x 2, XPIC(5) (flip 0)", "a2_2x2_E3MPa_wallpts_xpic5"),
-        ("cells of L0/16, 1 point per cell, FLIP", "a2_h16_E3MPa_wallpts"),
         ("cells of L0/16, 1 point per cell, FLIP 0.99, XPIC(3)", "a2_h16_E3MPa_wallpts_flip0.99_xpic3"),
         ("1 point per cell, FLIP", "a2_1ppc_E3MPa_wallpts"),
         ("1 point per cell, FLIP 0.99", "a2_1ppc_E3MPa_wallpts_flip0.99")],
