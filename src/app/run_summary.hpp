@@ -2,6 +2,7 @@
 // log's `done:` and `work:` lines as structured fields; docs/reference/outputs.md).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>

@@ -33,6 +33,20 @@ double kinetic(const dem::Simulation& sim) {
   return e;
 }
 
+// Steps until the spheres have touched and separated again (at most 200,000 steps); whether they
+// touched.
+bool collide(dem::Simulation& sim) {
+  bool touched = false;
+  for (int k = 0; k < 200000; ++k) {
+    sim.step();
+    bool any = false;
+    for (auto a : sim.contacts().active) any = any || a;
+    touched = touched || any;
+    if (touched && !any) break;
+  }
+  return touched;
+}
+
 // Oblique collision of two spheres, no friction, no rolling stiffness, no damping: the kinetic
 // energy after separation equals the one before (leap-frog on a linear spring; error O(dt^2)).
 TEST(Simulation, FrictionlessUndampedCollisionConservesEnergy) {
@@ -51,16 +65,7 @@ TEST(Simulation, FrictionlessUndampedCollisionConservesEnergy) {
   dem::Simulation sim(s, cell, mat, num);
   sim.set_dt(2e-9);
   const double e0 = kinetic(sim);
-  bool touched = false;
-  for (int k = 0; k < 200000; ++k) {
-    sim.step();
-    const auto& c = sim.contacts();
-    bool any = false;
-    for (auto a : c.active) any = any || a;
-    touched = touched || any;
-    if (touched && !any) break;
-  }
-  ASSERT_TRUE(touched);
+  ASSERT_TRUE(collide(sim));
   const double e1 = kinetic(sim);
   EXPECT_NEAR(e1 / e0, 1.0, 1e-6);
   // Frictionless: no spin is created.
@@ -91,15 +96,7 @@ TEST(Simulation, CundallDampingGivesTheRestitutionOfALinearContact) {
     cell.h = Mat3::Identity() * 2e-3;
     dem::Simulation sim(s, cell, mat, num);
     sim.set_dt(2e-9);
-    bool touched = false;
-    for (int k = 0; k < 200000; ++k) {
-      sim.step();
-      bool any = false;
-      for (auto a : sim.contacts().active) any = any || a;
-      touched = touched || any;
-      if (touched && !any) break;
-    }
-    ASSERT_TRUE(touched);
+    ASSERT_TRUE(collide(sim));
     const double approach = 1.0;  // the relative speed before the contact [m/s]
     const double e = (sim.spheres().u[1].x() - sim.spheres().u[0].x()) / approach;
     EXPECT_NEAR(e, std::sqrt((1.0 - lambda) / (1.0 + lambda)), 1e-3);
