@@ -214,7 +214,7 @@ std::function<int()> stop_request(std::optional<WallBudget>& budget) {
 // Rank 0's closing lines: work, balance, outputs, and how to continue a stopped run.
 void log_summary(const farm::RunSummary& s, const Options& given, const std::filesystem::path& out,
                  const std::optional<WallBudget>& budget) {
-  const double busy = s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
+  const double busy = run_balance(s);
   spdlog::info(
       "done: {} MPM steps, t = {:.6g} s, wall {:.2f} s; RVE time {:.2f} s of the critical rank, "
       "balance (mean/max busy) {:.3f}, {} migration(s) moving {} RVE(s) in {:.2f} s; {} "

@@ -53,8 +53,7 @@ std::string run_summary_json(const RunRecord& r) {
     put(t, "time_s", s.time);
     put(t, "wall_s", s.wall_s);
     put(t, "rve_time_critical_rank_s", s.times.critical_busy);
-    put(t, "balance",
-        s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0);
+    put(t, "balance", run_balance(s));
     t.insert_or_assign("migrations", s.migrations);
     t.insert_or_assign("rves_moved", s.rves_moved);
     t.insert_or_assign("dem_steps", s.dem_steps);

@@ -28,6 +28,11 @@ struct RunRecord {
   std::optional<farm::RunSummary> summary;
 };
 
+/// The farm's balance over the segment: mean over max busy time of the ranks (1 without any).
+[[nodiscard]] inline double run_balance(const farm::RunSummary& s) {
+  return s.times.critical_busy > 0.0 ? s.times.mean_busy / s.times.critical_busy : 1.0;
+}
+
 /// How the segment ended: "end_time", "max_steps", "max_wall", "signal" (the name in
 /// `signal`), "numerical_failure".
 [[nodiscard]] std::string run_end(const RunRecord& r);
