@@ -45,21 +45,26 @@ CLI::Validator integer_at_least(std::int64_t min,
 constexpr std::array<const char*, 6> kCommands = {"run",     "check", "dem",
                                                   "inspect", "bench", "schema"};
 
-}  // namespace
+// --max-wall: "23.5 h", "90 min" or bare seconds, > 0 and finite.
+double parse_max_wall(const std::string& text) {
+  std::string why;
+  // A bare number is seconds (a job's time keys read "<number> <unit>" strings).
+  double seconds = 0.0;
+  const char* end = text.data() + text.size();
+  const auto bare = std::from_chars(text.data(), end, seconds);
+  const auto v = bare.ec == std::errc() && bare.ptr == end
+                     ? std::optional<double>(seconds)
+                     : parse_quantity(text, Quantity::Time, why);
+  if (!v || !(*v > 0.0) || !std::isfinite(*v)) {
+    throw CLI::ValidationError("--max-wall",
+                               "must be a duration > 0 (\"23.5 h\", \"90 min\", "
+                               "or seconds), not '" +
+                                   clip(text) + "'" + (why.empty() ? "" : ": " + why));
+  }
+  return *v;
+}
 
-std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_code) {
-  Options o;
-  CLI::App cli{
-      "mpmxdem: multi-scale granular mechanics. Every material point of an MPM grid takes its\n"
-      "stress from its own periodic DEM cell (an RVE). Run in parallel with\n"
-      "  mpirun -n N mpmxdem run JOB.toml\n"
-      "Job files are TOML; `mpmxdem schema` prints the reference of every key.",
-      "mpmxdem"};
-  cli.set_version_flag("--version", std::string("mpmxdem ") + kVersion);
-  cli.require_subcommand(1);
-  cli.add_flag("-v,--verbose", o.verbosity,
-               "More log output (-v debug, -vv trace; all ranks at -vv)");
-
+void add_run(CLI::App& cli, Options& o) {
   auto* run = cli.add_subcommand(
       "run",
       "Run a coupled MPM x DEM job: validate it, then simulate, writing results.h5 (time series),\n"
@@ -83,24 +88,7 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
                   "is written at the end")
       ->check(integer_at_least(1));
   run->add_option_function<std::string>(
-         "--max-wall",
-         [&o](const std::string& text) {
-           std::string why;
-           // A bare number is seconds (a job's time keys read "<number> <unit>" strings).
-           double seconds = 0.0;
-           const char* end = text.data() + text.size();
-           const auto bare = std::from_chars(text.data(), end, seconds);
-           const auto v = bare.ec == std::errc() && bare.ptr == end
-                              ? std::optional<double>(seconds)
-                              : parse_quantity(text, Quantity::Time, why);
-           if (!v || !(*v > 0.0) || !std::isfinite(*v)) {
-             throw CLI::ValidationError("--max-wall",
-                                        "must be a duration > 0 (\"23.5 h\", \"90 min\", "
-                                        "or seconds), not '" +
-                                            clip(text) + "'" + (why.empty() ? "" : ": " + why));
-           }
-           o.max_wall_s = *v;
-         },
+         "--max-wall", [&o](const std::string& text) { o.max_wall_s = parse_max_wall(text); },
          "Stop with a checkpoint before this much wall time has passed since the start (\"23.5 "
          "h\",\n"
          "\"90 min\", or seconds): for a batch job's time limit; exit 75, --restart latest "
@@ -108,11 +96,9 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
       ->type_name("DURATION");
   run->add_flag("--force", o.force,
                 "Write into a non-empty output directory (files of the same name are replaced)");
+}
 
-  auto* check = cli.add_subcommand(
-      "check", "Validate a job file and print the resolved job (no output written)");
-  check->add_option("job", o.job, "Job file (TOML)")->required();
-
+void add_inspect(CLI::App& cli, Options& o) {
   auto* inspect =
       cli.add_subcommand("inspect",
                          "Describe a checkpoint (step, time, RVEs, ranks that wrote it) "
@@ -146,7 +132,10 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
           "rve_<id>_step_<step>.vtm each, and rve_<id>.pvd: every step written there\n"
           "(docs/design/dem.md, \"Grain-scale views\")")
       ->needs(rve_opt);
+}
 
+// dem, bench and schema.
+void add_other_commands(CLI::App& cli, Options& o) {
   auto* demc = cli.add_subcommand(
       "dem", "Run a pure DEM job: prepare a sample, then the loading of [dem.loading]");
   demc->add_option("job", o.job, "Job file (TOML)")->required();
@@ -173,23 +162,21 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   schema->add_flag("--outputs", o.schema_outputs,
                    "Print the reference of results.h5 instead (every dataset, its shape, unit and "
                    "description)");
+}
 
-  // An empty output directory (CLI11 would call it a missing value, or take it as none).
+// What CLI11 would report badly, named before it parses: an empty output directory (a missing
+// value to CLI11, or none at all) and an unknown command (CLI11: "a subcommand is required").
+std::optional<std::string> argument_error(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool next_empty = i + 1 < argc && argv[i + 1][0] == '\0';
     const bool empty_out = ((a == "-o" || a == "--out") && next_empty) || a == "--out=";
     const bool empty_vtk = (a == "--vtk" && next_empty) || a == "--vtk=";
     if (empty_out || empty_vtk) {
-      if (print) {
-        std::fprintf(stderr, "error: %s \"\": the output directory must not be an empty path\n",
-                     empty_out ? "--out" : "--vtk");
-      }
-      exit_code = 2;
-      return std::nullopt;
+      return std::string(empty_out ? "--out" : "--vtk") +
+             " \"\": the output directory must not be an empty path";
     }
   }
-  // An unknown command is named (CLI11 would only say that a subcommand is required).
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a.empty() || a[0] == '-') continue;
@@ -204,9 +191,35 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
       }
     }
     if (!best.empty()) msg += "; did you mean '" + best + "'?";
-    msg += " (commands: run, check, dem, inspect, bench, schema; mpmxdem --help)";
-    if (print) std::fprintf(stderr, "error: %s\n", msg.c_str());
-    exit_code = 2;
+    return msg + " (commands: run, check, dem, inspect, bench, schema; mpmxdem --help)";
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_code) {
+  Options o;
+  CLI::App cli{
+      "mpmxdem: multi-scale granular mechanics. Every material point of an MPM grid takes its\n"
+      "stress from its own periodic DEM cell (an RVE). Run in parallel with\n"
+      "  mpirun -n N mpmxdem run JOB.toml\n"
+      "Job files are TOML; `mpmxdem schema` prints the reference of every key.",
+      "mpmxdem"};
+  cli.set_version_flag("--version", std::string("mpmxdem ") + kVersion);
+  cli.require_subcommand(1);
+  cli.add_flag("-v,--verbose", o.verbosity,
+               "More log output (-v debug, -vv trace; all ranks at -vv)");
+  add_run(cli, o);
+  auto* check = cli.add_subcommand(
+      "check", "Validate a job file and print the resolved job (no output written)");
+  check->add_option("job", o.job, "Job file (TOML)")->required();
+  add_inspect(cli, o);
+  add_other_commands(cli, o);
+
+  exit_code = 2;  // every input error
+  if (const auto error = argument_error(argc, argv)) {
+    if (print) std::fprintf(stderr, "error: %s\n", error->c_str());
     return std::nullopt;
   }
   try {
@@ -214,13 +227,12 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
   } catch (const CLI::ParseError& e) {
     std::ostringstream out;
     std::ostringstream err;
-    const int code = cli.exit(e, out, err);
-    if (code == 0) {  // --help, --version
+    if (cli.exit(e, out, err) == 0) {  // --help, --version
       if (print) std::fputs(out.str().c_str(), stdout);
       exit_code = 0;
       return std::nullopt;
     }
-    // A usage error: one short line, exit 2 as every input error.
+    // A usage error: one short line.
     std::string what = e.what();
     if (what.size() > 300) what = what.substr(0, 297) + "...";
     if (print) {
@@ -229,7 +241,6 @@ std::optional<Options> parse_cli(int argc, char** argv, bool print, int& exit_co
                        ? ""
                        : (cli.get_subcommands().front()->get_name() + " ").c_str());
     }
-    exit_code = 2;
     return std::nullopt;
   }
   for (const auto* sub : cli.get_subcommands()) o.command = sub->get_name();

@@ -204,14 +204,17 @@ void continuum_rules(const Job& job, Rules& r) {
   }
 }
 
-void mpm_rules(const Job& job, Rules& r) {
-  if (!job.has_section("mpm")) return;
-  regularisation_rules(job, r);
+struct BodyMaterials {
+  bool dem = false;
+  bool elastic = false;
+};
+
+// Each body's box inside the grid (and clear of its boundary with uGIMP); the materials used.
+BodyMaterials body_rules(const Job& job, Rules& r) {
   const auto& origin = job.numbers("mpm.grid.origin");
   const auto& h = job.numbers("mpm.grid.spacing");
   const auto& n = job.integers("mpm.grid.cells");
-  bool any_dem = false;
-  bool any_elastic = false;
+  BodyMaterials used;
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
     const std::string base = fmt::format("mpm.body[{}].", b);
     const auto& lo = job.numbers(base + "min");
@@ -246,37 +249,46 @@ void mpm_rules(const Job& job, Rules& r) {
       }
     }
     const std::string& m = job.text(base + "material");  // dem + initial_stress: insitu rules
-    any_dem = any_dem || m == "dem";
-    any_elastic = any_elastic || m == "elastic";
+    used.dem = used.dem || m == "dem";
+    used.elastic = used.elastic || m == "elastic";
   }
-  // An upper bound from the memory rank 0 needs for the grid and the points (about kBytesPerNode
-  // and kBytesPerPoint, order of magnitude of mpm::GridFields and MaterialPoints with stencils):
-  // a count no machine holds is an input error here, not std::bad_alloc in the run.
-  {
-    constexpr double kBytesPerNode = 160.0;
-    constexpr double kBytesPerPoint = 1024.0;
-    double nodes = 1.0;
-    for (int a = 0; a < 3; ++a) nodes *= static_cast<double>(n[a]) + 1.0;
-    double points = 0.0;
-    for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
-      const std::string base = fmt::format("mpm.body[{}].", b);
-      const auto& lo = job.numbers(base + "min");
-      const auto& hi = job.numbers(base + "max");
-      double cells = 1.0;
-      for (int a = 0; a < 3; ++a) cells *= std::max(0.0, std::ceil((hi[a] - lo[a]) / h[a]));
-      const auto ppc = job.per_axis(base + "points_per_cell");
-      points += cells * static_cast<double>(ppc[0]) * static_cast<double>(ppc[1]) *
-                static_cast<double>(ppc[2]);
-    }
-    const double need = nodes * kBytesPerNode + points * kBytesPerPoint;
-    const double mem = usable_memory_bytes();
-    if (mem > 0.0 && need > mem) {
-      r.fail("mpm.grid.cells",
-             fmt::format("{:.3g} grid nodes and {:.3g} material points need about {:.3g} GB of "
-                         "memory on rank 0, more than the {:.3g} GB this machine lets the job use",
-                         nodes, points, need / 1e9, mem / 1e9));
-    }
+  return used;
+}
+
+// An upper bound from the memory rank 0 needs for the grid and the points (about kBytesPerNode
+// and kBytesPerPoint, order of magnitude of mpm::GridFields and MaterialPoints with stencils):
+// a count no machine holds is an input error here, not std::bad_alloc in the run.
+void grid_memory_rules(const Job& job, Rules& r) {
+  const auto& h = job.numbers("mpm.grid.spacing");
+  const auto& n = job.integers("mpm.grid.cells");
+  constexpr double kBytesPerNode = 160.0;
+  constexpr double kBytesPerPoint = 1024.0;
+  double nodes = 1.0;
+  for (int a = 0; a < 3; ++a) nodes *= static_cast<double>(n[a]) + 1.0;
+  double points = 0.0;
+  for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
+    const std::string base = fmt::format("mpm.body[{}].", b);
+    const auto& lo = job.numbers(base + "min");
+    const auto& hi = job.numbers(base + "max");
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a) cells *= std::max(0.0, std::ceil((hi[a] - lo[a]) / h[a]));
+    const auto ppc = job.per_axis(base + "points_per_cell");
+    points += cells * static_cast<double>(ppc[0]) * static_cast<double>(ppc[1]) *
+              static_cast<double>(ppc[2]);
   }
+  const double need = nodes * kBytesPerNode + points * kBytesPerPoint;
+  const double mem = usable_memory_bytes();
+  if (mem > 0.0 && need > mem) {
+    r.fail("mpm.grid.cells",
+           fmt::format("{:.3g} grid nodes and {:.3g} material points need about {:.3g} GB of "
+                       "memory on rank 0, more than the {:.3g} GB this machine lets the job use",
+                       nodes, points, need / 1e9, mem / 1e9));
+  }
+}
+
+// The formulation and plane strain against the grid and the shape functions.
+void scheme_rules(const Job& job, Rules& r) {
+  const auto& n = job.integers("mpm.grid.cells");
   if (job.text("mpm.formulation") == mpm::to_string(mpm::Formulation::total_lagrangian) &&
       job.flag("mpm.move_points")) {
     r.fail("mpm.formulation",
@@ -300,14 +312,54 @@ void mpm_rules(const Job& job, Rules& r) {
                          job.text("mpm.shape_function")));
     }
   }
-  if (any_elastic && !job.has_section("mpm.elastic")) {
-    r.fail_missing("mpm.elastic", "required section when a body has material = \"elastic\"");
+}
+
+// A constraint's box (min and max): both given, ordered, holding a grid node. False: the
+// constraint is not checked further.
+bool velocity_box_rules(const Job& job, Rules& r, const std::string& base) {
+  const auto& origin = job.numbers("mpm.grid.origin");
+  const auto& h = job.numbers("mpm.grid.spacing");
+  const auto& n = job.integers("mpm.grid.cells");
+  if (!job.has(base + "min") || !job.has(base + "max")) {
+    r.fail_missing(base + (job.has(base + "min") ? "max" : "min"),
+                   "required: a box needs both min and max");
+    return false;
   }
-  if (any_dem && !job.has_section("dem.coupling")) {
-    r.fail_missing("dem.coupling", "required section when a body has material = \"dem\"");
+  const auto& lo = job.numbers(base + "min");
+  const auto& hi = job.numbers(base + "max");
+  if (lo.size() != 3 || hi.size() != 3) {
+    r.fail(base + "max", "min and max must have 3 coordinates each");
+    return false;
   }
-  if (any_dem && !job.has_section("dem"))
-    r.fail_missing("dem", "required section when a body has material = \"dem\"");
+  bool ordered = true;
+  for (int a = 0; a < 3 && ordered; ++a) {
+    if (!(hi[a] >= lo[a])) {
+      r.fail(base + "max", fmt::format("must be >= min on every axis (axis {})", "xyz"[a]));
+      ordered = false;
+    }
+  }
+  // A box must hold at least one grid node on every axis, or the constraint does nothing
+  // (e.g. a platen that never moves). Nodes are origin + i spacing, i in 0..cells.
+  for (int a = 0; a < 3 && ordered; ++a) {
+    const double k_lo = std::ceil((lo[a] - origin[a]) / h[a] - 1e-9);
+    const double k_hi = std::floor((hi[a] - origin[a]) / h[a] + 1e-9);
+    if (std::max(k_lo, 0.0) > std::min(k_hi, static_cast<double>(n[a]))) {
+      r.fail(base + "max",
+             fmt::format("the box [{}, {}] x [{}, {}] x [{}, {}] holds no grid node (none on "
+                         "axis {}; nodes are origin + i spacing, i in 0..cells): the "
+                         "constraint would act on nothing",
+                         lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], "xyz"[a]));
+      break;
+    }
+  }
+  return true;
+}
+
+// Each velocity constraint: where it acts (one of face, node or box) and on what.
+void velocity_rules(const Job& job, Rules& r) {
+  const auto& origin = job.numbers("mpm.grid.origin");
+  const auto& h = job.numbers("mpm.grid.spacing");
+  const auto& n = job.integers("mpm.grid.cells");
   for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
     const std::string base = fmt::format("mpm.velocity[{}].", i);
     const bool face = job.has(base + "face");
@@ -326,40 +378,7 @@ void mpm_rules(const Job& job, Rules& r) {
       continue;
     }
     const std::string where = base + (face ? "face" : node ? "node" : "max");
-    if (box) {
-      if (!job.has(base + "min") || !job.has(base + "max")) {
-        r.fail_missing(base + (job.has(base + "min") ? "max" : "min"),
-                       "required: a box needs both min and max");
-        continue;
-      }
-      const auto& lo = job.numbers(base + "min");
-      const auto& hi = job.numbers(base + "max");
-      if (lo.size() != 3 || hi.size() != 3) {
-        r.fail(base + "max", "min and max must have 3 coordinates each");
-        continue;
-      }
-      bool ordered = true;
-      for (int a = 0; a < 3 && ordered; ++a) {
-        if (!(hi[a] >= lo[a])) {
-          r.fail(base + "max", fmt::format("must be >= min on every axis (axis {})", "xyz"[a]));
-          ordered = false;
-        }
-      }
-      // A box must hold at least one grid node on every axis, or the constraint does nothing
-      // (e.g. a platen that never moves). Nodes are origin + i spacing, i in 0..cells.
-      for (int a = 0; a < 3 && ordered; ++a) {
-        const double k_lo = std::ceil((lo[a] - origin[a]) / h[a] - 1e-9);
-        const double k_hi = std::floor((hi[a] - origin[a]) / h[a] + 1e-9);
-        if (std::max(k_lo, 0.0) > std::min(k_hi, static_cast<double>(n[a]))) {
-          r.fail(base + "max",
-                 fmt::format("the box [{}, {}] x [{}, {}] x [{}, {}] holds no grid node (none on "
-                             "axis {}; nodes are origin + i spacing, i in 0..cells): the "
-                             "constraint would act on nothing",
-                             lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], "xyz"[a]));
-          break;
-        }
-      }
-    }
+    if (box && !velocity_box_rules(job, r, base)) continue;
     if (!job.has(base + "x") && !job.has(base + "y") && !job.has(base + "z")) {
       r.fail(where, "a velocity constraint needs at least one of x, y, z");
     }
@@ -379,6 +398,23 @@ void mpm_rules(const Job& job, Rules& r) {
       }
     }
   }
+}
+
+void mpm_rules(const Job& job, Rules& r) {
+  if (!job.has_section("mpm")) return;
+  regularisation_rules(job, r);
+  const BodyMaterials used = body_rules(job, r);
+  grid_memory_rules(job, r);
+  scheme_rules(job, r);
+  if (used.elastic && !job.has_section("mpm.elastic")) {
+    r.fail_missing("mpm.elastic", "required section when a body has material = \"elastic\"");
+  }
+  if (used.dem && !job.has_section("dem.coupling")) {
+    r.fail_missing("dem.coupling", "required section when a body has material = \"dem\"");
+  }
+  if (used.dem && !job.has_section("dem"))
+    r.fail_missing("dem", "required section when a body has material = \"dem\"");
+  velocity_rules(job, r);
 }
 
 }  // namespace
