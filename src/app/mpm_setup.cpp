@@ -83,18 +83,10 @@ void velocity_extras(const Job& job, const std::string& base, mpm::VelocityConst
     }
   }
 }
-}  // namespace
 
-MpmSetup mpm_setup(const Job& job) {
-  MpmSetup setup;
-  auto& cfg = setup.config;
-  cfg.grid.origin = vec3(job.numbers("mpm.grid.origin"));
-  cfg.grid.spacing = vec3(job.numbers("mpm.grid.spacing"));
-  const auto& cells = job.integers("mpm.grid.cells");
-  cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]),
-                                 static_cast<int>(cells[2]));
-  fill_choices_from_job(job, mpm::kSolverChoices, cfg);  // shape, update, transfer, ...
-  // Keys the job sets itself (not their defaults): the rules between the transfer's knobs.
+// The rules between the transfer's knobs (flip, pic_time, xpic_order against the transfer), on
+// the keys the job sets itself, not their defaults.
+void transfer_rules(const Job& job, const mpm::SolverConfig& cfg) {
   auto given = [&job](const char* key) {
     const auto it = job.entries().find(key);
     return it != job.entries().end() && !it->second.defaulted;
@@ -137,12 +129,11 @@ MpmSetup mpm_setup(const Job& job) {
                       "mpm.pic_time > 0 (a blend with FLIP)"));
     }
   }
-  if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
-  fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold, ...
-  if (job.has("mpm.plane_strain")) cfg.plane_strain_axis = job.text("mpm.plane_strain")[0] - 'x';
-  cfg.move_points = job.flag("mpm.move_points");
-  setup.end_time = job.number("mpm.end_time");
+}
 
+// The material points of every mpm.body, with their materials and initial stresses.
+void add_bodies(const Job& job, MpmSetup& setup) {
+  const auto& grid = setup.config.grid;
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
     const std::string base = fmt::format("mpm.body[{}].", b);
     const bool is_dem = job.text(base + "material") == "dem";
@@ -151,7 +142,7 @@ MpmSetup mpm_setup(const Job& job) {
     std::size_t added = 0;
     try {
       added = mpm::fill_box(
-          setup.points, cfg.grid, vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")),
+          setup.points, grid, vec3(job.numbers(base + "min")), vec3(job.numbers(base + "max")),
           points_per_cell(job, base + "points_per_cell"), job.number(base + "density"), material);
     } catch (const common::InputError& e) {
       throw common::InputError(job.message(base + "max", e.what()));  // name the file, line and key
@@ -169,50 +160,86 @@ MpmSetup mpm_setup(const Job& job) {
     setup.has_dem = setup.has_dem || is_dem;
     setup.has_elastic = setup.has_elastic || !is_dem;
   }
+}
+
+// The velocity constraint of the entry `base` (mpm.velocity[i].) on the grid: a face, a node or a
+// box.
+mpm::VelocityConstraint velocity_constraint(const Job& job, const std::string& base,
+                                            const mpm::Grid& grid) {
+  std::array<bool, 3> fixed{};
+  common::Vec3 v = common::Vec3::Zero();
+  for (int a = 0; a < 3; ++a) {
+    const std::string key = base + std::string(1, static_cast<char>('x' + a));
+    if (job.has(key)) {
+      fixed[static_cast<std::size_t>(a)] = true;
+      v[a] = job.number(key);
+    }
+  }
+  mpm::VelocityConstraint c;
+  if (job.has(base + "face")) {
+    int axis = 0;
+    int side = 0;
+    face_axis_side(job.text(base + "face"), axis, side);
+    c = mpm::face_constraint(grid, axis, side, fixed, v);
+  } else if (job.has(base + "node")) {
+    c = mpm::node_constraint(grid, vec3(job.numbers(base + "node")), fixed, v);
+  } else {
+    c.lo = vec3(job.numbers(base + "min"));
+    c.hi = vec3(job.numbers(base + "max"));
+    c.fixed = fixed;
+    c.velocity = v;
+  }
+  return c;
+}
+
+// mpm.velocity[i]'s name differs from the earlier constraints' (written or default names).
+void unique_name(const Job& job, std::size_t i, const std::vector<mpm::VelocityConstraint>& earlier,
+                 const std::string& name) {
+  const std::string base = fmt::format("mpm.velocity[{}].", i);
+  for (std::size_t k = 0; k < earlier.size(); ++k) {
+    if (earlier[k].name != name) continue;
+    // Name the key that was written: this entry's name, or the earlier one's that took the
+    // default name of this entry (velocity_<i>).
+    const std::string other = fmt::format("mpm.velocity[{}]", k);
+    const std::string here = fmt::format("mpm.velocity[{}]", i);
+    throw common::InputError(
+        job.has(base + "name")
+            ? job.message(base + "name",
+                          fmt::format("{} is already named so{}: names are unique", other,
+                                      job.has(other + ".name") ? "" : " (its default name)"))
+            : job.message(other + ".name",
+                          fmt::format("the default name of {}: names are unique (name {} "
+                                      "too, or rename this one)",
+                                      here, here)));
+  }
+}
+
+}  // namespace
+
+MpmSetup mpm_setup(const Job& job) {
+  MpmSetup setup;
+  auto& cfg = setup.config;
+  cfg.grid.origin = vec3(job.numbers("mpm.grid.origin"));
+  cfg.grid.spacing = vec3(job.numbers("mpm.grid.spacing"));
+  const auto& cells = job.integers("mpm.grid.cells");
+  cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]),
+                                 static_cast<int>(cells[2]));
+  fill_choices_from_job(job, mpm::kSolverChoices, cfg);  // shape, update, transfer, ...
+  transfer_rules(job, cfg);
+  if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
+  fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold, ...
+  if (job.has("mpm.plane_strain")) cfg.plane_strain_axis = job.text("mpm.plane_strain")[0] - 'x';
+  cfg.move_points = job.flag("mpm.move_points");
+  setup.end_time = job.number("mpm.end_time");
+
+  add_bodies(job, setup);
 
   for (std::size_t i = 0; i < job.count("mpm.velocity"); ++i) {
     const std::string base = fmt::format("mpm.velocity[{}].", i);
-    std::array<bool, 3> fixed{};
-    common::Vec3 v = common::Vec3::Zero();
-    for (int a = 0; a < 3; ++a) {
-      const std::string key = base + std::string(1, static_cast<char>('x' + a));
-      if (job.has(key)) {
-        fixed[static_cast<std::size_t>(a)] = true;
-        v[a] = job.number(key);
-      }
-    }
-    mpm::VelocityConstraint c;
-    if (job.has(base + "face")) {
-      int axis = 0;
-      int side = 0;
-      face_axis_side(job.text(base + "face"), axis, side);
-      c = mpm::face_constraint(cfg.grid, axis, side, fixed, v);
-    } else if (job.has(base + "node")) {
-      c = mpm::node_constraint(cfg.grid, vec3(job.numbers(base + "node")), fixed, v);
-    } else {
-      c.lo = vec3(job.numbers(base + "min"));
-      c.hi = vec3(job.numbers(base + "max"));
-      c.fixed = fixed;
-      c.velocity = v;
-    }
+    mpm::VelocityConstraint c = velocity_constraint(job, base, cfg.grid);
     velocity_extras(job, base, c);
     c.name = job.has(base + "name") ? job.text(base + "name") : fmt::format("velocity_{}", i);
-    for (std::size_t k = 0; k < setup.constraints.size(); ++k) {
-      if (setup.constraints[k].name != c.name) continue;
-      // Name the key that was written: this entry's name, or the earlier one's that took the
-      // default name of this entry (velocity_<i>).
-      const std::string other = fmt::format("mpm.velocity[{}]", k);
-      const std::string here = fmt::format("mpm.velocity[{}]", i);
-      throw common::InputError(
-          job.has(base + "name")
-              ? job.message(base + "name",
-                            fmt::format("{} is already named so{}: names are unique", other,
-                                        job.has(other + ".name") ? "" : " (its default name)"))
-              : job.message(other + ".name",
-                            fmt::format("the default name of {}: names are unique (name {} "
-                                        "too, or rename this one)",
-                                        here, here)));
-    }
+    unique_name(job, i, setup.constraints, c.name);
     setup.constraints.push_back(std::move(c));
   }
   for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {
