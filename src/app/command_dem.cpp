@@ -99,6 +99,120 @@ void check_lateral_control(const common::Mat3& stress, double confining, double 
   }
 }
 
+// What the loadings share: the job, the command line, the series and its reference state.
+struct Loading {
+  const Job& job;
+  const Options& o;
+  SeriesWriter& series;
+  Reference ref;
+  std::int64_t every = 0;
+  std::int64_t max_steps = 0;
+};
+
+// A loading's end: DEM steps done, and whether a signal stopped it before its end.
+struct LoadingEnd {
+  std::int64_t done = 0;
+  bool cut = false;
+};
+
+// A drained triaxial or biaxial test; a signal stops it at its next series row.
+LoadingEnd triaxial(dem::Simulation& sim, const Loading& ld) {
+  const Job& job = ld.job;
+  const Options& o = ld.o;
+  SeriesWriter& series = ld.series;
+  const Reference& ref = ld.ref;
+  struct Stopped {};  // thrown by the observer, caught below
+  LoadingEnd end;
+  const std::string& type = job.text("dem.loading.type");
+  const bool plane = type == "biaxial";
+  bool generated = false;
+  const double rho = job.number("dem.material.density");
+  dem::DrainedTriaxial test;
+  test.confining = job.number("dem.loading.confining_pressure");
+  const double d50 = dem_d50(job, dem_packing(job, generated));
+  test.axial_rate =
+      dem::strain_rate(job.number("dem.loading.inertial_number"), d50, rho, test.confining);
+  test.eps_end = job.number("dem.loading.axial_strain");
+  test.plane_strain = plane;
+  test.check_every = ld.every;
+  test.max_steps = ld.max_steps;
+  const double lateral_tol = job.number("dem.loading.lateral_tolerance");
+  spdlog::info(
+      "{}: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
+      "1/s, to eps_a = {}, lateral stress {:.4g} Pa{}; about {:.3g} DEM steps",
+      type, d50, dem::inertial_time(d50, rho, test.confining), test.axial_rate, test.eps_end,
+      test.confining, plane ? " on x, zero strain on y (plane strain)" : "",
+      test.eps_end / test.axial_rate / sim.dt());
+  check_step_count(job, o, test.eps_end / test.axial_rate / sim.dt(), "DEM",
+                   "dem.loading.inertial_number");
+  Progress progress(type, test.eps_end);
+  try {
+    end.done = dem::run_drained_triaxial(
+        sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
+          const dem::Measures m = dem::measure(s);
+          check_finite(m, s);
+          series.add(row(s, m, ref, plane));
+          check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s, plane ? 1 : 2);
+          progress.update(
+              now.eps_a, s.steps(),
+              fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v, m.void_ratio),
+              now.eps_a >= test.eps_end);
+          if (!now.last && StopSignals::received() != 0) {
+            end.done = now.steps;
+            throw Stopped{};
+          }
+        });
+  } catch (const Stopped&) {
+    end.cut = true;  // done: the steps up to the last row
+  }
+  return end;
+}
+
+// An isotropic equilibration (no rows to stop at: no signal ends it).
+LoadingEnd isotropic(dem::Simulation& sim, const Loading& ld) {
+  const Job& job = ld.job;
+  dem::EquilibriumTarget t;
+  t.pressure = job.number("dem.loading.confining_pressure");
+  t.stress_tol = job.number("dem.preparation.stress_tolerance");
+  t.unbalanced_tol = job.number("dem.preparation.unbalanced_force");
+  const std::int64_t done = dem::equilibrate(sim, t);
+  ld.series.add(row(sim, dem::measure(sim), ld.ref));
+  return {done, false};
+}
+
+// A prescribed velocity gradient for a duration; a signal stops it at its next series row.
+LoadingEnd strain_path(dem::Simulation& sim, const Loading& ld) {
+  const Job& job = ld.job;
+  const Options& o = ld.o;
+  SeriesWriter& series = ld.series;
+  const Reference& ref = ld.ref;
+  std::int64_t done = 0;
+  const auto& l = job.numbers("dem.loading.velocity_gradient");
+  const common::Mat3 L = common::row_major(l.data());
+  const double duration = job.number("dem.loading.duration");
+  check_step_count(job, o, duration / sim.dt(), "DEM", "dem.loading.duration");
+  const double t_end = sim.time() + duration;
+  Progress progress("strain path", duration);
+  const double t0 = sim.time();
+  while (sim.time() < t_end && done < ld.max_steps && StopSignals::received() == 0) {
+    sim.cell().l = L;
+    // The steps left, compared in double precision before the conversion.
+    const double left = std::max(1.0, std::floor((t_end - sim.time()) / sim.dt()));
+    const std::int64_t n =
+        std::min(ld.max_steps - done,
+                 left < static_cast<double>(ld.every) ? static_cast<std::int64_t>(left) : ld.every);
+    dem::advance(sim, nullptr, n);
+    done += n;
+    const dem::Measures m = dem::measure(sim);
+    check_finite(m, sim);
+    series.add(row(sim, m, ref));
+    progress.update(sim.time() - t0, sim.steps(), fmt::format("p {:.4g} Pa, q {:.4g} Pa", m.p, m.q),
+                    sim.time() >= t_end);
+  }
+  // Only a signal ends the loop early.
+  return {done, sim.time() < t_end && done < ld.max_steps};
+}
+
 }  // namespace
 
 int command_dem(const Options& o, const Comm& comm) {
@@ -137,88 +251,16 @@ int command_dem(const Options& o, const Comm& comm) {
   series.add(row(sim, dem::measure(sim), ref));
 
   // From here a signal ends the loading at its next series row, with the series and the final
-  // packing written (docs/reference/errors.md, "Stopping a run"); a pure DEM test has no checkpoint.
-  // (Not during an isotropic equilibration: it has no rows to stop at.)
+  // packing written (docs/reference/errors.md, "Stopping a run"); a pure DEM test has no
+  // checkpoint. (Not during an isotropic equilibration: it has no rows to stop at.)
   std::optional<StopSignals> signals;
   if (type != "isotropic") signals.emplace();
-  struct Stopped {};  // thrown by the triaxial observer, caught below
-  bool cut = false;   // the loading was stopped by a signal
-  std::int64_t done = 0;
-  if (type == "triaxial" || type == "biaxial") {
-    const bool plane = type == "biaxial";
-    bool generated = false;
-    const double rho = job.number("dem.material.density");
-    dem::DrainedTriaxial test;
-    test.confining = job.number("dem.loading.confining_pressure");
-    const double d50 = dem_d50(job, dem_packing(job, generated));
-    test.axial_rate =
-        dem::strain_rate(job.number("dem.loading.inertial_number"), d50, rho, test.confining);
-    test.eps_end = job.number("dem.loading.axial_strain");
-    test.plane_strain = plane;
-    test.check_every = every;
-    test.max_steps = max_steps;
-    const double lateral_tol = job.number("dem.loading.lateral_tolerance");
-    spdlog::info(
-        "{}: d50 = {:.4g} m, t_ref = d50 sqrt(rho/p) = {:.4g} s, axial strain rate {:.4g} "
-        "1/s, to eps_a = {}, lateral stress {:.4g} Pa{}; about {:.3g} DEM steps",
-        type, d50, dem::inertial_time(d50, rho, test.confining), test.axial_rate, test.eps_end,
-        test.confining, plane ? " on x, zero strain on y (plane strain)" : "",
-        test.eps_end / test.axial_rate / sim.dt());
-    check_step_count(job, o, test.eps_end / test.axial_rate / sim.dt(), "DEM",
-                     "dem.loading.inertial_number");
-    Progress progress(type, test.eps_end);
-    try {
-      done = dem::run_drained_triaxial(
-          sim, test, [&](const dem::Simulation& s, const dem::TriaxialProgress& now) {
-            const dem::Measures m = dem::measure(s);
-            check_finite(m, s);
-            series.add(row(s, m, ref, plane));
-            check_lateral_control(m.stress, test.confining, lateral_tol, now.eps_a, s,
-                                  plane ? 1 : 2);
-            progress.update(now.eps_a, s.steps(),
-                            fmt::format("q/p {:.3f}, eps_v {:.4f}, e {:.4f}", m.q / m.p, now.eps_v,
-                                        m.void_ratio),
-                            now.eps_a >= test.eps_end);
-            if (!now.last && StopSignals::received() != 0) {
-              done = now.steps;
-              throw Stopped{};
-            }
-          });
-    } catch (const Stopped&) {
-      cut = true;  // done: the steps up to the last row
-    }
-  } else if (type == "isotropic") {
-    dem::EquilibriumTarget t;
-    t.pressure = job.number("dem.loading.confining_pressure");
-    t.stress_tol = job.number("dem.preparation.stress_tolerance");
-    t.unbalanced_tol = job.number("dem.preparation.unbalanced_force");
-    done = dem::equilibrate(sim, t);
-    series.add(row(sim, dem::measure(sim), ref));
-  } else {  // strain_path
-    const auto& l = job.numbers("dem.loading.velocity_gradient");
-    const common::Mat3 L = common::row_major(l.data());
-    const double duration = job.number("dem.loading.duration");
-    check_step_count(job, o, duration / sim.dt(), "DEM", "dem.loading.duration");
-    const double t_end = sim.time() + duration;
-    Progress progress("strain path", duration);
-    const double t0 = sim.time();
-    while (sim.time() < t_end && done < max_steps && StopSignals::received() == 0) {
-      sim.cell().l = L;
-      // The steps left, compared in double precision before the conversion.
-      const double left = std::max(1.0, std::floor((t_end - sim.time()) / sim.dt()));
-      const std::int64_t n =
-          std::min(max_steps - done,
-                   left < static_cast<double>(every) ? static_cast<std::int64_t>(left) : every);
-      dem::advance(sim, nullptr, n);
-      done += n;
-      const dem::Measures m = dem::measure(sim);
-      check_finite(m, sim);
-      series.add(row(sim, m, ref));
-      progress.update(sim.time() - t0, sim.steps(),
-                      fmt::format("p {:.4g} Pa, q {:.4g} Pa", m.p, m.q), sim.time() >= t_end);
-    }
-    cut = sim.time() < t_end && done < max_steps;  // only a signal ends the loop early
-  }
+  const Loading ld{job, o, series, ref, every, max_steps};
+  const LoadingEnd end = type == "triaxial" || type == "biaxial" ? triaxial(sim, ld)
+                         : type == "isotropic"                   ? isotropic(sim, ld)
+                                                                 : strain_path(sim, ld);
+  const std::int64_t done = end.done;
+  const bool cut = end.cut;
   if (done >= max_steps) spdlog::warn("stopped after --max-steps {} DEM steps", max_steps);
   series.finish(job.has("title") ? job.text("title") : o.job);
   dem::Packing final_pk{sim.cell(), sim.spheres().x, sim.spheres().r};
