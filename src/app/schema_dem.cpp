@@ -11,8 +11,10 @@
 
 namespace app {
 
-void add_dem_sections(Schema& s) {
-  using Q = Quantity;
+namespace {
+
+// [dem] and [dem.material]: the contact law and its parameters.
+void add_material(Schema& s) {
   s.add("dem", Type::Table,
         "The discrete-element model: of every RVE in `run`, of the sample in `dem`.");
 
@@ -31,7 +33,11 @@ void add_dem_sections(Schema& s) {
         "Hertz-Mindlin parameters (YADE FrictMat and Ip2_FrictMat_FrictMat_MindlinPhys). Required "
         "with contact_law = \"hertz_mindlin\", refused with another law.");
   add_params(s, dem::kHertzMindlin);
+}
 
+// [dem.sample] (a packing file or a generated cloud) and [dem.preparation].
+void add_sample(Schema& s) {
+  using Q = Quantity;
   s.add("dem.sample", Type::Table,
         "The sphere sample: loaded from a packing file, or generated as a cloud.")
       .need();
@@ -70,7 +76,10 @@ void add_dem_sections(Schema& s) {
         "1 / I).")
       .in(1e-6, 1, false, true)
       .or_default(1e-3);
+}
 
+// [dem.numerics], [dem.coupling] (the RVE step) and [dem.sparing].
+void add_rve_numerics(Schema& s) {
   s.add("dem.numerics", Type::Table, "Numerical knobs of the DEM.");
   add_params(s, dem::kNumerics);
 
@@ -81,7 +90,11 @@ void add_dem_sections(Schema& s) {
   s.add("dem.sparing", Type::Table,
         "Sparing of idle RVEs in `run` (docs/design/sparing.md): off unless `tolerance` > 0.");
   add_params(s, farm::kSparingOptions);
+}
 
+// [dem.loading]: the loading programme of `mpmxdem dem`.
+void add_loading(Schema& s) {
+  using Q = Quantity;
   s.add("dem.loading", Type::Table, "The loading programme of a pure DEM job (`mpmxdem dem`).");
   s.add("dem.loading.type", Type::String,
         "What to do after preparation: triaxial (z compressed, x and y at the confining "
@@ -115,6 +128,15 @@ void add_dem_sections(Schema& s) {
         "Duration of the imposed velocity gradient (strain_path).")
       .unit(Q::Time)
       .in(0, std::nullopt, true);
+}
+
+}  // namespace
+
+void add_dem_sections(Schema& s) {
+  add_material(s);
+  add_sample(s);
+  add_rve_numerics(s);
+  add_loading(s);
 }
 
 }  // namespace app

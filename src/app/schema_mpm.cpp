@@ -8,7 +8,10 @@
 
 namespace app {
 
-void add_mpm_sections(Schema& s) {
+namespace {
+
+// [mpm]: the scheme, its knobs and gravity; [mpm.regularisation].
+void add_scheme(Schema& s) {
   using Q = Quantity;
   s.add("mpm", Type::Table, "The material point method at the scale of the structure (`run`).");
   add_choices(s, mpm::kSolverChoices);  // shape_function, update, transfer, ...
@@ -34,7 +37,11 @@ void add_mpm_sections(Schema& s) {
   s.add("mpm.gravity", Type::FloatList, "Gravity vector; absent: no gravity.")
       .unit(Q::Acceleration)
       .len(3, 3);
+}
 
+// [mpm.grid] and the [[mpm.body]] boxes of material points.
+void add_grid_and_bodies(Schema& s) {
+  using Q = Quantity;
   s.add("mpm.grid", Type::Table, "Structured grid of hexahedral cells.").need();
   s.add("mpm.grid.origin", Type::FloatList, "Corner of the grid with the smallest coordinates.")
       .unit(Q::Length)
@@ -80,7 +87,11 @@ void add_mpm_sections(Schema& s) {
         "Initial Cauchy stress xx, yy, zz, yz, xz, xy (tension positive); dem: from the RVEs.")
       .unit(Q::Pressure)
       .len(6, 6);
+}
 
+// [mpm.elastic]: the continuum material of the bodies that are not DEM.
+void add_elastic(Schema& s) {
+  using Q = Quantity;
   s.add(
       "mpm.elastic", Type::Table,
       "Continuum material for bodies with material = \"elastic\": linear elastic "
@@ -105,7 +116,11 @@ void add_mpm_sections(Schema& s) {
         "equal to friction_angle: associated flow, for which Prandtl's bearing capacity is exact.")
       .unit(Q::Angle)
       .in(0, 90, false, true);
+}
 
+// The boundary conditions: [[mpm.velocity]] constraints and [[mpm.traction]] loads.
+void add_boundaries(Schema& s) {
+  using Q = Quantity;
   s.add("mpm.velocity[]", Type::TableList,
         "Imposed velocity components on grid nodes: a grid face, one node, or the nodes in a box.");
   s.add("mpm.velocity[].face", Type::String, "Grid face (give one of face, node, min and max).")
@@ -154,6 +169,15 @@ void add_mpm_sections(Schema& s) {
       .unit(Q::Pressure)
       .in(0, std::nullopt)
       .need();
+}
+
+}  // namespace
+
+void add_mpm_sections(Schema& s) {
+  add_scheme(s);
+  add_grid_and_bodies(s);
+  add_elastic(s);
+  add_boundaries(s);
 }
 
 }  // namespace app

@@ -79,11 +79,24 @@ bool remap_and_wrap(Spheres& s, PeriodicCell& cell, Contacts& c, double max_skew
   return remapped;
 }
 
-void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, VerletState& vs) {
-  const std::size_t n = s.size();
-  vs.r_max = n > 0 ? *std::max_element(s.r.begin(), s.r.end()) : 0.0;
-  const double cutoff = 2.0 * vs.r_max + vs.skin;
+namespace {
+
+// Spheres sorted into bins of fractional coordinates at least `cutoff` wide (at most about n
+// bins): each sphere's bin, and each bin's members (ids ascending) at start[b]..start[b + 1].
+struct Bins {
   std::array<int, 3> nb{};
+  std::vector<std::array<int, 3>> bin3;
+  std::vector<std::int64_t> start;
+  std::vector<std::int32_t> members;
+
+  [[nodiscard]] std::int64_t index(const std::array<int, 3>& b) const {
+    return (static_cast<std::int64_t>(b[2]) * nb[1] + b[1]) * nb[0] + b[0];
+  }
+};
+
+Bins bin_spheres(const Spheres& s, const PeriodicCell& cell, const Mat3& hinv, double cutoff) {
+  const std::size_t n = s.size();
+  Bins bins;
   std::size_t nbins_total = 1;
   // Keep the bin count comparable to the sphere count (a huge cell must not make huge grids).
   const int nb_cap = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(n))) + 1);
@@ -94,36 +107,43 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
                                    " m is below 2 r_max + skin = " + std::to_string(cutoff) +
                                    " m (cell too small or too flat for its spheres)");
     }
-    nb[a] = std::clamp(static_cast<int>(w / cutoff), 1, nb_cap);
-    nbins_total *= static_cast<std::size_t>(nb[a]);
+    bins.nb[a] = std::clamp(static_cast<int>(w / cutoff), 1, nb_cap);
+    nbins_total *= static_cast<std::size_t>(bins.nb[a]);
   }
-  const Mat3 hinv = cell.h.inverse();
-  std::vector<Vec3> frac(n);
-  std::vector<std::array<int, 3>> bin3(n);
+  bins.bin3.resize(n);
   std::vector<std::int64_t> bin_of(n);
   for (std::size_t i = 0; i < n; ++i) {
-    frac[i] = hinv * s.x[i];
+    const Vec3 frac = hinv * s.x[i];
     for (int a = 0; a < 3; ++a) {
-      bin3[i][a] = std::clamp(static_cast<int>(std::floor(frac[i][a] * nb[a])), 0, nb[a] - 1);
+      bins.bin3[i][a] =
+          std::clamp(static_cast<int>(std::floor(frac[a] * bins.nb[a])), 0, bins.nb[a] - 1);
     }
-    bin_of[i] = (static_cast<std::int64_t>(bin3[i][2]) * nb[1] + bin3[i][1]) * nb[0] + bin3[i][0];
+    bin_of[i] = bins.index(bins.bin3[i]);
   }
   // Counting sort of spheres into bins (stable: ids ascending inside a bin).
-  std::vector<std::int64_t> start(nbins_total + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++start[bin_of[i] + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::int32_t> members(n);
-  {
-    std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) members[fill[bin_of[i]]++] = static_cast<std::int32_t>(i);
+  bins.start.assign(nbins_total + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++bins.start[bin_of[i] + 1];
+  std::partial_sum(bins.start.begin(), bins.start.end(), bins.start.begin());
+  bins.members.resize(n);
+  std::vector<std::int64_t> fill(bins.start.begin(), bins.start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    bins.members[fill[bin_of[i]]++] = static_cast<std::int32_t>(i);
   }
+  return bins;
+}
 
-  struct Cand {
-    std::int32_t j;
-    Vec3i k;
-    bool shell;  // not touching: within the skin only
-  };
-  std::vector<std::vector<Cand>> per_sphere(n);
+struct Candidate {
+  std::int32_t j;
+  Vec3i k;
+  bool shell;  // not touching: within the skin only
+};
+
+// For each sphere i, the pairs (i, j > i, image k) closer than r_i + r_j + skin, sorted by (j, k).
+std::vector<std::vector<Candidate>> candidates(const Spheres& s, const PeriodicCell& cell,
+                                               const Bins& bins, double skin) {
+  const std::size_t n = s.size();
+  const auto& nb = bins.nb;
+  std::vector<std::vector<Candidate>> per_sphere(n);
 #pragma omp parallel for schedule(dynamic, 64) if (!one_thread(static_cast <std::int64_t>(n))) \
     num_threads(team_size(static_cast <std::int64_t>(n)))
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
@@ -136,7 +156,7 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
           std::array<int, 3> b{};
           Vec3i k;
           for (int a = 0; a < 3; ++a) {
-            const int raw = bin3[i][a] + o[a];
+            const int raw = bins.bin3[i][a] + o[a];
             // With fewer than 3 bins an offset can revisit a bin under another image; distinct
             // offsets always give distinct (bin, image) pairs, and nb == 1 needs only offset 0 and
             // the two images, which ox = -1, 0, 1 provide.
@@ -144,13 +164,13 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
             b[a] = raw - q * nb[a];
             k[a] = q;
           }
-          const std::int64_t bin = (static_cast<std::int64_t>(b[2]) * nb[1] + b[1]) * nb[0] + b[0];
+          const std::int64_t bin = bins.index(b);
           const Vec3 shift = cell.h * k.cast<double>();
-          for (std::int64_t q = start[bin]; q < start[bin + 1]; ++q) {
-            const std::int32_t j = members[q];
+          for (std::int64_t q = bins.start[bin]; q < bins.start[bin + 1]; ++q) {
+            const std::int32_t j = bins.members[q];
             if (static_cast<std::size_t>(j) <= i) continue;
             const Vec3 d = s.x[j] + shift - s.x[i];
-            const double rc = s.r[i] + s.r[j] + vs.skin;
+            const double rc = s.r[i] + s.r[j] + skin;
             const double d2 = d.squaredNorm();
             if (d2 < rc * rc) {
               const double rs = s.r[i] + s.r[j];
@@ -160,11 +180,18 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
         }
       }
     }
-    std::sort(out.begin(), out.end(), [](const Cand& a, const Cand& b) {
+    std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
       return std::tie(a.j, a.k[0], a.k[1], a.k[2]) < std::tie(b.j, b.k[0], b.k[1], b.k[2]);
     });
   }
+  return per_sphere;
+}
 
+// The new list from the candidates, the active contacts of the old list `c` carrying their
+// history over; the number of shell pairs (within the skin, not touching).
+std::int64_t merge_lists(const Spheres& s, const PeriodicCell& cell,
+                         const std::vector<std::vector<Candidate>>& per_sphere, double limit,
+                         Contacts& c) {
   // Active contacts of the old list, sorted by key, to carry their history over.
   std::vector<std::size_t> old_active;
   for (std::size_t p = 0; p < c.size(); ++p) {
@@ -174,10 +201,9 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
             [&](std::size_t a, std::size_t b) { return key_of(c, a) < key_of(c, b); });
 
   // An active contact of the old list that the new one lacks is farther than r_i + r_j + skin:
-  // no longer touching, it ends (the force pass would end it). Beyond r_i + r_j + skin_max (the
+  // no longer touching, it ends (the force pass would end it). Beyond r_i + r_j + `limit` (the
   // widest skin, the fixed skin's own) the spheres jumped farther in one list's life than any
   // list allows: a strain increment or a time step too large for the packing.
-  const double limit = std::max(vs.skin, vs.skin_max);
   const auto lost = [&](std::size_t o) {
     const auto i = static_cast<std::size_t>(c.i[o]);
     const auto j = static_cast<std::size_t>(c.j[o]);
@@ -199,8 +225,8 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
   std::size_t p = 0;
   std::size_t q = 0;
   std::int64_t shell = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    for (const Cand& cd : per_sphere[i]) {
+  for (std::size_t i = 0; i < per_sphere.size(); ++i) {
+    for (const Candidate& cd : per_sphere[i]) {
       shell += cd.shell ? 1 : 0;
       fresh.i[p] = static_cast<std::int32_t>(i);
       fresh.j[p] = cd.j;
@@ -221,12 +247,21 @@ void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, Verlet
     }
   }
   while (q < old_active.size()) lost(old_active[q++]);
-  fresh.build_sphere_lists(n);
+  fresh.build_sphere_lists(per_sphere.size());
   c = std::move(fresh);
+  return shell;
+}
 
+}  // namespace
+
+void build_pairs(const Spheres& s, const PeriodicCell& cell, Contacts& c, VerletState& vs) {
+  vs.r_max = s.size() > 0 ? *std::max_element(s.r.begin(), s.r.end()) : 0.0;
+  const Mat3 hinv = cell.h.inverse();
+  const Bins bins = bin_spheres(s, cell, hinv, 2.0 * vs.r_max + vs.skin);
+  const auto per_sphere = candidates(s, cell, bins, vs.skin);
+  vs.shell_pairs = merge_lists(s, cell, per_sphere, std::max(vs.skin, vs.skin_max), c);
   vs.x_ref = s.x;
   vs.h_ref_inv = hinv;
-  vs.shell_pairs = shell;
   ++vs.builds;
 }
 
