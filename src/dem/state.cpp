@@ -196,9 +196,11 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   w.write(pre + "stress", flat(sim.stress()));
 }
 
-Simulation load_simulation(const common::StateReader& r, const std::string& pre) {
-  const Reader rd{r, pre};
-  const std::int64_t version = check_state_version(r, pre);
+namespace {
+
+// The material (contact law and its parameters) of a state of `version`.
+Material read_material(const common::StateReader& r, const Reader& rd, const std::string& pre,
+                       std::int64_t version) {
   Material mat;
   for (const auto& f : kMaterialFields)
     mat.*f.member = rd.scalar(std::string("params/material/") + f.name);
@@ -214,6 +216,10 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
     for (const auto& f : kHertzMindlinFields)
       mat.hm.*f.member = rd.scalar(std::string("params/material/hertz_mindlin/") + f.name);
   }
+  return mat;
+}
+
+Numerics read_numerics(const common::StateReader& r, const Reader& rd, const std::string& pre) {
   Numerics num;
   for (const auto& f : kNumericsFields)
     num.*f.member = rd.scalar(std::string("params/numerics/") + f.name);
@@ -228,10 +234,15 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
     num.skin_min_factor = rd.scalar("params/numerics/skin_min_factor");
   }
 
+  return num;
+}
+
+Spheres read_spheres(const common::StateReader& r, const Reader& rd, const std::string& pre,
+                     double density) {
   const auto radii = r.read_f64(pre + "spheres/r");
   const std::size_t n = radii.size();
   Spheres s;
-  for (double ri : radii) s.add(Vec3::Zero(), ri, mat.density);
+  for (double ri : radii) s.add(Vec3::Zero(), ri, density);
   s.x = rd.vec3("spheres/x", n);
   s.u = rd.vec3("spheres/u", n);
   s.w = rd.vec3("spheres/w", n);
@@ -239,11 +250,13 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   s.torque = rd.vec3("spheres/torque", n);
   const auto fixed = rd.flags("spheres/fixed", n);
   for (std::size_t i = 0; i < n; ++i) s.fixed[i] = static_cast<std::uint8_t>(fixed[i]);
-  PeriodicCell cell;
-  cell.h = rd.mat3("cell/h");
-  cell.l = rd.mat3("cell/l");
-  Simulation sim(std::move(s), cell, mat, num);
+  return s;
+}
 
+// The contact list (pairs i < j < n, their images, history and forces).
+void read_contacts(const common::StateReader& r, const Reader& rd, const std::string& pre,
+                   Simulation& sim) {
+  const std::size_t n = sim.spheres().size();
   const std::size_t np = r.read_i64(pre + "contacts/active").size();
   const auto active = rd.flags("contacts/active", np);
   const auto pair = rd.i64("contacts/pair", 2 * np);
@@ -280,7 +293,13 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   c.torque_j = rd.vec3("contacts/torque_j", np);
   c.branch = rd.vec3("contacts/branch", np);
   c.build_sphere_lists(n);
+}
 
+// The Verlet list's state and the counters (time, steps, dt), checked against each other.
+void read_verlet_and_counters(const common::StateReader& r, const Reader& rd,
+                              const std::string& pre, Simulation& sim) {
+  const std::size_t n = sim.spheres().size();
+  const std::size_t np = sim.contacts().size();
   VerletState& vs = sim.verlet();
   vs.x_ref = rd.vec3("verlet/x_ref", r.read_f64(pre + "verlet/x_ref").size() / 3);
   vs.h_ref_inv = rd.mat3("verlet/h_ref_inv");
@@ -290,6 +309,7 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   sim.set_neighbors_pending(rd.flags("verlet/pending", 1)[0] != 0);
   // The list's guarantee rests on these: a skin of zero or less, or an r_max below the largest
   // radius, would let contacts form unseen. The list (x_ref) is that of all spheres or none.
+  const auto& radii = sim.spheres().r;
   const double r_largest = n > 0 ? *std::max_element(radii.begin(), radii.end()) : 0.0;
   if (!(vs.skin > 0.0) || vs.r_max < r_largest || vs.builds < 0 ||
       (!vs.x_ref.empty() && vs.x_ref.size() != n)) {
@@ -328,6 +348,22 @@ Simulation load_simulation(const common::StateReader& r, const std::string& pre)
   }
   sim.set_counters(time, steps);
   sim.set_dt(dt);
+}
+
+}  // namespace
+
+Simulation load_simulation(const common::StateReader& r, const std::string& pre) {
+  const Reader rd{r, pre};
+  const std::int64_t version = check_state_version(r, pre);
+  const Material mat = read_material(r, rd, pre, version);
+  const Numerics num = read_numerics(r, rd, pre);
+  Spheres s = read_spheres(r, rd, pre, mat.density);
+  PeriodicCell cell;
+  cell.h = rd.mat3("cell/h");
+  cell.l = rd.mat3("cell/l");
+  Simulation sim(std::move(s), cell, mat, num);
+  read_contacts(r, rd, pre, sim);
+  read_verlet_and_counters(r, rd, pre, sim);
   sim.set_stress(rd.mat3("stress"));
   return sim;
 }
