@@ -95,33 +95,15 @@ bool Rve::take_free_volume(Mat3& g) {
   return false;
 }
 
-StepReport Rve::step(const Mat3& l, double dt) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (!(dt >= 0.0) || !l.allFinite()) {
-    throw common::NumericalError(
-        "dem::Rve::step: non-finite L or negative dt (dt = " + std::to_string(dt) + " s)");
-  }
-  StepReport rep;
-  Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
-  if (take_free_volume(g)) {
-    // Disconnected (Dunatunga & Kamrin 2015): no contact, so no stress, and no DEM step; the
-    // spheres keep their state for the compression that reconnects them.
-    rep = measure();
-    rep.dt_dem = sim_.dt();
-    rep.guards |= kGuardDisconnected;
-    rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return rep;
-  }
+double Rve::relaxation_time(const Mat3& g, double dt, double dt_dem, StepReport& rep) const {
   // T_p of eq. (11) uses the STRAIN increment (symmetric part): a rigid spin of the cell is not a
-  // deformation and must not make the step longer. The strain-split guard bounds the whole G.
-  const double gmax = g.cwiseAbs().maxCoeff();
+  // deformation and must not make the step longer (the strain-split guard bounds the whole G).
   const double emax = (0.5 * (g + g.transpose())).cwiseAbs().maxCoeff();
   double p = pressure(sim_.stress());
   if (!(p >= params_.p_floor)) {
     p = params_.p_floor;
     rep.guards |= kGuardPressureFloor;
   }
-  const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
   const double rho = params_.material.density;
   double t_p = std::max(emax / params_.inertial_number * inertial_time(d50_, rho, p), dt_dem);
   if (params_.rate == RveRate::material && t_p > dt && dt > 0.0) {
@@ -141,7 +123,11 @@ StepReport Rve::step(const Mat3& l, double dt) {
       rep.guards |= kGuardMinSteps;
     }
   }
-  if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
+  return t_p;
+}
+
+std::int64_t Rve::dem_step_count(const Mat3& g, double dt_dem, double& t_p, StepReport& rep) const {
+  const double gmax = g.cwiseAbs().maxCoeff();
   // Step counts in double precision until they are capped: a tiny inertial number or a huge
   // increment gives counts beyond int64 (or an infinite t_p), whose conversion is undefined.
   double n_wanted = std::ceil(t_p / dt_dem);
@@ -157,6 +143,10 @@ StepReport Rve::step(const Mat3& l, double dt) {
   } else {
     n = std::max<std::int64_t>(static_cast<std::int64_t>(n_wanted), 1);
   }
+  return n;
+}
+
+void Rve::run_dem_steps(const Mat3& g, double t_p, std::int64_t n) {
   if (params_.carry_end_forces && !forces_carried_) {
     // The first carried step (a new RVE, or a state of "separate"): the forces of the current
     // state with no increment (no motion has happened with this step's dt and L; a DEM step
@@ -189,6 +179,30 @@ StepReport Rve::step(const Mat3& l, double dt) {
     sim_.compute_forces();
     sim_.set_dt(keep);
   }
+}
+
+StepReport Rve::step(const Mat3& l, double dt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!(dt >= 0.0) || !l.allFinite()) {
+    throw common::NumericalError(
+        "dem::Rve::step: non-finite L or negative dt (dt = " + std::to_string(dt) + " s)");
+  }
+  StepReport rep;
+  Mat3 g = l * dt;  // displacement-gradient increment of this MPM step (spin included)
+  if (take_free_volume(g)) {
+    // Disconnected (Dunatunga & Kamrin 2015): no contact, so no stress, and no DEM step; the
+    // spheres keep their state for the compression that reconnects them.
+    rep = measure();
+    rep.dt_dem = sim_.dt();
+    rep.guards |= kGuardDisconnected;
+    rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return rep;
+  }
+  const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
+  double t_p = relaxation_time(g, dt, dt_dem, rep);
+  if (g.cwiseAbs().maxCoeff() == 0.0) rep.guards |= kGuardZeroIncrement;
+  const std::int64_t n = dem_step_count(g, dt_dem, t_p, rep);
+  run_dem_steps(g, t_p, n);
 
   const Mat3& sigma = sim_.stress();
   if (!sigma.allFinite()) {

@@ -232,6 +232,15 @@ class Rve {
   /// ContactLoss::disconnected: moves the dilation of `g` into the free volume while the RVE has
   /// no contact, and cuts a compression by the free volume it closes. True: the RVE is held.
   bool take_free_volume(common::Mat3& g);
+  /// T_p of eq. (11) for the increment g over the MPM step dt (guards of the rate, the pressure
+  /// floor and the minimum of DEM steps into rep.guards).
+  double relaxation_time(const common::Mat3& g, double dt, double dt_dem, StepReport& rep) const;
+  /// The DEM steps over T_p: enough for dt_dem and the strain split, at most the cap (which then
+  /// shortens t_p).
+  std::int64_t dem_step_count(const common::Mat3& g, double dt_dem, double& t_p,
+                              StepReport& rep) const;
+  /// Runs n DEM steps of t_p / n under the rate g / t_p, with the end forces as configured.
+  void run_dem_steps(const common::Mat3& g, double t_p, std::int64_t n);
 
   Simulation sim_;
   RveParams params_;
