@@ -232,145 +232,198 @@ void refine_balance(std::vector<int>& owner, const std::vector<double>& cost, in
   }
 }
 
-std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::vector<int>& start,
-                                             const std::vector<double>& cost, int nparts,
-                                             double stop_imbalance) {
-  std::vector<int> owner = start;
-  const std::size_t n = owner.size();
-  MPMXDEM_CHECK(cost.size() == n && graph.size() == n,
-                "one cost and one owner per RVE of the graph");
-  MPMXDEM_CHECK(nparts >= 1, "nparts >= 1");
-  for (std::size_t k = 0; k < n; ++k) {
-    MPMXDEM_CHECK(owner[k] >= 0 && owner[k] < nparts, "owners must lie in [0, nparts)");
-    MPMXDEM_CHECK(std::isfinite(cost[k]) && cost[k] >= 0.0, "RVE costs must be finite and >= 0");
+namespace {
+
+// The state of incremental_descent: the owners, the parts' loads (also ordered by load), each
+// part's members, and the steps taken so far.
+class Descent {
+ public:
+  Descent(const RveGraph& graph, const std::vector<int>& start, const std::vector<double>& cost,
+          int nparts)
+      : graph_(graph),
+        start_(start),
+        cost_(cost),
+        owner_(start),
+        np_(static_cast<std::size_t>(nparts)),
+        load_(np_, 0.0),
+        members_(np_),
+        slot_(start.size()) {
+    for (std::size_t k = 0; k < owner_.size(); ++k) {
+      const auto o = static_cast<std::size_t>(owner_[k]);
+      load_[o] += cost_[k];
+      slot_[k] = members_[o].size();
+      members_[o].push_back(k);
+    }
+    for (std::size_t p = 0; p < np_; ++p) by_load_.emplace(load_[p], static_cast<int>(p));
   }
+
+  [[nodiscard]] double total_load() const {
+    return std::accumulate(load_.begin(), load_.end(), 0.0);
+  }
+
+  // One move or swap off the heaviest part while its load is above stop_load; false: none left.
+  bool improve(double stop_load) {
+    top_ = by_load_.rbegin()->first;
+    if (top_ <= stop_load) return false;
+    h_ = by_load_.lower_bound({top_, std::numeric_limits<int>::min()})->second;
+    lightest_ = by_load_.begin()->second;
+    // The largest load of the other parts (h excluded): what the global max falls to at best.
+    const auto last = std::prev(by_load_.end());
+    second_ = last->second != h_         ? last->first
+              : last == by_load_.begin() ? 0.0
+                                         : std::prev(last)->first;
+    return try_move() || try_swap();
+  }
+
   std::vector<DescentStep> steps;
-  if (nparts == 1 || n == 0) return steps;
-  const auto np = static_cast<std::size_t>(nparts);
-  std::vector<double> load(np, 0.0);
-  std::int64_t moved = 0;
-  std::vector<std::vector<std::size_t>> members(np);
-  std::vector<std::size_t> slot(n);  // position of RVE k in members[owner[k]]
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto o = static_cast<std::size_t>(owner[k]);
-    load[o] += cost[k];
-    slot[k] = members[o].size();
-    members[o].push_back(k);
-  }
-  const double stop_load =
-      stop_imbalance * std::accumulate(load.begin(), load.end(), 0.0) / static_cast<double>(np);
-  // Parts ordered by (load, label): the lightest is the first, the heaviest the lowest label at
-  // the last load.
-  std::set<std::pair<double, int>> by_load;
-  for (std::size_t p = 0; p < np; ++p) by_load.emplace(load[p], static_cast<int>(p));
+
+ private:
   // A move's rank (see header): global max after it, not-a-neighbour, pair max, RVE, part.
   using Key = std::tuple<double, int, double, std::size_t, int>;
   // A swap's rank: global max after it, pair max, RVE of the heaviest part, RVE of the lightest.
   using SwapKey = std::tuple<double, double, std::size_t, std::size_t>;
-  std::vector<int> near;
-  std::vector<std::pair<double, std::size_t>> by_cost;
-  // Every move lowers the sum of squared loads; the cap only guards against the unforeseen.
-  for (std::size_t move = 0; move < 4 * n + np; ++move) {
-    const double top = by_load.rbegin()->first;
-    if (top <= stop_load) break;
-    const int h = by_load.lower_bound({top, std::numeric_limits<int>::min()})->second;
-    const int lightest = by_load.begin()->second;
-    // The largest load of the other parts (h excluded): what the global max falls to at best.
-    const auto last = std::prev(by_load.end());
-    const double second = last->second != h         ? last->first
-                          : last == by_load.begin() ? 0.0
-                                                    : std::prev(last)->first;
+
+  // The best single move of an RVE of h to a neighbouring part or to the lightest one.
+  bool try_move() {
     bool found = false;
     Key best{};
-    for (const std::size_t k : members[static_cast<std::size_t>(h)]) {
-      const double c = cost[k];
+    for (const std::size_t k : members_[static_cast<std::size_t>(h_)]) {
+      const double c = cost_[k];
       if (!(c > 0.0)) continue;
-      near.clear();
-      for (std::int64_t e = graph.xadj[k]; e < graph.xadj[k + 1]; ++e) {
-        const int o = owner[static_cast<std::size_t>(graph.adjncy[static_cast<std::size_t>(e)])];
-        if (o != h) near.push_back(o);
+      near_.clear();
+      for (std::int64_t e = graph_.xadj[k]; e < graph_.xadj[k + 1]; ++e) {
+        const int o = owner_[static_cast<std::size_t>(graph_.adjncy[static_cast<std::size_t>(e)])];
+        if (o != h_) near_.push_back(o);
       }
-      std::sort(near.begin(), near.end());
-      near.erase(std::unique(near.begin(), near.end()), near.end());
+      std::sort(near_.begin(), near_.end());
+      near_.erase(std::unique(near_.begin(), near_.end()), near_.end());
       const auto consider = [&](int d, bool neighbour) {
-        const double to = load[static_cast<std::size_t>(d)] + c;
-        if (!(to < top)) return;  // the pair's max must fall
-        const double pair = std::max(top - c, to);
-        const Key key{std::max(pair, second), neighbour ? 0 : 1, pair, k, d};
+        const double to = load_[static_cast<std::size_t>(d)] + c;
+        if (!(to < top_)) return;  // the pair's max must fall
+        const double pair = std::max(top_ - c, to);
+        const Key key{std::max(pair, second_), neighbour ? 0 : 1, pair, k, d};
         if (!found || key < best) {
           best = key;
           found = true;
         }
       };
-      for (const int d : near) consider(d, true);
-      if (lightest != h && !std::binary_search(near.begin(), near.end(), lightest))
-        consider(lightest, false);
+      for (const int d : near_) consider(d, true);
+      if (lightest_ != h_ && !std::binary_search(near_.begin(), near_.end(), lightest_))
+        consider(lightest_, false);
     }
-    const auto hu = static_cast<std::size_t>(h);
-    const auto relocate = [&](std::size_t k, int to) {
-      // Swap-remove k from its part's members (their order does not matter: the keys decide).
-      std::vector<std::size_t>& from = members[static_cast<std::size_t>(owner[k])];
-      from[slot[k]] = from.back();
-      slot[from.back()] = slot[k];
-      from.pop_back();
-      slot[k] = members[static_cast<std::size_t>(to)].size();
-      members[static_cast<std::size_t>(to)].push_back(k);
-      moved += (owner[k] == start[k] ? 1 : 0) - (to == start[k] ? 1 : 0);
-      owner[k] = to;
-      steps.push_back({k, to, true, by_load.rbegin()->first, moved});
-    };
-    const auto shift = [&](int d, double delta) {  // delta of load from h to d
-      const auto du = static_cast<std::size_t>(d);
-      by_load.erase({load[hu], h});
-      by_load.erase({load[du], d});
-      load[hu] -= delta;
-      load[du] += delta;
-      by_load.emplace(load[hu], h);
-      by_load.emplace(load[du], d);
-    };
-    if (found) {
-      const std::size_t k = std::get<3>(best);
-      const int d = std::get<4>(best);
-      shift(d, cost[k]);
-      relocate(k, d);
-      continue;
-    }
-    // No RVE of h fits anywhere: swap one of h with a cheaper one of the lightest part, the pair
-    // whose cost difference delta is nearest to half their gap (delta in (0, gap) lowers the
-    // pair's max). For each RVE of h the two costs nearest to the ideal, found by bisection in
-    // the lightest part's sorted costs, are the only candidates (the pair max is convex in delta).
-    if (lightest == h) break;
-    const auto lu = static_cast<std::size_t>(lightest);
-    const double gap = top - load[lu];
-    by_cost.clear();
-    for (const std::size_t b : members[lu]) by_cost.emplace_back(cost[b], b);
-    std::sort(by_cost.begin(), by_cost.end());
+    if (!found) return false;
+    const std::size_t k = std::get<3>(best);
+    const int d = std::get<4>(best);
+    shift(d, cost_[k]);
+    relocate(k, d);
+    return true;
+  }
+
+  // No RVE of h fits anywhere: swap one of h with a cheaper one of the lightest part, the pair
+  // whose cost difference delta is nearest to half their gap (delta in (0, gap) lowers the
+  // pair's max). For each RVE of h the two costs nearest to the ideal, found by bisection in
+  // the lightest part's sorted costs, are the only candidates (the pair max is convex in delta).
+  bool try_swap() {
+    if (lightest_ == h_) return false;
+    const auto hu = static_cast<std::size_t>(h_);
+    const auto lu = static_cast<std::size_t>(lightest_);
+    const double gap = top_ - load_[lu];
+    by_cost_.clear();
+    for (const std::size_t b : members_[lu]) by_cost_.emplace_back(cost_[b], b);
+    std::sort(by_cost_.begin(), by_cost_.end());
     bool swap_found = false;
     SwapKey best_swap{};
-    for (const std::size_t a : members[hu]) {
-      const auto at = std::lower_bound(by_cost.begin(), by_cost.end(),
-                                       std::make_pair(cost[a] - 0.5 * gap, std::size_t{0}));
-      for (auto it = at == by_cost.begin() ? at : std::prev(at); it != by_cost.end() && it <= at;
+    for (const std::size_t a : members_[hu]) {
+      const auto at = std::lower_bound(by_cost_.begin(), by_cost_.end(),
+                                       std::make_pair(cost_[a] - 0.5 * gap, std::size_t{0}));
+      for (auto it = at == by_cost_.begin() ? at : std::prev(at); it != by_cost_.end() && it <= at;
            ++it) {
-        const double delta = cost[a] - it->first;
+        const double delta = cost_[a] - it->first;
         if (!(delta > 0.0 && delta < gap)) continue;
-        const double pair = std::max(top - delta, load[lu] + delta);
-        const SwapKey key{std::max(pair, second), pair, a, it->second};
+        const double pair = std::max(top_ - delta, load_[lu] + delta);
+        const SwapKey key{std::max(pair, second_), pair, a, it->second};
         if (!swap_found || key < best_swap) {
           best_swap = key;
           swap_found = true;
         }
       }
     }
-    if (!swap_found) break;
+    if (!swap_found) return false;
     const std::size_t a = std::get<2>(best_swap);
     const std::size_t b = std::get<3>(best_swap);
-    shift(lightest, cost[a] - cost[b]);
-    relocate(a, lightest);
+    shift(lightest_, cost_[a] - cost_[b]);
+    relocate(a, lightest_);
     steps.back().ends_a_move = false;
-    relocate(b, h);
+    relocate(b, h_);
+    return true;
   }
-  return steps;
+
+  void relocate(std::size_t k, int to) {
+    // Swap-remove k from its part's members (their order does not matter: the keys decide).
+    std::vector<std::size_t>& from = members_[static_cast<std::size_t>(owner_[k])];
+    from[slot_[k]] = from.back();
+    slot_[from.back()] = slot_[k];
+    from.pop_back();
+    slot_[k] = members_[static_cast<std::size_t>(to)].size();
+    members_[static_cast<std::size_t>(to)].push_back(k);
+    moved_ += (owner_[k] == start_[k] ? 1 : 0) - (to == start_[k] ? 1 : 0);
+    owner_[k] = to;
+    steps.push_back({k, to, true, by_load_.rbegin()->first, moved_});
+  }
+
+  void shift(int d, double delta) {  // delta of load from h to d
+    const auto hu = static_cast<std::size_t>(h_);
+    const auto du = static_cast<std::size_t>(d);
+    by_load_.erase({load_[hu], h_});
+    by_load_.erase({load_[du], d});
+    load_[hu] -= delta;
+    load_[du] += delta;
+    by_load_.emplace(load_[hu], h_);
+    by_load_.emplace(load_[du], d);
+  }
+
+  const RveGraph& graph_;
+  const std::vector<int>& start_;
+  const std::vector<double>& cost_;
+  std::vector<int> owner_;
+  std::size_t np_;
+  std::vector<double> load_;
+  std::vector<std::vector<std::size_t>> members_;
+  std::vector<std::size_t> slot_;  // position of RVE k in members_[owner_[k]]
+  // Parts ordered by (load, label): the lightest is the first, the heaviest the lowest label at
+  // the last load.
+  std::set<std::pair<double, int>> by_load_;
+  std::int64_t moved_ = 0;
+  // This round's heaviest load, its part, the lightest part, the largest load of the others.
+  double top_ = 0.0;
+  int h_ = 0;
+  int lightest_ = 0;
+  double second_ = 0.0;
+  std::vector<int> near_;                                // scratch of try_move
+  std::vector<std::pair<double, std::size_t>> by_cost_;  // scratch of try_swap
+};
+
+}  // namespace
+
+std::vector<DescentStep> incremental_descent(const RveGraph& graph, const std::vector<int>& start,
+                                             const std::vector<double>& cost, int nparts,
+                                             double stop_imbalance) {
+  const std::size_t n = start.size();
+  MPMXDEM_CHECK(cost.size() == n && graph.size() == n,
+                "one cost and one owner per RVE of the graph");
+  MPMXDEM_CHECK(nparts >= 1, "nparts >= 1");
+  for (std::size_t k = 0; k < n; ++k) {
+    MPMXDEM_CHECK(start[k] >= 0 && start[k] < nparts, "owners must lie in [0, nparts)");
+    MPMXDEM_CHECK(std::isfinite(cost[k]) && cost[k] >= 0.0, "RVE costs must be finite and >= 0");
+  }
+  if (nparts == 1 || n == 0) return {};
+  Descent descent(graph, start, cost, nparts);
+  const double stop_load = stop_imbalance * descent.total_load() / static_cast<double>(nparts);
+  // Every move lowers the sum of squared loads; the cap only guards against the unforeseen.
+  for (std::size_t move = 0; move < 4 * n + static_cast<std::size_t>(nparts); ++move) {
+    if (!descent.improve(stop_load)) break;
+  }
+  return std::move(descent.steps);
 }
 
 std::vector<int> apply_descent(std::vector<int> owner, const std::vector<DescentStep>& steps,
