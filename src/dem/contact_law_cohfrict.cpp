@@ -25,6 +25,8 @@ namespace {
 
 using namespace lane;  // V3 and its operations: dem/lane_math.hpp
 
+// Long by design (~80 lines): the contact law of one batch of lanes in one always-inlined body,
+// the form the vectoriser needs; its steps follow apply() line for line.
 template <bool kTwist>
 [[gnu::always_inline]] inline void apply_lanes(CohFrictBatch& b, const Material& material,
                                                const double* tan_phi_all, CohFrictHistoryArrays& ha,

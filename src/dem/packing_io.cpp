@@ -67,6 +67,75 @@ std::size_t cell_directive(const std::string& line, std::size_t first) {
 
 Packing read_packing(const std::string& path) { return read_packing(path, std::nullopt); }
 
+namespace {
+
+// Each cell line of a packing file (CELL, or HSIZE) against the job's cell (the same cell to
+// 1e-9 or refused) and against the file's first cell line: every later cell line must give the
+// same side lengths (YADE dumps carry both CELL and HSIZE).
+class CellLines {
+ public:
+  CellLines(const std::string& path, const std::optional<common::Vec3>& cell)
+      : path_(path), cell_(cell) {}
+
+  void check(long at, const common::Mat3& h) {
+    const common::Vec3 sizes(h.col(0).norm(), h.col(1).norm(), h.col(2).norm());
+    if (cell_) {
+      const common::Mat3 given = cell_->asDiagonal();
+      if ((h - given).cwiseAbs().maxCoeff() > 1e-9 * given.cwiseAbs().maxCoeff()) {
+        fail(path_, at,
+             "this cell line disagrees with the job's cell (dem.sample.cell = [" + g((*cell_)[0]) +
+                 ", " + g((*cell_)[1]) + ", " + g((*cell_)[2]) +
+                 "] m): give the cell in one place only");
+      }
+    }
+    if (first_line_ == 0) {
+      first_line_ = at;
+      first_sizes_ = sizes;
+      return;
+    }
+    if ((sizes - first_sizes_).cwiseAbs().maxCoeff() > 1e-9 * first_sizes_.cwiseAbs().maxCoeff()) {
+      fail(path_, at,
+           "this cell line (side lengths " + g(sizes[0]) + ", " + g(sizes[1]) + ", " + g(sizes[2]) +
+               " m) disagrees with the cell of line " + std::to_string(first_line_) + " (" +
+               g(first_sizes_[0]) + ", " + g(first_sizes_[1]) + ", " + g(first_sizes_[2]) +
+               " m): one cell per packing file");
+    }
+  }
+
+ private:
+  static std::string g(double v) {
+    std::ostringstream os;
+    os.precision(9);
+    os << v;
+    return os.str();
+  }
+
+  const std::string& path_;
+  const std::optional<common::Vec3>& cell_;
+  long first_line_ = 0;
+  common::Vec3 first_sizes_ = common::Vec3::Zero();
+};
+
+// A sphere line came before any cell line (and the job gives none); yade_format: the line of
+// YADE's "#format" header, 0 if none.
+std::string no_cell_message(long yade_format) {
+  std::string msg =
+      "sphere line before any cell line: a packing file needs 'CELL Lx Ly Lz' (or 'HSIZE' + 9 "
+      "numbers, the cell matrix row-major; both may be written as '# CELL ...' comments) before "
+      "its spheres";
+  if (yade_format > 0) {
+    // YADE's text export (yade.export.text) writes the spheres only, never the cell.
+    msg += "; line " + std::to_string(yade_format) +
+           " says this is a YADE text export (yade.export.text), which carries no cell: add the "
+           "line '# CELL' + O.cell.size (or '# HSIZE' + O.cell.hSize) before the spheres, give the "
+           "cell sizes in the job (dem.sample.cell = [Lx, Ly, Lz]), or export with "
+           "tools/yade_export_packing.py (docs/validation/yade_reference.md)";
+  }
+  return msg;
+}
+
+}  // namespace
+
 Packing read_packing(const std::string& path, const std::optional<common::Vec3>& cell) {
   std::ifstream in(path);
   if (!in) throw common::InputError(path + ": cannot open packing file");
@@ -75,42 +144,7 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
   bool have_h = false;
   bool have_cell = false;
   if (cell) pk.cell.h = cell->asDiagonal();
-  const common::Mat3 given = cell ? common::Mat3(cell->asDiagonal()) : common::Mat3::Zero();
-  // A cell line of the file against the job's cell: the same cell to 1e-9 or refused.
-  auto g = [](double v) {
-    std::ostringstream os;
-    os.precision(9);
-    os << v;
-    return os.str();
-  };
-  auto check_given = [&](long at, const common::Mat3& h) {
-    if (!cell) return;
-    const double scale = given.cwiseAbs().maxCoeff();
-    if ((h - given).cwiseAbs().maxCoeff() > 1e-9 * scale) {
-      fail(path, at,
-           "this cell line disagrees with the job's cell (dem.sample.cell = [" + g((*cell)[0]) +
-               ", " + g((*cell)[1]) + ", " + g((*cell)[2]) +
-               "] m): give the cell in one place only");
-    }
-  };
-  // The cell's side lengths (CELL, or the column norms of HSIZE) of the first cell line: every
-  // later cell line must give the same cell (YADE dumps carry both CELL and HSIZE).
-  long first_cell_line = 0;
-  common::Vec3 first_sizes = common::Vec3::Zero();
-  auto check_same_cell = [&](long at, const common::Vec3& sizes) {
-    if (first_cell_line == 0) {
-      first_cell_line = at;
-      first_sizes = sizes;
-      return;
-    }
-    if ((sizes - first_sizes).cwiseAbs().maxCoeff() > 1e-9 * first_sizes.cwiseAbs().maxCoeff()) {
-      fail(path, at,
-           "this cell line (side lengths " + g(sizes[0]) + ", " + g(sizes[1]) + ", " + g(sizes[2]) +
-               " m) disagrees with the cell of line " + std::to_string(first_cell_line) + " (" +
-               g(first_sizes[0]) + ", " + g(first_sizes[1]) + ", " + g(first_sizes[2]) +
-               " m): one cell per packing file");
-    }
-  };
+  CellLines cell_lines(path, cell);
   long yade_format = 0;  // line of YADE's "#format x_y_z_r" (yade.export.text), 0: none
   std::string line;
   long ln = 0;
@@ -128,8 +162,7 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
       for (double d : v) {
         if (!(d > 0.0)) fail(path, ln, "CELL sizes must be > 0");
       }
-      check_given(ln, common::Vec3(v[0], v[1], v[2]).asDiagonal());
-      check_same_cell(ln, common::Vec3(v[0], v[1], v[2]));
+      cell_lines.check(ln, common::Vec3(v[0], v[1], v[2]).asDiagonal());
       if (!have_h) pk.cell.h = common::Vec3(v[0], v[1], v[2]).asDiagonal();
       have_cell = true;
     } else if (line.compare(first, 5, "HSIZE") == 0) {
@@ -138,26 +171,10 @@ Packing read_packing(const std::string& path, const std::optional<common::Vec3>&
         for (int b = 0; b < 3; ++b) pk.cell.h(a, b) = v[3 * a + b];
       }
       if (!(pk.cell.h.determinant() > 0.0)) fail(path, ln, "HSIZE must have det > 0");
-      check_given(ln, pk.cell.h);
-      check_same_cell(ln, common::Vec3(pk.cell.h.col(0).norm(), pk.cell.h.col(1).norm(),
-                                       pk.cell.h.col(2).norm()));
+      cell_lines.check(ln, pk.cell.h);
       have_h = true;
     } else {
-      if (!have_h && !have_cell && !cell) {
-        // YADE's text export (yade.export.text) writes the spheres only, never the cell.
-        fail(path, ln,
-             "sphere line before any cell line: a packing file needs 'CELL Lx Ly Lz' (or 'HSIZE' "
-             "+ 9 numbers, the cell matrix row-major; both may be written as '# CELL ...' "
-             "comments) before its spheres" +
-                 (yade_format > 0
-                      ? std::string("; line ") + std::to_string(yade_format) +
-                            " says this is a YADE text export (yade.export.text), which carries "
-                            "no cell: add the line '# CELL' + O.cell.size (or '# HSIZE' + "
-                            "O.cell.hSize) before the spheres, give the cell sizes in the job "
-                            "(dem.sample.cell = [Lx, Ly, Lz]), or export with "
-                            "tools/yade_export_packing.py (docs/validation/yade_reference.md)"
-                      : std::string()));
-      }
+      if (!have_h && !have_cell && !cell) fail(path, ln, no_cell_message(yade_format));
       const auto v = numbers(path, ln, line, 4);
       if (!(v[3] > 0.0)) fail(path, ln, "radius must be > 0");
       pk.x.emplace_back(v[0], v[1], v[2]);
