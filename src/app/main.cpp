@@ -9,10 +9,10 @@
 #include <new>
 #include <string>
 
-#include "app/cli.hpp"
-#include "app/commands.hpp"
-#include "app/logging.hpp"
-#include "app/output_dir.hpp"
+#include "app/commands/cli.hpp"
+#include "app/commands/commands.hpp"
+#include "app/run/logging.hpp"
+#include "app/run/output_dir.hpp"
 #include "common/errors.hpp"
 
 int main(int argc, char** argv) {

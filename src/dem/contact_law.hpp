@@ -8,8 +8,8 @@
 // Adding a law: its parameters (a struct and parameter table in dem/params.hpp, a name in
 // ContactLawKind and contact_law_name), its file (contact_law_<name>.hpp/.cpp: props,
 // normal_force, apply_batch, stiffness_lanes, twists), a case in each switch below, and its schema
-// rows and job rule (app/schema_dem.cpp, app/job_rules.cpp). docs/design/architecture.md counts
-// the files.
+// rows and job rule (app/job/schema_dem.cpp, app/job/job_rules.cpp). docs/design/architecture.md
+// counts the files.
 #pragma once
 
 #include <vector>

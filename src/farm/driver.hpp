@@ -43,7 +43,7 @@ struct CoupledConfig {
   /// figures from it.
   std::function<void(std::int64_t step, const FarmTimes& times)> on_step;
   /// Optional, rank 0: asked before every MPM step; a nonzero answer (the app's: the signal
-  /// received, app/stop_signals.hpp) ends the run there as if at its end, with a checkpoint
+  /// received, app/run/stop_signals.hpp) ends the run there as if at its end, with a checkpoint
   /// (docs/reference/errors.md, "Stopping a run").
   std::function<int()> stop_requested;
   /// Throws common::InputError naming the field, value and rule.

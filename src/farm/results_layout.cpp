@@ -93,7 +93,7 @@ void put_attr(hid_t obj, const char* name, std::int64_t value) {
 
 /// File access of the writer: without HDF5's file lock, so that h5py, h5dump or ParaView can open
 /// results.h5 while a run writes it (with the lock they fail with errno 11, EAGAIN). Two runs
-/// never write one directory: the output directory's own lock (app/output_dir.hpp) refuses it.
+/// never write one directory: the output directory's own lock (app/run/output_dir.hpp) refuses it.
 Handle writer_access() {
   Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
 #if H5_VERSION_GE(1, 10, 7)

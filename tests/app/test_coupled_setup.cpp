@@ -1,7 +1,7 @@
 // Tests of app::coupled_setup: a job with an elastic and a DEM body maps onto one farm config whose
 // micro kind creates the right model for each point id, restores each from its saved state, and
 // takes its knobs from the job.
-#include "app/coupled_setup.hpp"
+#include "app/setup/coupled_setup.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "app/coupled_setup.hpp"
-#include "app/job.hpp"
+#include "app/job/job.hpp"
+#include "app/setup/coupled_setup.hpp"
 #include "farm/dem_micro.hpp"
 #include "insitu_test_job.hpp"
 

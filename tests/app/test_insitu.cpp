@@ -3,7 +3,7 @@
 // fewer, independent of the input order), the plan of a job, and the RVEs the coupled set-up
 // makes from it (targets reached, pool of samples, independence of the creation order; the
 // preparations made ahead over ranks and threads: test_dem_pool_mpi.cpp).
-#include "app/insitu.hpp"
+#include "app/setup/insitu.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "app/coupled_setup.hpp"
-#include "app/job.hpp"
-#include "app/mpm_setup.hpp"
+#include "app/job/job.hpp"
+#include "app/setup/coupled_setup.hpp"
+#include "app/setup/mpm_setup.hpp"
 #include "farm/dem_micro.hpp"
 #include "insitu_test_job.hpp"
 

@@ -1,5 +1,5 @@
 // Tests of app::Job: validation messages, defaults, cross-key rules, resolved output.
-#include "app/job.hpp"
+#include "app/job/job.hpp"
 
 #include <gtest/gtest.h>
 

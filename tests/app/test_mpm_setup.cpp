@@ -1,6 +1,6 @@
 // Tests of app::mpm_setup: the example job maps onto the paper's single-cell set-up, and that
 // set-up with the linear elastic material keeps the confining pressure (end-to-end mapping check).
-#include "app/mpm_setup.hpp"
+#include "app/setup/mpm_setup.hpp"
 
 #include <gtest/gtest.h>
 

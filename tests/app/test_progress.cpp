@@ -3,7 +3,7 @@
 
 #include <limits>
 
-#include "app/progress.hpp"
+#include "app/run/progress.hpp"
 
 TEST(Progress, Clock) {
   EXPECT_EQ(app::Progress::clock(3723.4), "01:02:03");

@@ -1,5 +1,5 @@
 // Tests of app/restart_check: which keys a restart may change, and the messages of a refusal.
-#include "app/restart_check.hpp"
+#include "app/run/restart_check.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// run_summary.json (app/run_summary.hpp): how a run segment ended, and its fields as JSON.
-#include "app/run_summary.hpp"
+// run_summary.json (app/run/run_summary.hpp): how a run segment ended, and its fields as JSON.
+#include "app/run/run_summary.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "app/wall_budget.hpp"
+#include "app/run/wall_budget.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Tests of the job schema itself: consistent paths, documented keys, no defaults on physics, and
 // the dem parameter tables as the one home of their keys.
-#include "app/schema.hpp"
+#include "app/job/schema.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <limits>
 #include <string>
 
-#include "app/dem_setup.hpp"
-#include "app/job.hpp"
-#include "app/schema_params.hpp"
+#include "app/job/job.hpp"
+#include "app/job/schema_params.hpp"
+#include "app/setup/dem_setup.hpp"
 #include "common/choice_table.hpp"
 #include "common/errors.hpp"
 #include "common/param_table.hpp"

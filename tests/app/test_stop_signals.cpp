@@ -5,7 +5,7 @@
 
 #include <csignal>
 
-#include "app/stop_signals.hpp"
+#include "app/run/stop_signals.hpp"
 
 namespace {
 

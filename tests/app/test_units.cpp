@@ -1,5 +1,5 @@
 // Tests of app/units: "<number> <unit>" strings in job files.
-#include "app/units.hpp"
+#include "app/job/units.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "app/wall_budget.hpp"
+#include "app/run/wall_budget.hpp"
 
 namespace {
 app::WallBudget::Clock::time_point at(double seconds) {

@@ -252,7 +252,7 @@ TEST(Farm, RestartContinuesBitForBit) {
   }
 }
 
-// A stop asked for on rank 0 (a signal, app/stop_signals.hpp) ends the run before the next step
+// A stop asked for on rank 0 (a signal, app/run/stop_signals.hpp) ends the run before the next step
 // with a checkpoint, even where the run writes none at its end; every rank learns what stopped it;
 // the restart from that checkpoint continues bit for bit. Fails if the stop is not seen, is seen
 // a step late, writes no checkpoint or reaches only rank 0.

@@ -1,0 +1,95 @@
+// Parameter and choice tables of the modules (common/param_table.hpp, common/choice_table.hpp) in
+// the job schema: their rows become schema keys, and a validated job fills their structs. The key,
+// unit, range or names, default and meaning of such a setting are written once, in its module's
+// table.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/job/job.hpp"
+#include "app/job/schema.hpp"
+#include "common/choice_table.hpp"
+#include "common/errors.hpp"
+#include "common/param_table.hpp"
+
+namespace app {
+
+/// Adds the job rows of `table` whose key lies in sub-table `sub` of the table's section ("" for
+/// the section itself, "twisting" for "twisting.stiffness") as schema keys, in table order. The
+/// caller adds the section (and sub-table) keys themselves, with their documentation. With
+/// `required_when` (e.g. "with contact_law = \"cohfrict\""), the required rows are required by a
+/// job rule (app/job/job_rules.cpp) under that condition, not by the schema, and their
+/// documentation says when.
+template <class S, std::size_t N>
+void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_view sub = {},
+                std::string_view required_when = {}) {
+  for (const auto& p : table) {
+    if (!p.in_job()) continue;
+    const auto dot = p.key.rfind('.');
+    const std::string_view parent = dot == std::string_view::npos ? "" : p.key.substr(0, dot);
+    if (parent != sub) continue;
+    Key& k = s.add(table.name(p), p.is_integer() ? Type::Int : Type::Float, std::string(p.doc))
+                 .unit(p.unit)
+                 .in(p.range.lo, p.range.hi, p.range.lo_open, p.range.hi_open);
+    if (p.source == common::Source::job_required && !required_when.empty()) {
+      k.doc += " Required " + std::string(required_when) + ".";
+    } else if (p.source == common::Source::job_required) {
+      k.need();
+    } else if (p.source == common::Source::job_optional) {
+      continue;  // absent: the struct keeps its "not set" value
+    } else if (p.is_integer()) {
+      k.or_default(static_cast<std::int64_t>(p.default_value()));
+    } else {
+      k.or_default(p.default_value());
+    }
+  }
+}
+
+/// Sets every member of `s` whose job key `job` holds (a defaulted key holds the table's default);
+/// absent optional keys and C++-only rows keep their value in `s`.
+template <class S, std::size_t N>
+void fill_from_job(const Job& job, const common::ParamTable<S, N>& table, S& s) {
+  for (const auto& p : table) {
+    if (!p.in_job()) continue;
+    const std::string key = table.name(p);
+    if (!job.has(key)) continue;
+    // An integer exactly: through a double, 2^63 - 1 became 2^63, whose conversion back is
+    // undefined (it gave -2^63: "output.every = -9223372036854775808: must be >= 1").
+    if (p.is_integer()) {
+      p.set_integer(s, job.integer(key));
+    } else {
+      p.set(s, job.number(key));
+    }
+  }
+}
+
+/// Adds every row of a choice table as a string key of the schema, in table order: its names are
+/// the allowed values, the struct's member initializer names the default.
+template <class S, std::size_t N>
+void add_choices(Schema& s, const common::ChoiceTable<S, N>& table) {
+  for (const auto& c : table) {
+    s.add(table.name(c), Type::String, std::string(c.doc))
+        .one_of(std::vector<std::string>(c.names.begin(),
+                                         c.names.begin() + static_cast<std::ptrdiff_t>(c.count)))
+        .or_default(std::string(c.default_name()));
+  }
+}
+
+/// Sets every member of `s` that a row of the choice table names, from the job (a defaulted key
+/// holds the default's name). The schema has checked the names; a name the row lacks (a schema
+/// and table out of step) throws common::InputError naming the key.
+template <class S, std::size_t N>
+void fill_choices_from_job(const Job& job, const common::ChoiceTable<S, N>& table, S& s) {
+  for (const auto& c : table) {
+    const std::string key = table.name(c);
+    if (!job.has(key)) continue;
+    const auto i = c.find(job.text(key));
+    if (!i) throw common::InputError(job.message(key, "is not one of the names of this setting"));
+    c.assign(s, *i);
+  }
+}
+
+}  // namespace app
