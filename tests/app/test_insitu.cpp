@@ -1,4 +1,4 @@
-// Tests of app/insitu.*: geostatic targets against rho g depth and K0, the pressure floor, the
+// Tests of app/setup/insitu.*: geostatic targets against rho g depth and K0, the pressure floor, the
 // grouping of the targets (M distinct targets -> M preparations, a tolerance that merges them ->
 // fewer, independent of the input order), the plan of a job, and the RVEs the coupled set-up
 // makes from it (targets reached, pool of samples, independence of the creation order; the
