@@ -177,9 +177,8 @@ std::int64_t equilibrate(Simulation& sim, const EquilibriumTarget& t,
 
 namespace {
 double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
-}  // namespace
 
-Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t seed) {
+void check_cloud(const Psd& psd, std::int64_t n, double solid) {
   const std::size_t m = psd.diameter.size();
   if (m < 2 || psd.passing.size() != m) {
     throw common::InputError("dem: PSD needs >= 2 (diameter, passing) rows of equal length");
@@ -197,6 +196,12 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
     throw common::InputError("dem: make_cloud: " + std::to_string(n) + " spheres: must be in [2, " +
                              std::to_string(kMaxCloud) + "]");
   }
+}
+
+// n radii drawn from the grading (by number: mass fraction / d^3 over fine sub-intervals),
+// largest first; vs: their total volume.
+std::vector<double> draw_radii(const Psd& psd, std::int64_t n, std::mt19937_64& gen, double& vs) {
+  const std::size_t m = psd.diameter.size();
   // Number weights of fine sub-intervals: mass fraction / d^3.
   constexpr int kSub = 64;
   std::vector<double> d_lo;
@@ -216,9 +221,8 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
       cum.push_back(total);
     }
   }
-  std::mt19937_64 gen(seed);
   std::vector<double> r(static_cast<std::size_t>(n));
-  double vs = 0.0;
+  vs = 0.0;
   for (auto& ri : r) {
     const double u = uniform01(gen) * total;
     const std::size_t b =
@@ -228,7 +232,12 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
     vs += 4.0 / 3.0 * std::numbers::pi * ri * ri * ri;
   }
   std::sort(r.begin(), r.end(), std::greater<>());  // big first: random addition succeeds
-  const double side = std::cbrt(vs / solid);
+  return r;
+}
+
+// The spheres of radii r (largest first) placed at random without overlap in a periodic cube of
+// this side.
+Packing place_spheres(const std::vector<double>& r, double side, std::mt19937_64& gen) {
   Packing pk;
   pk.cell.h = Mat3::Identity() * side;
   // Overlap test against the placed spheres of the 27 periodic bins around the candidate only
@@ -275,6 +284,16 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
     if (!placed) throw common::NumericalError("dem: make_cloud: could not place a sphere");
   }
   return pk;
+}
+
+}  // namespace
+
+Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t seed) {
+  check_cloud(psd, n, solid);
+  std::mt19937_64 gen(seed);
+  double vs = 0.0;
+  const std::vector<double> r = draw_radii(psd, n, gen, vs);
+  return place_spheres(r, std::cbrt(vs / solid), gen);
 }
 
 std::int64_t prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe) {
