@@ -40,6 +40,57 @@ const char* fresh_name(PartitionStyle style) {
   return style == PartitionStyle::cells ? "METIS" : "spread";
 }
 
+namespace {
+
+// Where to stop the descent: the prefix of the best net payback among those that beat the
+// margin when the pay is known, else its first within kDescentSlack / 2 of where it ended.
+std::size_t descent_count(const std::vector<DescentStep>& steps, const std::vector<double>& cost,
+                          int nparts, double imbalance_now, double margin, const Payback& pay,
+                          bool known) {
+  const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
+  std::size_t count = 0;
+  if (known && mean > 0.0) {
+    double best_net = 0.0;
+    for (std::size_t s = 0; s < steps.size(); ++s) {
+      const double imb = steps[s].max_load / mean;
+      if (!steps[s].ends_a_move || !(imbalance_now - imb > margin)) continue;
+      const double net = pay.step_s * (1.0 - imb / imbalance_now) * pay.horizon_steps -
+                         static_cast<double>(steps[s].moved) * pay.move_s_per_rve;
+      if (count == 0 || net > best_net) {
+        best_net = net;
+        count = s + 1;
+      }
+    }
+  }
+  if (count == 0) count = descent_cut(steps, mean, kDescentSlack);
+  return count;
+}
+
+// Which proposal to take: of those that beat the margin, the better net payback when the pay is
+// known, else the one that moves fewer unless the other balances better by more than the margin.
+RebalanceMethod choose(const RebalanceProposal& inc, const RebalanceProposal& met, double margin,
+                       bool known) {
+  if (inc.beats_margin && met.beats_margin) {
+    bool take_metis = false;
+    if (known) {
+      const double net_inc = inc.saving_s - inc.move_s;
+      const double net_met = met.saving_s - met.move_s;
+      take_metis = net_met > net_inc || (net_met == net_inc && met.moves < inc.moves);
+    } else if (met.moves < inc.moves) {
+      // The one that moves fewer, unless the other balances better by more than the margin.
+      take_metis = !(met.imbalance - inc.imbalance > margin);
+    } else {
+      take_metis = inc.imbalance - met.imbalance > margin;
+    }
+    return take_metis ? RebalanceMethod::metis : RebalanceMethod::incremental;
+  }
+  if (inc.beats_margin) return RebalanceMethod::incremental;
+  if (met.beats_margin) return RebalanceMethod::metis;
+  return RebalanceMethod::none;
+}
+
+}  // namespace
+
 RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owner,
                              const std::vector<double>& cost, int nparts, double threshold,
                              int seed, const Payback& pay, PartitionStyle style) {
@@ -70,24 +121,8 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
   const std::vector<DescentStep> steps =
       incremental_descent(style == PartitionStyle::spread ? no_edges : graph, owner, cost, nparts,
                           1.0 + 0.5 * kDescentSlack);
-  // Where to stop the descent: the prefix of the best net payback among those that beat the
-  // margin when the pay is known, else its first within kDescentSlack / 2 of where it ended.
-  const double mean = std::accumulate(cost.begin(), cost.end(), 0.0) / nparts;
-  std::size_t count = 0;
-  if (known && mean > 0.0) {
-    double best_net = 0.0;
-    for (std::size_t s = 0; s < steps.size(); ++s) {
-      const double imb = steps[s].max_load / mean;
-      if (!steps[s].ends_a_move || !(plan.imbalance_now - imb > margin)) continue;
-      const double net = pay.step_s * (1.0 - imb / plan.imbalance_now) * pay.horizon_steps -
-                         static_cast<double>(steps[s].moved) * pay.move_s_per_rve;
-      if (count == 0 || net > best_net) {
-        best_net = net;
-        count = s + 1;
-      }
-    }
-  }
-  if (count == 0) count = descent_cut(steps, mean, kDescentSlack);
+  const std::size_t count =
+      descent_count(steps, cost, nparts, plan.imbalance_now, margin, pay, known);
   std::vector<int> incremental = apply_descent(owner, steps, count);
   plan.incremental.moves = count > 0 ? steps[count - 1].moved : 0;
   plan.incremental.time_s = seconds(t0);
@@ -101,24 +136,7 @@ RebalancePlan plan_rebalance(const RveGraph& graph, const std::vector<int>& owne
 
   const RebalanceProposal& inc = plan.incremental;
   const RebalanceProposal& met = plan.metis;
-  if (inc.beats_margin && met.beats_margin) {
-    bool take_metis = false;
-    if (known) {
-      const double net_inc = inc.saving_s - inc.move_s;
-      const double net_met = met.saving_s - met.move_s;
-      take_metis = net_met > net_inc || (net_met == net_inc && met.moves < inc.moves);
-    } else if (met.moves < inc.moves) {
-      // The one that moves fewer, unless the other balances better by more than the margin.
-      take_metis = !(met.imbalance - inc.imbalance > margin);
-    } else {
-      take_metis = inc.imbalance - met.imbalance > margin;
-    }
-    plan.method = take_metis ? RebalanceMethod::metis : RebalanceMethod::incremental;
-  } else if (inc.beats_margin) {
-    plan.method = RebalanceMethod::incremental;
-  } else if (met.beats_margin) {
-    plan.method = RebalanceMethod::metis;
-  }
+  plan.method = choose(inc, met, margin, known);
   if (plan.method == RebalanceMethod::none) {
     plan.imbalance_new = std::min(inc.imbalance, met.imbalance);
     return plan;
