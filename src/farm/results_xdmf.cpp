@@ -36,30 +36,33 @@ void ResultsWriter::write_xdmf() const {
     return s;
   };
   const Slab x = slab("points/x", 3);
-  const Slab stress = slab("points/stress", 9);
-  // Attributes by type: name in ParaView = the dataset's name under /points.
-  const char* vectors[] = {"velocity", "displacement"};
-  const char* tensors[] = {"F"};
-  std::vector<Slab> vec;
-  for (const char* a : vectors) vec.push_back(slab((std::string("points/") + a).c_str(), 3));
-  std::vector<Slab> ten;
-  for (const char* a : tensors) ten.push_back(slab((std::string("points/") + a).c_str(), 9));
-  // The points' copies of the RVEs' per-step fields (farm::kReportFields), then their volume.
-  std::vector<std::string> scalars;
-  for (const ReportField& f : kReportFields) {
-    if (f.point_description != nullptr) scalars.emplace_back(f.name);
+  // Every attribute of a row, in the index's order: name in ParaView = the dataset's name.
+  struct Attr {
+    std::string name;
+    const char* type;
+    Slab slab;
+  };
+  std::vector<Attr> attrs;
+  attrs.push_back({"stress", "Tensor", slab("points/stress", 9)});
+  for (const char* a : {"velocity", "displacement"}) {
+    attrs.push_back({a, "Vector", slab((std::string("points/") + a).c_str(), 3)});
   }
-  scalars.emplace_back("volume");
-  std::vector<Slab> sc;
-  for (const std::string& a : scalars) sc.push_back(slab(("points/" + a).c_str(), 1));
+  attrs.push_back({"F", "Tensor", slab("points/F", 9)});
+  // The points' copies of the RVEs' per-step fields (farm::kReportFields), then their volume.
+  for (const ReportField& f : kReportFields) {
+    if (f.point_description != nullptr) {
+      attrs.push_back({f.name, "Scalar", slab((std::string("points/") + f.name).c_str(), 1)});
+    }
+  }
+  attrs.push_back({"volume", "Scalar", slab("points/volume", 1)});
   // The RVEs' grain-scale measures, where points and RVEs are one to one (the same ids in the
   // same order: every point a DEM point): ParaView colours the points by them.
   bool one_to_one = rve_ids_.size() == m;
   for (std::size_t k = 0; one_to_one && k < m; ++k) one_to_one = rve_of_point_[k] == k;
-  std::vector<Slab> measures;  // one per farm::kMeasureFields row
   if (one_to_one) {
     for (const MeasureField& f : kMeasureFields) {
-      measures.push_back(slab((std::string("rve/") + f.name).c_str(), f.components));
+      const char* type = f.components == 9 ? "Tensor" : f.components == 3 ? "Vector" : "Scalar";
+      attrs.push_back({f.name, type, slab((std::string("rve/") + f.name).c_str(), f.components)});
     }
   }
   const std::string id_attr = fmt::format(
@@ -77,35 +80,13 @@ void ResultsWriter::write_xdmf() const {
     fmt::format_to(it,
                    "<Grid Name=\"step_{}\" GridType=\"Uniform\">\n<Time Value=\"{:.17g}\"/>\n"
                    "<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\"/>\n"
-                   "<Geometry GeometryType=\"XYZ\">{}{}{}</Geometry>\n"
-                   "<Attribute Name=\"stress\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
-                   "</Attribute>\n",
-                   steps_[tu], times_[tu], m, x.head, t, x.tail, stress.head, t, stress.tail);
-    for (std::size_t a = 0; a < vec.size(); ++a) {
-      fmt::format_to(it,
-                     "<Attribute Name=\"{}\" AttributeType=\"Vector\" Center=\"Node\">{}{}{}"
-                     "</Attribute>\n",
-                     vectors[a], vec[a].head, t, vec[a].tail);
-    }
-    for (std::size_t a = 0; a < ten.size(); ++a) {
-      fmt::format_to(it,
-                     "<Attribute Name=\"{}\" AttributeType=\"Tensor\" Center=\"Node\">{}{}{}"
-                     "</Attribute>\n",
-                     tensors[a], ten[a].head, t, ten[a].tail);
-    }
-    for (std::size_t a = 0; a < sc.size(); ++a) {
-      fmt::format_to(it,
-                     "<Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">{}{}{}"
-                     "</Attribute>\n",
-                     scalars[a], sc[a].head, t, sc[a].tail);
-    }
-    for (std::size_t a = 0; a < measures.size(); ++a) {
-      const MeasureField& f = kMeasureFields[a];
-      const char* type = f.components == 9 ? "Tensor" : f.components == 3 ? "Vector" : "Scalar";
+                   "<Geometry GeometryType=\"XYZ\">{}{}{}</Geometry>\n",
+                   steps_[tu], times_[tu], m, x.head, t, x.tail);
+    for (const Attr& a : attrs) {
       fmt::format_to(it,
                      "<Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">{}{}{}"
                      "</Attribute>\n",
-                     f.name, type, measures[a].head, t, measures[a].tail);
+                     a.name, a.type, a.slab.head, t, a.slab.tail);
     }
     fmt::format_to(it, "{}</Grid>\n", id_attr);
   }
