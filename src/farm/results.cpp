@@ -320,39 +320,35 @@ void ResultsWriter::write_pending() {
   check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "H5Fflush " + dir_ + "/results.h5");
 }
 
-void ResultsWriter::append(std::int64_t step, double time,
-                           const std::vector<common::Mat3>& rve_stress,
-                           const std::vector<MicroReport>& reports,
-                           const mpm::MaterialPoints& points, const SampleMeans& means,
-                           const std::vector<common::Vec3>& reactions,
-                           const std::vector<common::Vec3>& displacements,
-                           const std::vector<MicroMeasures>& measures) {
-  MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
-  if (!constraint_names_.empty()) {
-    const std::size_t nc = constraint_names_.size();
-    MPMXDEM_CHECK(reactions.size() == nc && displacements.size() == nc,
-                  "one reaction and one displacement per constraint");
-    std::vector<double> r(3 * nc);
-    std::vector<double> u(3 * nc);
-    std::vector<double> row;
-    for (std::size_t k = 0; k < nc; ++k) {
-      for (int a = 0; a < 3; ++a) {
-        r[3 * k + static_cast<std::size_t>(a)] = reactions[k][a];
-        u[3 * k + static_cast<std::size_t>(a)] = displacements[k][a];
-      }
-      row.insert(row.end(), {reactions[k][0], reactions[k][1], reactions[k][2]});
-      row.insert(row.end(), {displacements[k][0], displacements[k][1], displacements[k][2]});
+void ResultsWriter::stage_constraints(const std::vector<common::Vec3>& reactions,
+                                      const std::vector<common::Vec3>& displacements) {
+  if (constraint_names_.empty()) return;
+  const std::size_t nc = constraint_names_.size();
+  MPMXDEM_CHECK(reactions.size() == nc && displacements.size() == nc,
+                "one reaction and one displacement per constraint");
+  std::vector<double> r(3 * nc);
+  std::vector<double> u(3 * nc);
+  std::vector<double> row;
+  for (std::size_t k = 0; k < nc; ++k) {
+    for (int a = 0; a < 3; ++a) {
+      r[3 * k + static_cast<std::size_t>(a)] = reactions[k][a];
+      u[3 * k + static_cast<std::size_t>(a)] = displacements[k][a];
     }
-    stage_row("constraints/reaction", r.data());
-    stage_row("constraints/displacement", u.data());
-    constraint_rows_.push_back(std::move(row));
+    row.insert(row.end(), {reactions[k][0], reactions[k][1], reactions[k][2]});
+    row.insert(row.end(), {displacements[k][0], displacements[k][1], displacements[k][2]});
   }
+  stage_row("constraints/reaction", r.data());
+  stage_row("constraints/displacement", u.data());
+  constraint_rows_.push_back(std::move(row));
+}
+
+void ResultsWriter::stage_rves(const std::vector<common::Mat3>& rve_stress,
+                               const std::vector<MicroReport>& reports,
+                               const std::vector<MicroMeasures>& measures) {
   const std::size_t n = rve_ids_.size();
   const std::size_t m = point_ids_.size();
   auto mat9 = [](const common::Mat3& a, double* out) { common::row_major_out(out) = a; };
-  stage_row("time", &time);
-  stage_row("step", &step);
-  std::vector<double> buf(9 * std::max(n, m));
+  std::vector<double> buf(9 * n);
   for (std::size_t k = 0; k < n; ++k) mat9(rve_stress[k], buf.data() + 9 * k);
   stage_row("rve/stress", buf.data());
   // The per-step fields (farm::kReportFields): /rve/<name>, and the points' copy where it has one.
@@ -384,6 +380,12 @@ void ResultsWriter::append(std::int64_t step, double time,
     }
     stage_row(std::string("rve/") + f.name, v.data());
   }
+}
+
+void ResultsWriter::stage_points(const mpm::MaterialPoints& points) {
+  const std::size_t m = point_ids_.size();
+  auto mat9 = [](const common::Mat3& a, double* out) { common::row_major_out(out) = a; };
+  std::vector<double> buf(9 * m);
   std::vector<double> x(3 * m);
   for (std::size_t p = 0; p < m; ++p) {
     for (int a = 0; a < 3; ++a) x[3 * p + static_cast<std::size_t>(a)] = points.x[p][a];
@@ -404,6 +406,21 @@ void ResultsWriter::append(std::int64_t step, double time,
   stage_row("points/displacement", x.data());
   for (std::size_t p = 0; p < m; ++p) mat9(points.F[p], buf.data() + 9 * p);
   stage_row("points/F", buf.data());
+}
+
+void ResultsWriter::append(std::int64_t step, double time,
+                           const std::vector<common::Mat3>& rve_stress,
+                           const std::vector<MicroReport>& reports,
+                           const mpm::MaterialPoints& points, const SampleMeans& means,
+                           const std::vector<common::Vec3>& reactions,
+                           const std::vector<common::Vec3>& displacements,
+                           const std::vector<MicroMeasures>& measures) {
+  MPMXDEM_CHECK(points.id == point_ids_, "material point ids or order changed during the run");
+  stage_constraints(reactions, displacements);
+  stage_row("time", &time);
+  stage_row("step", &step);
+  stage_rves(rve_stress, reports, measures);
+  stage_points(points);
   stage_row("means/eps_ax", &means.eps_ax);
   stage_row("means/eps_v", &means.eps_v);
   stage_row("means/p", &means.p);

@@ -90,6 +90,14 @@ class ResultsWriter {
   void describe_constraints();
   void stage_row(const std::string& name, const void* data);
   void write_pending();
+  // append()'s parts: the constraints' reactions and displacements, the RVEs' series, the
+  // points' series.
+  void stage_constraints(const std::vector<common::Vec3>& reactions,
+                         const std::vector<common::Vec3>& displacements);
+  void stage_rves(const std::vector<common::Mat3>& rve_stress,
+                  const std::vector<MicroReport>& reports,
+                  const std::vector<MicroMeasures>& measures);
+  void stage_points(const mpm::MaterialPoints& points);
   void write_xdmf() const;
   void write_csv() const;
 
