@@ -25,6 +25,9 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            L0 = 14.4 and 28.8 d50, MPM x DEM (one point per cell) over YADE
   --onset-table [A]        prints the page's table of the kinetic energy of the a = A columns (default
                            2) of the transfer family against the time from the release, beside the grains'
+  --resolution-table       prints the page's table of the a = 1 and a = 2 columns (FLIP 0.99 with
+                           XPIC(3)) on three discretisations, each quantity with its gap to the grains'
+  --resolution-figure      writes FIG/column_resolution.png: their final deposits and fronts over YADE's
   --self-test              checks the gate's release time and the shifted time axes
 
 Times: the MPM x DEM jobs hold their gate until the `until` of the velocity condition named "gate"
@@ -616,6 +619,7 @@ TRANSFER = {
         ("2 x 2, FLIP 0.99, its PIC share XPIC(3)", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3"),
         ("2 x 2, XPIC(5) (flip 0)", "a2_2x2_E3MPa_wallpts_xpic5"),
         ("cells of L0/16, 1 point per cell, FLIP 0.99, XPIC(3)", "a2_h16_E3MPa_wallpts_flip0.99_xpic3"),
+        ("cells of L0/16, 2 x 2, FLIP 0.99, XPIC(3)", "a2_h16_2x2_E3MPa_wallpts_flip0.99_xpic3"),
         ("1 point per cell, FLIP", "a2_1ppc_E3MPa_wallpts"),
         ("1 point per cell, FLIP 0.99", "a2_1ppc_E3MPa_wallpts_flip0.99")],
     1: [("2 x 2, FLIP", "a1_2x2_E3MPa_wallpts"),
@@ -686,6 +690,81 @@ def onset_table(data, yade, a=2):
     return "\n".join(lines)
 
 
+# The resolution family (--resolution-table, --resolution-figure): the filtered transfer (FLIP 0.99,
+# its PIC share XPIC(3)), the wall impulse on the points, E = 3 MPa, at three discretisations:
+# (label, stem suffix after "a<A>_"), coarsest first.
+RESOLUTION = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99_xpic3"),
+              ("cells of L0/16, 1 point per cell", "h16_E3MPa_wallpts_flip0.99_xpic3"),
+              ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3")]
+
+
+def gap(value, ref):
+    return f"{value:.2f} ({100 * (value / ref - 1):+.0f} %)" if ref else f"{value:.2f}"
+
+
+def resolution_table(data, yade):
+    """Markdown table: the quantities the column must match (runout, H_f, fronts at 1 / 2 / 3 t*)
+    against the discretisation, each with its gap to the grains' column of the same modulus at
+    L0 = 14.4 d50 (stdlib only)."""
+    lines = ["| a | column | runout to h < 0.05 H0 | H_f/H0 | continuous front at 1 t* | at 2 t* | at 3 t* | "
+             "centre of mass x / L0 | end (t*), kinetic energy / (M g H0) |", "|---|---|---|---|---|---|---|---|---|"]
+    for a in (1, 2):
+        tag = TRANSFER_YADE[a][0]
+        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        r5, _, xc, _ = deposit_measures(*final_profile(os.path.join(yade, f"{tag}_profiles.csv")), L0, H0)
+        ref = dict(r5=r5, hf=float(s["Hf_over_H0"]), xc=xc,
+                   f=[float(s[f"front{k}_cont_over_L0"]) for k in (1, 2, 3)])
+        lines.append(f"| {a} | pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {r5:.2f} | {ref['hf']:.2f} | "
+                     + " | ".join(f"{f:.2f}" for f in ref["f"]) + f" | {xc:.2f} | |")
+        for label, suffix in RESOLUTION:
+            stem = f"a{a}_{suffix}"
+            path = os.path.join(data, f"{stem}_summary.csv")
+            if not os.path.exists(path):
+                continue
+            m = read_csv(path)[0]
+            Lm, Hm = float(m["L0_m"]), float(m["H0_m"])
+            r = rows(data, yade, [(a, stem, "")])[(a, stem)]
+            m5, _, mxc, _ = deposit_measures(*final_profile(os.path.join(data, f"{stem}_profiles.csv")), Lm, Hm)
+            lines.append(f"| {a} | MPM x DEM, {label} | {gap(m5, ref['r5'])} | {gap(float(m['Hf_over_H0']), ref['hf'])} | "
+                         + " | ".join(gap(f, fr) for f, fr in zip(r["f123"], ref["f"]))
+                         + f" | {gap(mxc, ref['xc'])} | {r['t_end']:.1f}, {float(m['Ekend_motion_over_MgH0']):.1e} |")
+    return "\n".join(lines)
+
+
+def resolution_figure(data, yade, fig_dir):
+    """Final deposits and continuous fronts of the resolution family over the grains', a = 1, 2."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axs = plt.subplots(2, 2, figsize=(12, 8))
+    for row, a in enumerate((1, 2)):
+        ax_p, ax_f = axs[row]
+        tag = TRANSFER_YADE[a][0]
+        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+        xs, hs = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
+        ax_p.plot([x / L0 for x in xs], [h / H0 for h in hs], color="k", lw=2, label="pure DEM (YADE), 14.4 d50")
+        ts = read_csv(os.path.join(yade, f"{tag}_timeseries.csv"))
+        c0 = float(ts[0]["L_cont_m"])
+        ax_f.plot([float(r["t_over_tstar"]) for r in ts], [(float(r["L_cont_m"]) - c0) / L0 for r in ts],
+                  color="k", lw=2, label="pure DEM (YADE), 14.4 d50")
+        for (label, suffix), color in zip(RESOLUTION, ("tab:blue", "tab:orange", "tab:red")):
+            stem = f"a{a}_{suffix}"
+            if not os.path.exists(os.path.join(data, f"{stem}_summary.csv")):
+                continue
+            m = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
+            Lm, Hm = float(m["L0_m"]), float(m["H0_m"])
+            xs, hs = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
+            ax_p.plot([x / Lm for x in xs], [h / Hm for h in hs], color=color, ls="--", label=f"MPM x DEM, {label}")
+            tsm = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+            ax_f.plot(released_times(data, stem, tsm), [(float(r["L_front_connected_m"]) - Lm) / Lm for r in tsm],
+                      color=color, ls="--", label=f"MPM x DEM, {label}")
+        style_axes(ax_p, ax_f, f"a = {a}, E = 3 MPa, FLIP 0.99 + XPIC(3)", 1.5 if a == 1 else 2.5)
+    save(fig, fig_dir, "column_resolution.png")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data",
@@ -703,6 +782,8 @@ def main():
     ap.add_argument("--core-table", nargs="+", metavar="STEM")
     ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
+    ap.add_argument("--resolution-table", action="store_true")
+    ap.add_argument("--resolution-figure", action="store_true")
     ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
     if args.self_test:
@@ -730,9 +811,13 @@ def main():
         print(transfer_table(args.data, args.yade, args.transfer_table))
     if args.onset_table:
         print(onset_table(args.data, args.yade, args.onset_table))
+    if args.resolution_table:
+        print(resolution_table(args.data, args.yade))
+    if args.resolution_figure:
+        resolution_figure(args.data, args.yade, args.fig)
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
-            or args.transfer_table or args.onset_table):
+            or args.transfer_table or args.onset_table or args.resolution_table or args.resolution_figure):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 
