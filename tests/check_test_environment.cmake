@@ -2,8 +2,14 @@
 # tests reaches each of them (mpmxdem_gtest sets it from a script CTest reads after the discovered
 # tests; given to gtest_discover_tests, only a list's first entry did). Reads `ctest -N -V`.
 # Usage: cmake -DCTEST=<ctest> -DBUILD=<build dir> -P check_test_environment.cmake
+# ctest -N runs from a scratch directory whose CTestTestfile.cmake includes the build's: run in the
+# build directory itself it would rewrite Testing/Temporary/LastTest.log under the running suite.
+set(scratch "${BUILD}/tests/environment_check")
+file(MAKE_DIRECTORY "${scratch}")
+file(WRITE "${scratch}/CTestTestfile.cmake" "subdirs(\"${BUILD}\")\n")
+
 function(expect_environment regex)
-  execute_process(COMMAND "${CTEST}" -N -V -R "${regex}" WORKING_DIRECTORY "${BUILD}"
+  execute_process(COMMAND "${CTEST}" -N -V -R "${regex}" WORKING_DIRECTORY "${scratch}"
                   OUTPUT_VARIABLE out RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "ctest -N -V -R ${regex} failed (${rc}):\n${out}")
