@@ -706,16 +706,23 @@ def resolution_table(data, yade):
     """Markdown table: the quantities the column must match (runout, H_f, fronts at 1 / 2 / 3 t*)
     against the discretisation, each with its gap to the grains' column of the same modulus at
     L0 = 14.4 d50 (stdlib only)."""
-    lines = ["| a | column | runout to h < 0.05 H0 | H_f/H0 | continuous front at 1 t* | at 2 t* | at 3 t* | "
-             "centre of mass x / L0 | end (t*), kinetic energy / (M g H0) |", "|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| a | column | runout to h < 0.05 H0 | H_f/H0 | h_vol/H0 at the back (x < L0/4) | continuous front "
+             "at 1 t* | at 2 t* | at 3 t* | centre of mass x / L0 | end (t*), kinetic energy / (M g H0) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+
+    def back(xs, hs, L0, H0):  # the mean deposit height over the back quarter of the column
+        v = [h for x, h in zip(xs, hs) if x < L0 / 4]
+        return sum(v) / len(v) / H0
     for a in (1, 2):
         tag = TRANSFER_YADE[a][0]
         s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
         L0, H0 = float(s["L0_m"]), float(s["H0_m"])
-        r5, _, xc, _ = deposit_measures(*final_profile(os.path.join(yade, f"{tag}_profiles.csv")), L0, H0)
-        ref = dict(r5=r5, hf=float(s["Hf_over_H0"]), xc=xc,
+        prof = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
+        r5, _, xc, _ = deposit_measures(*prof, L0, H0)
+        ref = dict(r5=r5, hf=float(s["Hf_over_H0"]), xc=xc, back=back(*prof, L0, H0),
                    f=[float(s[f"front{k}_cont_over_L0"]) for k in (1, 2, 3)])
         lines.append(f"| {a} | pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {r5:.2f} | {ref['hf']:.2f} | "
+                     f"{ref['back']:.2f} | "
                      + " | ".join(f"{f:.2f}" for f in ref["f"]) + f" | {xc:.2f} | |")
         for label, suffix in RESOLUTION:
             stem = f"a{a}_{suffix}"
@@ -725,8 +732,10 @@ def resolution_table(data, yade):
             m = read_csv(path)[0]
             Lm, Hm = float(m["L0_m"]), float(m["H0_m"])
             r = rows(data, yade, [(a, stem, "")])[(a, stem)]
-            m5, _, mxc, _ = deposit_measures(*final_profile(os.path.join(data, f"{stem}_profiles.csv")), Lm, Hm)
+            prof = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
+            m5, _, mxc, _ = deposit_measures(*prof, Lm, Hm)
             lines.append(f"| {a} | MPM x DEM, {label} | {gap(m5, ref['r5'])} | {gap(float(m['Hf_over_H0']), ref['hf'])} | "
+                         f"{gap(back(*prof, Lm, Hm), ref['back'])} | "
                          + " | ".join(gap(f, fr) for f, fr in zip(r["f123"], ref["f"]))
                          + f" | {gap(mxc, ref['xc'])} | {r['t_end']:.1f}, {float(m['Ekend_motion_over_MgH0']):.1e} |")
     return "\n".join(lines)
