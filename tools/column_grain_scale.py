@@ -632,6 +632,16 @@ TRANSFER = {
 TRANSFER_YADE = {2: ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"], 1: ["dense_a1_l14.4_E3e6"]}
 
 
+def stored_run(data, yade, a, stem):
+    """(summary row, L0, H0, the table's figures from rows()) of the stored MPM x DEM run STEM of
+    aspect a; None when DATA has none."""
+    path = os.path.join(data, f"{stem}_summary.csv")
+    if not os.path.exists(path):
+        return None
+    s = read_csv(path)[0]
+    return s, float(s["L0_m"]), float(s["H0_m"]), rows(data, yade, [(a, stem, "")])[(a, stem)]
+
+
 def transfer_table(data, yade, a=2):
     """Markdown table: the column's deposit and front (aspect a) against the transfer, beside the
     grains' columns of the same modulus (stdlib only)."""
@@ -645,12 +655,10 @@ def transfer_table(data, yade, a=2):
         lines.append(f"| pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {xc:.3f} | {kept:.2f} | "
                      f"{r5:.3f} | {float(s['Hf_over_H0']):.3f} | {f123} |")
     for label, stem in TRANSFER[a]:
-        path = os.path.join(data, f"{stem}_summary.csv")
-        if not os.path.exists(path):
+        run = stored_run(data, yade, a, stem)
+        if run is None:
             continue
-        s = read_csv(path)[0]
-        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
-        r = rows(data, yade, [(a, stem, "")])[(a, stem)]
+        s, L0, H0, r = run
         t_end = r["t_end"]
         f123 = " / ".join(f"{f:.2f}" if k <= t_end else "-" for k, f in zip((1, 2, 3), r["f123"]))
         if t_end < 9.5:  # a run that stopped early (exit 3): no deposit to measure
@@ -726,12 +734,10 @@ def resolution_table(data, yade):
                      + " | ".join(f"{f:.2f}" for f in ref["f"]) + f" | {xc:.2f} | |")
         for label, suffix in RESOLUTION:
             stem = f"a{a}_{suffix}"
-            path = os.path.join(data, f"{stem}_summary.csv")
-            if not os.path.exists(path):
+            run = stored_run(data, yade, a, stem)
+            if run is None:
                 continue
-            m = read_csv(path)[0]
-            Lm, Hm = float(m["L0_m"]), float(m["H0_m"])
-            r = rows(data, yade, [(a, stem, "")])[(a, stem)]
+            m, Lm, Hm, r = run
             prof = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
             m5, _, mxc, _ = deposit_measures(*prof, Lm, Hm)
             lines.append(f"| {a} | MPM x DEM, {label} | {gap(m5, ref['r5'])} | {gap(float(m['Hf_over_H0']), ref['hf'])} | "
