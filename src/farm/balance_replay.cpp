@@ -10,6 +10,37 @@
 
 namespace farm {
 
+namespace {
+
+// Each rank's busy time in one step (busy[rank]): the sum of its RVEs' costs with one thread, else
+// its longest thread when each RVE goes to the thread of its rank that is free first (free_at:
+// scratch, one entry per thread of each rank). Returns the step's total work.
+double step_busy(const std::vector<double>& cost, const std::vector<int>& owner, int threads,
+                 std::vector<std::vector<double>>& free_at, std::vector<double>& busy) {
+  std::fill(busy.begin(), busy.end(), 0.0);
+  double work = 0.0;
+  for (std::size_t k = 0; k < cost.size(); ++k) {
+    const double c = cost[k];
+    work += c;
+    if (threads == 1) {
+      busy[static_cast<std::size_t>(owner[k])] += c;
+    } else {
+      std::vector<double>& th = free_at[static_cast<std::size_t>(owner[k])];
+      *std::min_element(th.begin(), th.end()) += c;
+    }
+  }
+  if (threads > 1) {
+    for (std::size_t r = 0; r < busy.size(); ++r) {
+      std::vector<double>& th = free_at[r];
+      busy[r] = *std::max_element(th.begin(), th.end());
+      std::fill(th.begin(), th.end(), 0.0);
+    }
+  }
+  return work;
+}
+
+}  // namespace
+
 ReplayResult replay_balance(const CostTraceData& trace, const ReplayOptions& o) {
   MPMXDEM_CHECK(!trace.cpu_s.empty() && o.parts >= 1 && o.threads >= 1 && o.check_every >= 1,
                 "a trace with steps, parts >= 1, threads >= 1, check_every >= 1");
@@ -41,27 +72,8 @@ ReplayResult replay_balance(const CostTraceData& trace, const ReplayOptions& o) 
   double sum_work = 0.0;
   for (std::size_t s = 0; s < trace.steps.size(); ++s) {
     const std::int64_t step = trace.steps[s];
-    std::fill(busy.begin(), busy.end(), 0.0);
-    double work = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double c = trace.cpu_s[s][k];
-      ledger.add_rve(k, c);
-      work += c;
-      if (o.threads == 1) {
-        busy[static_cast<std::size_t>(owner[k])] += c;
-      } else {
-        // The thread of this rank that is free first takes the next RVE.
-        std::vector<double>& th = free_at[static_cast<std::size_t>(owner[k])];
-        *std::min_element(th.begin(), th.end()) += c;
-      }
-    }
-    if (o.threads > 1) {
-      for (std::size_t r = 0; r < P; ++r) {
-        std::vector<double>& th = free_at[r];
-        busy[r] = *std::max_element(th.begin(), th.end());
-        std::fill(th.begin(), th.end(), 0.0);
-      }
-    }
+    for (std::size_t k = 0; k < n; ++k) ledger.add_rve(k, trace.cpu_s[s][k]);
+    const double work = step_busy(trace.cpu_s[s], owner, o.threads, free_at, busy);
     if (o.rank_jitter > 0.0) {
       for (double& b : busy) b *= std::max(0.0, 1.0 + o.rank_jitter * normal(rng));
     }
