@@ -128,6 +128,7 @@ double Rve::relaxation_time(const Mat3& g, double dt, double dt_dem, StepReport&
 
 std::int64_t Rve::dem_step_count(const Mat3& g, double dt_dem, double& t_p, StepReport& rep) const {
   const double gmax = g.cwiseAbs().maxCoeff();
+  if (gmax == 0.0) rep.guards |= kGuardZeroIncrement;
   // Step counts in double precision until they are capped: a tiny inertial number or a huge
   // increment gives counts beyond int64 (or an infinite t_p), whose conversion is undefined.
   double n_wanted = std::ceil(t_p / dt_dem);
@@ -200,7 +201,6 @@ StepReport Rve::step(const Mat3& l, double dt) {
   }
   const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
   double t_p = relaxation_time(g, dt, dt_dem, rep);
-  if (g.cwiseAbs().maxCoeff() == 0.0) rep.guards |= kGuardZeroIncrement;
   const std::int64_t n = dem_step_count(g, dt_dem, t_p, rep);
   run_dem_steps(g, t_p, n);
 

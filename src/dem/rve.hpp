@@ -236,7 +236,7 @@ class Rve {
   /// floor and the minimum of DEM steps into rep.guards).
   double relaxation_time(const common::Mat3& g, double dt, double dt_dem, StepReport& rep) const;
   /// The DEM steps over T_p: enough for dt_dem and the strain split, at most the cap (which then
-  /// shortens t_p).
+  /// shortens t_p); the zero-increment, strain-split and cap guards into rep.guards.
   std::int64_t dem_step_count(const common::Mat3& g, double dt_dem, double& t_p,
                               StepReport& rep) const;
   /// Runs n DEM steps of t_p / n under the rate g / t_p, with the end forces as configured.
