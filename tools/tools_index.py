@@ -21,7 +21,7 @@ KIND = {
     "biaxial_make_jobs.py": 1, "footing_make_job.py": 1, "column_scale_job.py": 1,
     "band_fit.py": 2, "biaxial_analysis.py": 2, "biaxial_compare.py": 2, "biaxial_dem_seeds.py": 2,
     "biaxial_j_maps.py": 2, "biaxial_paraview.py": 2, "biaxial_seed_mean.py": 2,
-    "column_frictional_family.py": 2, "column_grain_scale.py": 2, "column_inertial_numbers.py": 2, "column_resolution_figure.py": 2,
+    "column_cell_stress.py": 2, "column_frictional_family.py": 2, "column_grain_scale.py": 2, "column_inertial_numbers.py": 2, "column_resolution_figure.py": 2,
     "footing_curves.py": 2, "footing_sparing_map.py": 2, "footing_family.py": 2, "bearing_capacity.py": 2,
     "footing_rve_maps.py": 2, "mpm_column_collapse.py": 2,
     "plot_column_collapse.py": 2, "plot_triaxial.py": 2, "render_column_collapse.py": 2,

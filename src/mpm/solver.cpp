@@ -299,6 +299,9 @@ void Solver::update_stress(double dt) {
     to_spatial_gradient(points_.F, points_.L);
   if (config_.strain_smoothing == StrainSmoothing::cell) {
     average_per_cell(config_.grid, points_.x, points_.volume, points_.L, smoothing_scratch_);
+  } else if (config_.strain_smoothing == StrainSmoothing::volumetric) {
+    average_trace_per_cell(config_.grid, points_.x, points_.volume, config_.plane_strain_axis,
+                           points_.L, smoothing_scratch_);
   }
   if (const int a = config_.plane_strain_axis; a >= 0) {
     // Plane strain: no stretching or shearing through the thickness reaches the material, even
@@ -430,16 +433,17 @@ void Solver::add_external_loads() {
 
 void Solver::internal_force() {
   const bool total = config_.formulation == Formulation::total_lagrangian;
-  const bool smooth = config_.strain_smoothing == StrainSmoothing::cell;
+  const bool smooth = config_.strain_smoothing != StrainSmoothing::none;
   if (!total && !smooth && !regularisation_) {
     p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);
     return;
   }
   // Total Lagrangian: the grid gradients are reference ones, V sigma grad_x S = V sigma F^-T
-  // grad_X S. Smoothing: the forces of the cell's mean stress, so the hourglass modes, which the
-  // smoothed L does not see, get no force either, and the forces' power equals the material's
-  // (docs/design/mpm.md).
-  if (total) {
+  // grad_X S. Smoothing: the forces of the cell's mean stress (or mean normal stress), the
+  // adjoint of the smoothed L, so the forces' power equals the material's and, with "cell", the
+  // hourglass modes, which the smoothed L does not see, get no force either (docs/design/mpm.md).
+  const bool volumetric = config_.strain_smoothing == StrainSmoothing::volumetric;
+  if (total && !volumetric) {
     stress_for_reference_gradient(points_.F, points_.stress, force_stress_);
   } else {
     force_stress_ = points_.stress;
@@ -449,8 +453,14 @@ void Solver::internal_force() {
     // average is its own adjoint.
     regularisation_->add_force_stress(points_.x, points_.volume, points_.material, force_stress_);
   }
-  if (smooth) {
+  if (config_.strain_smoothing == StrainSmoothing::cell) {
     average_per_cell(config_.grid, points_.x, points_.volume, force_stress_, smoothing_scratch_);
+  } else if (volumetric) {
+    // On the Cauchy stress, whose power the spatial L's trace average conserves; then, total
+    // Lagrangian, to the reference gradients.
+    average_trace_per_cell(config_.grid, points_.x, points_.volume, config_.plane_strain_axis,
+                           force_stress_, smoothing_scratch_);
+    if (total) stress_for_reference_gradient(points_.F, force_stress_, force_stress_);
   }
   points_.stress.swap(force_stress_);
   p2g_internal_force(config_.grid, cache_, bins_, points_, fields_);

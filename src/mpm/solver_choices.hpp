@@ -23,7 +23,10 @@ inline constexpr common::ChoiceTable<SolverConfig, 9> kSolverChoices{
          "cell: every point of a grid cell gets the cell's volume-averaged velocity gradient "
          "before the material update, and the internal forces come from the cell's mean stress "
          "(cures the checkerboard of softening single-cell tests, but also suppresses real "
-         "localisation within a cell; docs/design/mpm.md, Strain smoothing). none: off."),
+         "localisation within a cell; docs/design/mpm.md, Strain smoothing). volumetric: only "
+         "the volumetric part (B-bar cell by cell): the points of a cell dilate together, each "
+         "keeps its own deviatoric rate, the forces take the cell's mean normal stress. none: "
+         "off."),
      common::choice<&SolverConfig::free_density, kFreeDensityNames>(
          "free_density",
          "The dilation of a stress-free point (a disconnected material: an RVE without contacts, a "

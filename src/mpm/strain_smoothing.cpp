@@ -1,5 +1,5 @@
-// Cell-averaged velocity gradient (see strain_smoothing.hpp, docs/design/mpm.md "Strain
-// smoothing").
+// Cell-averaged velocity gradient, whole or its trace (see strain_smoothing.hpp,
+// docs/design/mpm.md "Strain smoothing").
 #include "mpm/strain_smoothing.hpp"
 
 #include <algorithm>
@@ -28,14 +28,13 @@ std::int64_t cell_of(const Grid& grid, const common::Vec3& x) {
   return ijk[0] + grid.cells[0] * (ijk[1] + grid.cells[1] * ijk[2]);
 }
 
-void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
-                      const std::vector<double>& volume, std::vector<common::Mat3>& L,
-                      std::vector<std::pair<std::int64_t, std::int64_t>>& scratch) {
+namespace {
+/// Calls f(begin, end) for each run of `scratch` (cell, point) pairs of one cell, the cells in
+/// index order and each cell's points in point order.
+template <class F>
+void for_each_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                   std::vector<std::pair<std::int64_t, std::int64_t>>& scratch, F&& f) {
   const std::size_t n = x.size();
-  if (volume.size() != n || L.size() != n) {
-    throw common::NumericalError("average_per_cell: x, volume and L differ in size");
-  }
-  // (cell, point) pairs sorted by cell then point: each cell's points in point order.
   scratch.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     scratch[p] = {cell_of(grid, x[p]), static_cast<std::int64_t>(p)};
@@ -43,17 +42,64 @@ void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
   std::sort(scratch.begin(), scratch.end());
   for (std::size_t begin = 0; begin < n;) {
     std::size_t end = begin;
+    while (end < n && scratch[end].first == scratch[begin].first) ++end;
+    f(begin, end);
+    begin = end;
+  }
+}
+}  // namespace
+
+void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                      const std::vector<double>& volume, std::vector<common::Mat3>& L,
+                      std::vector<std::pair<std::int64_t, std::int64_t>>& scratch) {
+  if (volume.size() != x.size() || L.size() != x.size()) {
+    throw common::NumericalError("average_per_cell: x, volume and L differ in size");
+  }
+  for_each_cell(grid, x, scratch, [&](std::size_t begin, std::size_t end) {
     common::Mat3 sum = common::Mat3::Zero();
     double v = 0.0;
-    for (; end < n && scratch[end].first == scratch[begin].first; ++end) {
-      const auto p = static_cast<std::size_t>(scratch[end].second);
+    for (std::size_t k = begin; k < end; ++k) {
+      const auto p = static_cast<std::size_t>(scratch[k].second);
       sum += volume[p] * L[p];
       v += volume[p];
     }
     const common::Mat3 mean = sum / v;
     for (std::size_t k = begin; k < end; ++k) L[static_cast<std::size_t>(scratch[k].second)] = mean;
-    begin = end;
+  });
+}
+
+void average_trace_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                            const std::vector<double>& volume, int thickness_axis,
+                            std::vector<common::Mat3>& T,
+                            std::vector<std::pair<std::int64_t, std::int64_t>>& scratch) {
+  if (volume.size() != x.size() || T.size() != x.size()) {
+    throw common::NumericalError("average_trace_per_cell: x, volume and T differ in size");
   }
+  const int axes = thickness_axis >= 0 ? 2 : 3;
+  auto trace = [&](const common::Mat3& m) {
+    double t = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      if (d != thickness_axis) t += m(d, d);
+    }
+    return t;
+  };
+  for_each_cell(grid, x, scratch, [&](std::size_t begin, std::size_t end) {
+    double sum = 0.0;
+    double v = 0.0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const auto p = static_cast<std::size_t>(scratch[k].second);
+      sum += volume[p] * trace(T[p]);
+      v += volume[p];
+    }
+    const double mean = sum / v;
+    for (std::size_t k = begin; k < end; ++k) {
+      common::Mat3& m = T[static_cast<std::size_t>(scratch[k].second)];
+      const double shift = (mean - trace(m)) / axes;
+      for (int d = 0; d < 3; ++d) {
+        if (d != thickness_axis) m(d, d) += shift;
+      }
+    }
+  });
 }
 
 }  // namespace mpm

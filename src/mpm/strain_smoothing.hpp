@@ -1,7 +1,7 @@
 // Strain smoothing: every material point of a grid cell gets the cell's volume-averaged velocity
 // gradient before the material update (the cell-based averaging of Anura3D's mixed integration;
 // docs/design/mpm.md, "Strain smoothing"). A cure for the checkerboard of softening single-cell
-// tests.
+// tests. Or only its volumetric part (B-bar cell by cell): the points of a cell dilate together.
 #pragma once
 
 #include <cstdint>
@@ -20,12 +20,16 @@ enum class StrainSmoothing {
   none,  ///< each point its own L (the default)
   cell,  ///< each point the volume-weighted mean L of the points in its grid cell, and the
          ///< internal forces from the cell's mean stress (no hourglass forces; docs/design/mpm.md)
+  volumetric,  ///< each point its own L with the trace of the cell's mean (B-bar), and the
+               ///< internal forces from stresses with the cell's mean normal stress
 };
 /// The job's names (mpm.strain_smoothing).
-inline constexpr std::array<common::Named<StrainSmoothing>, 2> kStrainSmoothingNames{
-    {{"none", StrainSmoothing::none}, {"cell", StrainSmoothing::cell}}};
+inline constexpr std::array<common::Named<StrainSmoothing>, 3> kStrainSmoothingNames{
+    {{"none", StrainSmoothing::none},
+     {"cell", StrainSmoothing::cell},
+     {"volumetric", StrainSmoothing::volumetric}}};
 
-/// "none" or "cell"; throws common::InputError otherwise.
+/// "none", "cell" or "volumetric"; throws common::InputError otherwise.
 [[nodiscard]] StrainSmoothing strain_smoothing_from_string(std::string_view name);
 [[nodiscard]] std::string_view to_string(StrainSmoothing s);
 
@@ -41,5 +45,18 @@ inline constexpr std::array<common::Named<StrainSmoothing>, 2> kStrainSmoothingN
 void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
                       const std::vector<double>& volume, std::vector<common::Mat3>& L,
                       std::vector<std::pair<std::int64_t, std::int64_t>>& scratch);
+
+/// Replaces the trace of each T[p] over the in-plane axes (every axis but thickness_axis; all
+/// three when it is -1) by the volume-weighted mean of those traces over the points in the cell
+/// of x[p], spreading the change equally over those axes' diagonal entries; the rest of T[p] is
+/// its own. On the velocity gradient this is B-bar cell by cell (every point of a cell gets the
+/// cell's volumetric rate, its own deviatoric rate and spin); on the stress, the cell's mean
+/// normal stress. The operator is its own adjoint for sum_p V_p A_p : B_p, so the pair keeps the
+/// forces' power equal to the material's. Same preconditions, order and scratch as
+/// average_per_cell.
+void average_trace_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                            const std::vector<double>& volume, int thickness_axis,
+                            std::vector<common::Mat3>& T,
+                            std::vector<std::pair<std::int64_t, std::int64_t>>& scratch);
 
 }  // namespace mpm

@@ -1,6 +1,7 @@
 """Smoke run of the column analysis tools on a real run of tests/jobs/column_collapse_tiny.toml:
 tools/mpm_column_collapse.py writes its CSVs and figures, tools/column_grain_scale.py --analyse
-keeps them with the RVEs' series, and its time axis starts at the gate's release (the job's
+keeps them with the RVEs' series (tools/column_inertial_numbers.py and tools/column_cell_stress.py
+beside it), and its time axis starts at the gate's release (the job's
 `until`, 0.01 s): the end time it reports is the run's less the gate's hold.
 
 Usage: smoke_column_tools.py RUN_DIR. Exit 77 (skipped) without h5py, numpy, pandas or matplotlib.
@@ -62,5 +63,15 @@ with tempfile.TemporaryDirectory() as tmp:
     fast = sorted(float(p["i_m"]) for p in points if p["i_rve"] and int(p["guards"]) & 32)
     if fast:
         assert fast[len(fast) // 2] > float(points[0]["i_n"]), fast
+    # How the points of a cell share its pressure: shares between 1/n and 1, one row per output.
+    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "column_cell_stress.py"),
+                    "--analyse", run, "tiny", "--data", data], check=True, cwd=ROOT,
+                   stdout=subprocess.DEVNULL)
+    cells = list(csv.DictReader(open(os.path.join(data, "tiny_cells.csv"))))
+    assert len(cells) == len(inertial) + 1, (len(cells), len(inertial))
+    for row in cells:
+        if int(row["loaded_cells"]):
+            assert 0.0 < float(row["share_median"]) <= 1.0, row
+            assert 0.0 <= float(row["free_fraction"]) < 1.0, row
     print(f"column tools: ok (32 RVEs; released at 0.01 s = {0.01 / tstar:.3f} t*, the run ends "
           f"{r[(2, 'tiny')]['t_end']:.3f} t* after it)")
