@@ -1,23 +1,28 @@
 #!/usr/bin/python3
-"""How the points of one grid cell share its stress, in a column run.
+"""How the points of one grid cell share its vertical stress, in a column run.
 
 docs/validation/column_collapse.md ("The points of a cell: one carries, three float"). The grid
 sees a cell's points only through the nodal forces sum_p V_p sigma_p grad N_i(x_p): a pattern of
 point stresses that repeats from cell to cell (one point loaded, its neighbours in the cell not)
-gives the nodes the forces of the cell's mean stress, so nothing on the grid evens it out (the
-null space of the points-to-grid map; Gritton & Berzins 2017, IJNME 110, 151-172). A material
-without tension (an RVE that loses its contacts) can then sit in such a pattern, its unloaded
-points free to dilate. Measured on a run, at each output row, over the grid cells holding two
-points or more whose pressure sum is positive ("loaded cells"):
+gives the nodes nearly the forces of the cells' mean stresses wherever it repeats, so nothing
+on the grid evens it out (the null space of the points-to-grid map: Gritton & Berzins 2017,
+Computational Particle Mechanics 4, 131-142). A material without tension (an RVE that loses its
+contacts) can then sit in such a pattern, its unloaded points free to dilate. Measured on a run,
+at each output row, over the grid cells holding two
+points or more whose vertical stress sum is positive ("loaded cells"; the vertical normal
+stress -sigma_zz, positive in compression, carries the column's weight):
 
-  share    the largest share of the cell's pressure sum carried by one of its points (n points:
-           1/n when they share it evenly, 1 when one point carries it all); median and 90th
-           percentile over the loaded cells;
-  free     the fraction of the points of loaded cells that carry no pressure (p <= 0);
+  share    the largest share of the cell's vertical stress sum carried by one of its points (n
+           points: 1/n when they share it evenly, 1 when one point carries it all); median and
+           90th percentile over the loaded cells;
+  free     the fraction of the points of loaded cells that carry no vertical stress
+           (-sigma_zz <= 0);
   quarter  over the cells holding four points, one in each quarter (lower-left, lower-right,
            upper-left, upper-right, x then z, in the cell): the mean share of each quarter;
+  back     the same share and free fraction over the loaded cells of the upper back (cell
+           centre at x < L0 / 4 from the back wall and z > 3 H0 / 4), where the stresses are a few Pa;
   J        the median of V / V0 over the points of the column's back quarter at the start
-           (x0 < L0 / 4) and its upper half (z0 > H0 / 2), and the median of their displacement
+           (x0 < L0 / 4) and its upper quarter (z0 > 3 H0 / 4), and the median of their displacement
            [L0].
 
 Modes:
@@ -45,11 +50,12 @@ TABLE_TIMES = (0.5, 1.0, 2.0, 3.0)
 QUARTERS = ("ll", "lr", "ul", "ur")
 
 
-def cell_shares(x, p, origin, spacing):
-    """Per-row measure of the points' pressure shares in their grid cells.
+def cell_shares(x, p, origin, spacing, region=None):
+    """Per-row measure of the points' shares of a stress in their grid cells.
 
-    x: [n, 3] positions [m], p: [n] pressures [Pa] (> 0 in compression), origin and spacing of
-    the grid (x and z used). Returns (median share, 90th percentile share, free fraction,
+    x: [n, 3] positions [m], p: [n] stresses [Pa] (> 0 in compression), origin and spacing of
+    the grid (x and z used); region: None, or a function of a cell's centre (x, z) [m] that keeps
+    the cells for which it is true. Returns (median share, 90th percentile share, free fraction,
     {quarter: mean share}, loaded cells, four-point cells)."""
     import numpy as np
     u = (x[:, 0] - origin[0]) / spacing[0]
@@ -66,6 +72,9 @@ def cell_shares(x, p, origin, spacing):
     for a, b in zip(starts, ends):
         idx = order[a:b]
         if len(idx) < 2:
+            continue
+        if region is not None and not region(origin[0] + (ci[idx[0]] + 0.5) * spacing[0],
+                                              origin[2] + (ck[idx[0]] + 0.5) * spacing[2]):
             continue
         pc = np.maximum(p[idx], 0.0)
         total = pc.sum()
@@ -102,18 +111,25 @@ def analyse(run, stem, data):
     with h5py.File(os.path.join(run, "results.h5"), "r") as f:
         t = f["time"][:]
         x = f["points/x"][:]
-        p = f["points/p"][:]
+        p = -f["points/stress"][:, :, 8]  # -sigma_zz [Pa]
         V = f["points/volume"][:]
         d = f["points/displacement"][:]
-    back = (x[0, :, 0] - body["min"][0] < L0 / 4) & (x[0, :, 2] - body["min"][2] > H0 / 2)
+    back = (x[0, :, 0] - body["min"][0] < L0 / 4) & (x[0, :, 2] - body["min"][2] > 0.75 * H0)
+    x_back, z0 = body["min"][0] + L0 / 4, body["min"][2]
+
+    def upper_back(cx, cz):
+        return cx < x_back and cz - z0 > 0.75 * H0
+
     rows = []
     for k in range(len(t)):
         med, p90, free, q, cells, qcells = cell_shares(x[k], p[k], origin, spacing)
+        b_med, _, b_free, _, b_cells, _ = cell_shares(x[k], p[k], origin, spacing, upper_back)
         rows.append({
             "t_over_tstar": (t[k] - release) / tstar,
             "share_median": med, "share_p90": p90, "free_fraction": free,
             **{f"quarter_{n}": q[n] for n in QUARTERS},
             "loaded_cells": cells, "four_point_cells": qcells,
+            "back_share_median": b_med, "back_free_fraction": b_free, "back_loaded_cells": b_cells,
             "back_J_median": float(np.median(V[k, back] / V[0, back])),
             "back_displacement_median_L0": float(np.median(np.linalg.norm(d[k, back], axis=1)) / L0),
         })
@@ -129,10 +145,11 @@ def analyse(run, stem, data):
 
 
 def table(stems, data):
-    print("| run | t / t* | largest share of a cell's pressure on one point: median / 90 % | "
-          "points of loaded cells without pressure | mean share of each quarter: lower-left / "
-          "lower-right / upper-left / upper-right | upper back: V / V0, displacement / L0 (medians) |")
-    print("|---|---|---|---|---|---|")
+    print("| run | t / t* | largest share of a cell's vertical stress on one point: median / 90 % | "
+          "points of loaded cells without vertical stress | mean share of each quarter: lower-left / "
+          "lower-right / upper-left / upper-right | upper back: largest share (median), points "
+          "without vertical stress | upper back: V / V0, displacement / L0 (medians) |")
+    print("|---|---|---|---|---|---|---|")
     for stem in stems:
         with open(os.path.join(data, f"{stem}_cells.csv")) as f:
             rows = list(csv.DictReader(f))
@@ -141,8 +158,11 @@ def table(stems, data):
             if abs(float(r["t_over_tstar"]) - want) > 0.25:
                 continue
             q = " / ".join(f"{float(r['quarter_' + n]):.2f}" for n in QUARTERS)
+            back = (f"{float(r['back_share_median']):.2f}, {100 * float(r['back_free_fraction']):.0f} %"
+                    if int(r["back_loaded_cells"]) else "no loaded cell left")
             print(f"| {stem} | {float(r['t_over_tstar']):.2f} | {float(r['share_median']):.2f} / "
                   f"{float(r['share_p90']):.2f} | {100 * float(r['free_fraction']):.0f} % | {q} | "
+                  f"{back} | "
                   f"{float(r['back_J_median']):.3f}, {float(r['back_displacement_median_L0']):.4f} |")
 
 
@@ -161,7 +181,7 @@ def self_test():
     med, p90, free, q, cells, qcells = cell_shares(x, one, origin, spacing)
     assert abs(med - 1.0) < 1e-12 and abs(free - 6 / 8) < 1e-12, (med, free)
     assert abs(q["lr"] - 1.0) < 1e-12 and q["ll"] == 0.0 and q["ur"] == 0.0, q
-    # A cell without pressure is not a loaded cell; a lone point is not counted.
+    # A cell without stress is not a loaded cell; a lone point is not counted.
     x2 = np.vstack([x, [[5.5, 0.5, 5.5]]])
     p2 = np.r_[np.zeros(4), even[4:], 7.0]
     med, p90, free, q, cells, qcells = cell_shares(x2, p2, origin, spacing)
@@ -174,7 +194,10 @@ def self_test():
     # cell 0: 30 / 10 / 0 (share 0.75, one free point); cell 1 even (0.25); the moved point alone.
     assert cells == 2 and qcells == 1 and abs(med - 0.5) < 1e-12 and abs(p90 - 0.7) < 1e-12, (med, p90)
     assert abs(free - 1 / 7) < 1e-12 and abs(q["ll"] - 0.25) < 1e-12, (free, q)
-    print("column_cell_stress: self-test ok (even, one point, unloaded cell, lone point, three points)")
+    # A region keeps only the cells whose centre it accepts (here: the second cell, x > 1).
+    med, p90, free, q, cells, qcells = cell_shares(x, one, origin, spacing, lambda cx, cz: cx > 1.0)
+    assert cells == 1 and abs(med - 1.0) < 1e-12 and abs(free - 0.75) < 1e-12, (cells, med, free)
+    print("column_cell_stress: self-test ok (even, one point, unloaded cell, lone point, three points, a region)")
 
 
 def main():
