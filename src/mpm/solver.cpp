@@ -12,6 +12,7 @@
 #include "common/tensor.hpp"
 #include "mpm/messages.hpp"
 #include "mpm/parallel.hpp"
+#include "mpm/subcell_relaxation.hpp"
 #include "mpm/transfers.hpp"
 
 namespace mpm {
@@ -302,6 +303,16 @@ void Solver::update_stress(double dt) {
   } else if (config_.strain_smoothing == StrainSmoothing::volumetric) {
     average_trace_per_cell(config_.grid, points_.x, points_.volume, config_.plane_strain_axis,
                            points_.L, smoothing_scratch_);
+  }
+  if (config_.subcell_relaxation > 0.0) {
+    // tau in units of the time a wave takes to cross a cell (as the CFL step, mass-scaled); the
+    // modulus rho c^2 with the material's own wave speed.
+    double c = 0.0;
+    for (const MaterialModel* m : materials_) c = std::max(c, m->wave_speed());
+    const double c_step = c / std::sqrt(config_.mass_scaling);
+    const double tau = config_.subcell_relaxation * config_.grid.spacing.minCoeff() / c_step;
+    relax_subcell_stress(config_.grid, points_.x, points_.mass, points_.volume, points_.stress,
+                         config_.plane_strain_axis, c, tau, points_.L, smoothing_scratch_);
   }
   if (const int a = config_.plane_strain_axis; a >= 0) {
     // Plane strain: no stretching or shearing through the thickness reaches the material, even

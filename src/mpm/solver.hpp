@@ -122,6 +122,10 @@ struct SolverConfig {
   double regularisation_length = 0.0;
   /// Its modulus H [Pa]: the stiffness of the energy on a point's strain minus its average.
   double regularisation_modulus = 0.0;
+  /// Sub-cell stress relaxation (mpm/subcell_relaxation.hpp; docs/design/mpm.md): the points of
+  /// a cell relax their stresses towards the cell's mean over tau = subcell_relaxation h / c (h
+  /// the smallest grid spacing, c the materials' largest wave speed, mass-scaled); 0 = off [-].
+  double subcell_relaxation = 0.0;
   /// Energy-growth guard (mpm/energy_guard.hpp): the share of the scene's energy scale that the
   /// energy created by the steps may exceed, 10 steps in a row with a growing kinetic energy,
   /// before the run stops (common::NumericalError) [-]; 0 = off.
@@ -172,6 +176,14 @@ inline constexpr auto kSolverConfig = common::make_table<SolverConfig>(
       common::gt(0), common::Source::job_default,
       "With mass_scaling > 1: the log warns once when the kinetic energy exceeds this fraction "
       "of the internal work."},
+     {"subcell_relaxation", &SolverConfig::subcell_relaxation, common::Unit::Dimensionless,
+      common::ge(0), common::Source::job_default,
+      "Sub-cell stress relaxation: each point's strain rate gets -(sigma_p - sigma_cell) / (rho "
+      "c^2 tau), so that the points of a grid cell approach their cell's mean stress over tau = "
+      "subcell_relaxation h / c (h the smallest spacing, c the largest wave speed): a pattern in "
+      "the null space of the points-to-grid map (one point of a cell loaded, its neighbours "
+      "floating) relaxes instead of persisting. The cell's deformation rate is unchanged; 0 = off "
+      "(docs/design/mpm.md, Sub-cell stress relaxation)."},
      {"regularisation.length", &SolverConfig::regularisation_length, common::Unit::Length,
       common::ge(0), common::Source::job_default,
       "Material length l of the nonlocal strain-gradient regularisation: an elastic energy on "

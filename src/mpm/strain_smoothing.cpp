@@ -28,27 +28,6 @@ std::int64_t cell_of(const Grid& grid, const common::Vec3& x) {
   return ijk[0] + grid.cells[0] * (ijk[1] + grid.cells[1] * ijk[2]);
 }
 
-namespace {
-/// Calls f(begin, end) for each run of `scratch` (cell, point) pairs of one cell, the cells in
-/// index order and each cell's points in point order.
-template <class F>
-void for_each_cell(const Grid& grid, const std::vector<common::Vec3>& x,
-                   std::vector<std::pair<std::int64_t, std::int64_t>>& scratch, F&& f) {
-  const std::size_t n = x.size();
-  scratch.resize(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    scratch[p] = {cell_of(grid, x[p]), static_cast<std::int64_t>(p)};
-  }
-  std::sort(scratch.begin(), scratch.end());
-  for (std::size_t begin = 0; begin < n;) {
-    std::size_t end = begin;
-    while (end < n && scratch[end].first == scratch[begin].first) ++end;
-    f(begin, end);
-    begin = end;
-  }
-}
-}  // namespace
-
 void average_per_cell(const Grid& grid, const std::vector<common::Vec3>& x,
                       const std::vector<double>& volume, std::vector<common::Mat3>& L,
                       std::vector<std::pair<std::int64_t, std::int64_t>>& scratch) {

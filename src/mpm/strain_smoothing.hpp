@@ -4,6 +4,7 @@
 // tests. Or only its volumetric part (B-bar cell by cell): the points of a cell dilate together.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string_view>
 #include <utility>
@@ -36,6 +37,27 @@ inline constexpr std::array<common::Named<StrainSmoothing>, 3> kStrainSmoothingN
 /// Linear index (i fastest) of the grid cell holding x; a point on a cell face belongs to the
 /// cell above it, one on the grid's upper face to the last cell (indices clamped to the grid).
 [[nodiscard]] std::int64_t cell_of(const Grid& grid, const common::Vec3& x);
+
+/// Calls f(begin, end) for each run of `scratch` entries that share a grid cell: scratch is
+/// filled with the (cell, point) pairs of x sorted by cell then point, so each cell's points come
+/// in point order and the cells in index order (a result that depends on neither threads nor
+/// ranks).
+template <class F>
+void for_each_cell(const Grid& grid, const std::vector<common::Vec3>& x,
+                   std::vector<std::pair<std::int64_t, std::int64_t>>& scratch, F&& f) {
+  const std::size_t n = x.size();
+  scratch.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    scratch[p] = {cell_of(grid, x[p]), static_cast<std::int64_t>(p)};
+  }
+  std::sort(scratch.begin(), scratch.end());
+  for (std::size_t begin = 0; begin < n;) {
+    std::size_t end = begin;
+    while (end < n && scratch[end].first == scratch[begin].first) ++end;
+    f(begin, end);
+    begin = end;
+  }
+}
 
 /// Replaces each L[p] by sum_q V_q L_q / sum_q V_q over the points q in the cell of x[p]
 /// (volume [m^3]; L: any tensor per point, the velocity gradient [1/s] or the stress [Pa]). Pre: x,
