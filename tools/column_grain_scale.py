@@ -706,14 +706,22 @@ RESOLUTION = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.
               ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3")]
 
 
+# The sub-cell stress relaxation (--subcell-table): the L0/8 2 x 2 columns with and without
+# mpm.subcell_relaxation (docs/validation/column_collapse.md, "The points of a cell").
+SUBCELL = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99_xpic3"),
+           ("the same, sub-cell relaxation r = 2", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2"),
+           ("the same, sub-cell relaxation r = 10", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell10")]
+
+
 def gap(value, ref):
     return f"{value:.2f} ({100 * (value / ref - 1):+.0f} %)" if ref else f"{value:.2f}"
 
 
-def resolution_table(data, yade):
+def resolution_table(data, yade, family=None):
     """Markdown table: the quantities the column must match (runout, H_f, fronts at 1 / 2 / 3 t*)
-    against the discretisation, each with its gap to the grains' column of the same modulus at
-    L0 = 14.4 d50 (stdlib only)."""
+    against the discretisation (or another family of (label, stem suffix) runs), each with its
+    gap to the grains' column of the same modulus at L0 = 14.4 d50 (stdlib only)."""
+    family = RESOLUTION if family is None else family
     lines = ["| a | column | runout to h < 0.05 H0 | H_f/H0 | h_vol/H0 at the back (x < L0/4) | continuous front "
              "at 1 t* | at 2 t* | at 3 t* | centre of mass x / L0 | end (t*), kinetic energy / (M g H0) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
@@ -732,7 +740,7 @@ def resolution_table(data, yade):
         lines.append(f"| {a} | pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {r5:.2f} | {ref['hf']:.2f} | "
                      f"{ref['back']:.2f} | "
                      + " | ".join(f"{f:.2f}" for f in ref["f"]) + f" | {xc:.2f} | |")
-        for label, suffix in RESOLUTION:
+        for label, suffix in family:
             stem = f"a{a}_{suffix}"
             run = stored_run(data, yade, a, stem)
             if run is None:
@@ -798,6 +806,7 @@ def main():
     ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--resolution-table", action="store_true")
+    ap.add_argument("--subcell-table", action="store_true")
     ap.add_argument("--resolution-figure", action="store_true")
     ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
@@ -828,11 +837,14 @@ def main():
         print(onset_table(args.data, args.yade, args.onset_table))
     if args.resolution_table:
         print(resolution_table(args.data, args.yade))
+    if args.subcell_table:
+        print(resolution_table(args.data, args.yade, SUBCELL))
     if args.resolution_figure:
         resolution_figure(args.data, args.yade, args.fig)
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
-            or args.transfer_table or args.onset_table or args.resolution_table or args.resolution_figure):
+            or args.transfer_table or args.onset_table or args.resolution_table or args.subcell_table
+            or args.resolution_figure):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 
