@@ -309,6 +309,12 @@ void Solver::update_stress(double dt) {
     // modulus rho c^2 with the material's own wave speed.
     double c = 0.0;
     for (const MaterialModel* m : materials_) c = std::max(c, m->wave_speed());
+    if (!(c > 0.0) || !std::isfinite(c)) {
+      throw common::NumericalError("mpm step " + std::to_string(step_) + " (t = " + num_str(time_) +
+                                   " s): mpm.subcell_relaxation needs the materials' wave speed, "
+                                   "got " +
+                                   num_str(c) + " m/s");
+    }
     const double c_step = c / std::sqrt(config_.mass_scaling);
     const double tau = config_.subcell_relaxation * config_.grid.spacing.minCoeff() / c_step;
     relax_subcell_stress(config_.grid, points_.x, points_.mass, points_.volume, points_.stress,
