@@ -710,7 +710,9 @@ RESOLUTION = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.
 # mpm.subcell_relaxation (docs/validation/column_collapse.md, "The points of a cell").
 SUBCELL = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99_xpic3"),
            ("the same, sub-cell relaxation r = 2", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2"),
-           ("the same, sub-cell relaxation r = 10", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell10")]
+           ("the same, sub-cell relaxation r = 10", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell10"),
+           ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3"),
+           ("the same, sub-cell relaxation r = 2", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2")]
 
 
 def gap(value, ref):
