@@ -98,15 +98,20 @@ def section_value(text, section, key):
     return v.group(1).strip() if v else None
 
 
-def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), spheres=None):
+def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), spheres=None,
+          coupling=()):
     """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
     grains' contact modulus [Pa] with the preparation pressure scaled by the same factor, the
     [mpm] lines `mpm` ("key = value", dimensionless or names: not scaled) added first in [mpm],
-    and the number of spheres per RVE, dem.sample.spheres, with the title's "of N spheres")."""
+    the number of spheres per RVE, dem.sample.spheres, with the title's "of N spheres", and the
+    [dem.coupling] lines `coupling`, added first there, not scaled)."""
     if damping is not None:
         text = set_damping(text, damping)
     if mpm:
         text = re.sub(r"^\[mpm\]\s*$", "[mpm]\n" + "\n".join(mpm), text, count=1, flags=re.M)
+    if coupling:
+        text = re.sub(r"^\[dem\.coupling\]\s*$", "[dem.coupling]\n" + "\n".join(coupling), text,
+                      count=1, flags=re.M)
     stiffness = 1.0
     if young is not None:
         stiffness = young / si(section_value(text, "dem.material", "young_modulus"))
@@ -160,6 +165,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
             + (f" --young-modulus {fmt(young)}" if young is not None else "")
             + "".join(f" --mpm '{line}'" for line in mpm)
             + (f" --spheres {spheres}" if spheres is not None else "")
+            + "".join(f" --coupling '{line}'" for line in coupling)
             + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
     while out and out[-1] == "":
         out.pop()
@@ -167,8 +173,8 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
 
 
 def options_of_scaled(text):
-    """(source, l0, tag, damping, young, mpm lines, spheres) from the header of a scaled job; None
-    when it has none."""
+    """(source, l0, tag, damping, young, mpm lines, spheres, coupling lines) from the header of a
+    scaled job; None when it has none."""
     cmd = re.search(r"^# Do not edit: \S+ tools/column_scale_job.py (\S+) (.*) --out THIS_FILE$",
                     text, re.M)
     if not cmd:
@@ -180,7 +186,8 @@ def options_of_scaled(text):
     n = re.search(r"--spheres (\d+)", cmd.group(2))
     return (cmd.group(1), float(m.group(1)), (t.group(1) if t else ""),
             (float(d.group(1)) if d else None), (float(e.group(1)) if e else None),
-            tuple(re.findall(r"--mpm '([^']*)'", cmd.group(2))), (int(n.group(1)) if n else None))
+            tuple(re.findall(r"--mpm '([^']*)'", cmd.group(2))), (int(n.group(1)) if n else None),
+            tuple(re.findall(r"--coupling '([^']*)'", cmd.group(2))))
 
 
 def self_test():
@@ -220,7 +227,8 @@ every = 50
     if missing or "comment" in out or abs(column_length(out) - 0.005) > 1e-15:
         print("self-test FAILED; missing:", missing, "\n" + out)
         return 1
-    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6, ('wall_impulse = "points"',), None):
+    if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6, ('wall_impulse = "points"',), None,
+                                  ()):
         print("self-test FAILED: the header does not name --l0")
         return 1
     more = scale('title = "a, 512 RVEs of 100 spheres"\n[dem.sample]\nspheres = 100\n' + src, 0.005,
@@ -228,6 +236,12 @@ every = 50
     if ("spheres = 300" not in more.split("\n") or "of 300 spheres" not in more
             or options_of_scaled(more)[6] != 300):
         print("self-test FAILED: --spheres\n" + more)
+        return 1
+    more = scale(src.replace("[mpm]\n", "[dem.coupling]\n[mpm]\n"), 0.005, "src.toml",
+                 coupling=('contact_loss = "strained"',))
+    if ('contact_loss = "strained"' not in more.split("\n")
+            or options_of_scaled(more)[7] != ('contact_loss = "strained"',)):
+        print("self-test FAILED: --coupling\n" + more)
         return 1
     print("self-test passed")
     return 0
@@ -250,6 +264,9 @@ def main():
                          "value, e.g. 'wall_impulse = \"points\"'); repeat for several")
     ap.add_argument("--spheres", type=int, default=None, metavar="N",
                     help="spheres per RVE, dem.sample.spheres (and the title's \"of N spheres\")")
+    ap.add_argument("--coupling", action="append", default=[], metavar="'KEY = VALUE'",
+                    help="a line added first to [dem.coupling], not scaled (a name or a "
+                         "dimensionless value); repeat for several")
     ap.add_argument("--check", nargs="+", metavar="SCALED",
                     help="each job is what the command in its header writes (run from the "
                          "repository root)")
@@ -266,8 +283,9 @@ def main():
                 print(f"{scaled}: no 'Do not edit' line of tools/column_scale_job.py in its header")
                 fails += 1
                 continue
-            source, l0, tag, damping, young, mpm, spheres = options
-            if have != scale(open(source).read(), l0, source, tag, damping, young, mpm, spheres):
+            source, l0, tag, damping, young, mpm, spheres, coupling = options
+            if have != scale(open(source).read(), l0, source, tag, damping, young, mpm, spheres,
+                             coupling):
                 print(f"{scaled}: not what tools/column_scale_job.py writes from {source} at "
                       f"L0 = {l0} m; regenerate it with the command in its header")
                 fails += 1
@@ -278,7 +296,7 @@ def main():
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
     open(args.out, "w").write(scale(open(args.job).read(), args.l0, args.job, args.tag,
                                     args.damping, args.young_modulus, tuple(args.mpm),
-                                    args.spheres))
+                                    args.spheres, tuple(args.coupling)))
     return 0
 
 
