@@ -698,6 +698,40 @@ def onset_table(data, yade, a=2):
     return "\n".join(lines)
 
 
+DECAY_TIMES = (1.5, 2.0, 3.0, 4.0, 5.0)
+
+
+def decay_table(data, yade, a=2):
+    """Markdown table: how the a = A columns of the resolution and sub-cell families come to rest
+    beside the grains': the kinetic energy of the motion and the height at the back wall against
+    the time from the release (stdlib only)."""
+    lines = ["| column | kinetic energy / (M g H0) at " + " / ".join(f"{x:g}" for x in DECAY_TIMES)
+             + " t* after the release | H at the back wall / H0 at the same times |", "|---|---|---|"]
+
+    def row(label, t, k, h):
+        lines.append(f"| {label} | " + " / ".join(f"{interp(x, t, k):.4f}" for x in DECAY_TIMES)
+                     + " | " + " / ".join(f"{interp(x, t, h):.2f}" for x in DECAY_TIMES) + " |")
+
+    for tag in TRANSFER_YADE[a][:1]:
+        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+        ts = read_csv(os.path.join(yade, f"{tag}_timeseries.csv"))
+        h0 = float(ts[0]["H_back_m"])
+        row(f"pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50", [float(r["t_over_tstar"]) for r in ts],
+            [float(r["kinetic_over_MgH0"]) for r in ts], [float(r["H_back_m"]) / h0 for r in ts])
+    seen = set()
+    for label, suffix in RESOLUTION + SUBCELL:
+        stem = f"a{a}_{suffix}"
+        if stem in seen or not os.path.exists(os.path.join(data, f"{stem}_timeseries.csv")):
+            continue
+        seen.add(stem)
+        ts = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        h0 = float(ts[0]["H_back_m"])
+        row(f"MPM x DEM, {label.replace('the same', 'L0/8 2 x 2') if label.startswith('the same') else label}",
+            released_times(data, stem, ts), [float(r["kinetic_motion_over_MgH0"]) for r in ts],
+            [float(r["H_back_m"]) / h0 for r in ts])
+    return "\n".join(lines)
+
+
 # The resolution family (--resolution-table, --resolution-figure): the filtered transfer (FLIP 0.99,
 # its PIC share XPIC(3)), the wall impulse on the points, E = 3 MPa, at three discretisations:
 # (label, stem suffix after "a<A>_"), coarsest first.
@@ -809,6 +843,7 @@ def main():
     ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--resolution-table", action="store_true")
     ap.add_argument("--subcell-table", action="store_true")
+    ap.add_argument("--decay-table", action="store_true")
     ap.add_argument("--resolution-figure", action="store_true")
     ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
@@ -841,12 +876,14 @@ def main():
         print(resolution_table(args.data, args.yade))
     if args.subcell_table:
         print(resolution_table(args.data, args.yade, SUBCELL))
+    if args.decay_table:
+        print(decay_table(args.data, args.yade))
     if args.resolution_figure:
         resolution_figure(args.data, args.yade, args.fig)
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
             or args.transfer_table or args.onset_table or args.resolution_table or args.subcell_table
-            or args.resolution_figure):
+            or args.decay_table or args.resolution_figure):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
 
