@@ -719,7 +719,7 @@ def decay_table(data, yade, a=2):
         row(f"pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50", [float(r["t_over_tstar"]) for r in ts],
             [float(r["kinetic_over_MgH0"]) for r in ts], [float(r["H_back_m"]) / h0 for r in ts])
     seen = set()
-    for label, suffix in RESOLUTION + SUBCELL:
+    for label, suffix in RESOLUTION + VARIANTS:
         stem = f"a{a}_{suffix}"
         if stem in seen or not os.path.exists(os.path.join(data, f"{stem}_timeseries.csv")):
             continue
@@ -740,11 +740,14 @@ RESOLUTION = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.
               ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3")]
 
 
-# The sub-cell stress relaxation (--subcell-table): the L0/8 2 x 2 columns with and without
-# mpm.subcell_relaxation (docs/validation/column_collapse.md, "The points of a cell").
-SUBCELL = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99_xpic3"),
+# The variants of the 2 x 2 columns (--variants-table): with and without mpm.subcell_relaxation
+# or RVEs without contacts strained instead of held (docs/validation/column_collapse.md, "The points
+# of a cell").
+VARIANTS = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99_xpic3"),
            ("the same, sub-cell relaxation r = 2", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2"),
            ("the same, sub-cell relaxation r = 10", "2x2_E3MPa_wallpts_flip0.99_xpic3_subcell10"),
+           ("the same, RVEs without contacts strained, not held",
+            "2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
            ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3"),
            ("the same, sub-cell relaxation r = 2", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2")]
 
@@ -842,7 +845,7 @@ def main():
     ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--resolution-table", action="store_true")
-    ap.add_argument("--subcell-table", action="store_true")
+    ap.add_argument("--variants-table", action="store_true")
     ap.add_argument("--decay-table", action="store_true")
     ap.add_argument("--resolution-figure", action="store_true")
     ap.add_argument("--self-test", action="store_true")
@@ -874,15 +877,15 @@ def main():
         print(onset_table(args.data, args.yade, args.onset_table))
     if args.resolution_table:
         print(resolution_table(args.data, args.yade))
-    if args.subcell_table:
-        print(resolution_table(args.data, args.yade, SUBCELL))
+    if args.variants_table:
+        print(resolution_table(args.data, args.yade, VARIANTS))
     if args.decay_table:
         print(decay_table(args.data, args.yade))
     if args.resolution_figure:
         resolution_figure(args.data, args.yade, args.fig)
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
-            or args.transfer_table or args.onset_table or args.resolution_table or args.subcell_table
+            or args.transfer_table or args.onset_table or args.resolution_table or args.variants_table
             or args.decay_table or args.resolution_figure):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
