@@ -41,7 +41,6 @@ import csv
 import math
 import os
 import sys
-import tomllib
 
 import column_grain_scale as cgs
 
@@ -98,16 +97,10 @@ def cell_shares(x, p, origin, spacing, region=None):
 def analyse(run, stem, data):
     import h5py
     import numpy as np
-    with open(os.path.join(run, "job.resolved.toml"), "rb") as f:
-        job = tomllib.load(f)
-    mpm = job["mpm"]
-    grid = mpm["grid"]
+    job, L0, H0, tstar, release = cgs.column_of_run(run)
+    grid = job["mpm"]["grid"]
     origin, spacing = grid["origin"], grid["spacing"]
-    body = mpm["body"][0]
-    L0 = body["max"][0] - body["min"][0]
-    H0 = body["max"][2] - body["min"][2]
-    tstar = math.sqrt(H0 / abs(mpm["gravity"][2]))
-    release = cgs.gate_release(os.path.join(run, "job.toml"))
+    body = job["mpm"]["body"][0]
     with h5py.File(os.path.join(run, "results.h5"), "r") as f:
         t = f["time"][:]
         x = f["points/x"][:]

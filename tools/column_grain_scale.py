@@ -41,6 +41,7 @@ matplotlib).
 """
 import argparse
 import csv
+import math
 import os
 import shutil
 import subprocess
@@ -75,6 +76,20 @@ def analyse(run, stem, data):
     mobilised_series(os.path.join(run, "results.h5"), H0, os.path.join(data, f"{stem}_mobilised.csv"))
     core_series(os.path.join(run, "results.h5"), L0, H0, os.path.join(data, f"{stem}_core.csv"))
     print(f"wrote {data}/{stem}_*.csv")
+
+
+def column_of_run(run):
+    """(resolved job, L0 [m], H0 [m], t* = sqrt(H0 / g) [s], the gate's release [s]) of the
+    column run in directory RUN: its first body's size, from RUN/job.resolved.toml and the gate
+    of RUN/job.toml."""
+    with open(os.path.join(run, "job.resolved.toml"), "rb") as f:
+        job = tomllib.load(f)
+    mpm = job["mpm"]
+    body = mpm["body"][0]
+    L0 = body["max"][0] - body["min"][0]
+    H0 = body["max"][2] - body["min"][2]
+    tstar = math.sqrt(H0 / abs(mpm["gravity"][2]))
+    return job, L0, H0, tstar, gate_release(os.path.join(run, "job.toml"))
 
 
 def gate_release(job_path):

@@ -36,7 +36,6 @@ import csv
 import math
 import os
 import sys
-import tomllib
 
 import column_grain_scale as cgs
 
@@ -70,18 +69,12 @@ def strain_rate_max(F0, F1, dt):
 def analyse(run, stem, data):
     import h5py
     import numpy as np
-    with open(os.path.join(run, "job.resolved.toml"), "rb") as f:
-        job = tomllib.load(f)
-    dem, mpm = job["dem"], job["mpm"]
+    job, L0, H0, tstar, release = cgs.column_of_run(run)
+    dem = job["dem"]
     i_n = float(dem["coupling"]["inertial_number"])
     floor = float(dem["coupling"]["pressure_floor"])
     rho = float(dem["material"]["density"])
     d50 = d50_of_grading(dem["sample"]["psd_diameters"], dem["sample"]["psd_passing"])
-    body = mpm["body"][0]
-    L0 = body["max"][0] - body["min"][0]
-    H0 = body["max"][2] - body["min"][2]
-    tstar = math.sqrt(H0 / abs(mpm["gravity"][2]))
-    release = cgs.gate_release(os.path.join(run, "job.toml"))
     with h5py.File(os.path.join(run, "results.h5"), "r") as f:
         t = f["time"][:]
         x = f["points/x"][:]
