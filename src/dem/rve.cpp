@@ -10,6 +10,7 @@
 
 #include "common/errors.hpp"
 #include "dem/element_test.hpp"
+#include "dem/free_flight.hpp"
 #include "dem/loading.hpp"
 #include "dem/measures.hpp"
 #include "dem/state.hpp"
@@ -147,6 +148,14 @@ std::int64_t Rve::dem_step_count(const Mat3& g, double dt_dem, double& t_p, Step
   return n;
 }
 
+bool Rve::one_free_step(const Mat3& g, double t_p) const {
+  // The one step differs from the n it replaces by O(max|g|^2) relative to the branches (see
+  // free_flight.hpp); up to max|g| = 1e-2 a margin of 4 max|g|^2 covers it.
+  const double gmax = g.cwiseAbs().maxCoeff();
+  if (!(gmax <= 1e-2) || !(t_p > 0.0) || !std::isfinite(t_p)) return false;
+  return free_flight_holds(sim_, t_p, g / t_p, 4.0 * gmax * gmax + 1e-12);
+}
+
 void Rve::run_dem_steps(const Mat3& g, double t_p, std::int64_t n) {
   if (params_.carry_end_forces && !forces_carried_) {
     // The first carried step (a new RVE, or a state of "separate"): the forces of the current
@@ -201,7 +210,11 @@ StepReport Rve::step(const Mat3& l, double dt) {
   }
   const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
   double t_p = relaxation_time(g, dt, dt_dem, rep);
-  const std::int64_t n = dem_step_count(g, dt_dem, t_p, rep);
+  std::int64_t n = dem_step_count(g, dt_dem, t_p, rep);
+  if (params_.free_flight && n > 1 && one_free_step(g, t_p)) {
+    n = 1;
+    rep.guards |= kGuardFreeFlight;
+  }
   run_dem_steps(g, t_p, n);
 
   const Mat3& sigma = sim_.stress();
@@ -275,6 +288,7 @@ void Rve::save(common::StateWriter& w) const {
   common::write_scalar(w, "rve/free_volume", free_volume_);
   common::write_scalar(w, "rve/disconnect_fraction", params_.disconnect_fraction);
   common::write_scalar(w, "rve/min_dem_steps", params_.min_dem_steps);
+  common::write_scalar(w, "rve/free_flight", std::int64_t{params_.free_flight ? 1 : 0});
 }
 
 Rve Rve::load(const common::StateReader& r) {
@@ -312,6 +326,8 @@ Rve Rve::load(const common::StateReader& r) {
   // Written since dem.coupling.min_dem_steps exists: a state without it ran with no minimum.
   if (r.has("rve/min_dem_steps"))
     params.min_dem_steps = common::read_scalar_i64(r, "rve/min_dem_steps");
+  // Written since dem.coupling.free_flight exists: a state without it stepped every RVE step.
+  params.free_flight = flag("rve/free_flight");
   params.validate();
   Rve rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
   rve.forces_carried_ = flag("rve/forces_carried");

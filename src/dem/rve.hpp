@@ -49,6 +49,8 @@ inline constexpr std::array<common::Named<ContactLoss>, 2> kContactLossNames{
     {{"disconnected", ContactLoss::disconnected}, {"strained", ContactLoss::strained}}};
 inline constexpr std::array<common::Named<bool>, 2> kEndForcesNames{
     {{"separate", false}, {"carried", true}}};
+inline constexpr std::array<common::Named<bool>, 2> kFreeFlightNames{
+    {{"stepped", false}, {"one_step", true}}};
 
 /// Parameters of an RVE: material, numerics and the quasi-static step control. The member
 /// initializers are the defaults of the job keys too (kRveParams).
@@ -76,6 +78,9 @@ struct RveParams {
   std::int64_t min_dem_steps = 1;
   RveRate rate = RveRate::material;                      ///< job key dem.coupling.rate
   ContactLoss contact_loss = ContactLoss::disconnected;  ///< job key dem.coupling.contact_loss
+  /// An RVE step without contacts in which no pair can touch runs as one DEM step of the whole
+  /// T_p (job key dem.coupling.free_flight = "one_step"; free_flight.hpp); false: n steps.
+  bool free_flight = false;
 
   /// Throws common::InputError naming the job key of the first invalid entry (kMaterial,
   /// kNumerics, kRveParams).
@@ -125,7 +130,7 @@ inline constexpr auto kRveParams = common::make_table<RveParams>(
 
 /// [dem.coupling]: the settings of RveParams that are a name out of a list
 /// (common/choice_table.hpp).
-inline constexpr common::ChoiceTable<RveParams, 3> kRveChoices{
+inline constexpr common::ChoiceTable<RveParams, 4> kRveChoices{
     "dem.coupling",
     {common::choice<&RveParams::carry_end_forces, kEndForcesNames>(
          "end_forces",
@@ -149,7 +154,15 @@ inline constexpr common::ChoiceTable<RveParams, 3> kRveChoices{
          "default: a stress-free material, Dunatunga & Kamrin 2015; a dilation goes to a free "
          "volume and the cell is held; a compression closes the free volume first, then strains "
          "the cell from the state in which it lost its contacts) or strained (the cell follows "
-         "every increment, however far a stress-free point is stretched).")}};
+         "every increment, however far a stress-free point is stretched)."),
+     common::choice<&RveParams::free_flight, kFreeFlightNames>(
+         "free_flight",
+         "An RVE step of an RVE without contacts (docs/design/rve_step.md \"Free flight\"): "
+         "stepped (the default: its n DEM steps, as an RVE with contacts) or one_step (one DEM "
+         "step of the whole step's time when no pair can come into contact within it: the "
+         "spheres fly freely, so one step moves them as the n would, to rounding; a step in which "
+         "a collision may happen is stepped). Saves the DEM steps of the flow's contact-free "
+         "RVEs with contact_loss = \"strained\" (or above disconnect_fraction).")}};
 
 /// Bits of StepReport::guards.
 enum RveGuard : std::uint32_t {
@@ -161,6 +174,7 @@ enum RveGuard : std::uint32_t {
   kGuardMaterialRate = 1u << 5,   ///< RveRate::material: T_p cut to the MPM step dt
   kGuardDisconnected = 1u << 6,   ///< ContactLoss::disconnected: held, stress-free (no DEM step)
   kGuardMinSteps = 1u << 7,       ///< T_p raised to min_dem_steps DEM steps
+  kGuardFreeFlight = 1u << 8,     ///< RveParams::free_flight: one DEM step of T_p, no contact
 };
 
 /// What one RVE step did.
@@ -239,6 +253,9 @@ class Rve {
   /// shortens t_p); the zero-increment, strain-split and cap guards into rep.guards.
   std::int64_t dem_step_count(const common::Mat3& g, double dt_dem, double& t_p,
                               StepReport& rep) const;
+  /// RveParams::free_flight: whether the increment g over t_p may run as one DEM step (no
+  /// contact, and none can form within it: free_flight_holds).
+  [[nodiscard]] bool one_free_step(const common::Mat3& g, double t_p) const;
   /// Runs n DEM steps of t_p / n under the rate g / t_p, with the end forces as configured.
   void run_dem_steps(const common::Mat3& g, double t_p, std::int64_t n);
 

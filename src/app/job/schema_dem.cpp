@@ -85,7 +85,7 @@ void add_rve_numerics(Schema& s) {
 
   s.add("dem.coupling", Type::Table, "The RVE step of MPM x DEM (paper eqs. 11-12).");
   add_params(s, dem::kRveParams);
-  add_choices(s, dem::kRveChoices);  // end_forces, rate, contact_loss
+  add_choices(s, dem::kRveChoices);  // end_forces, rate, contact_loss, free_flight
 
   s.add("dem.sparing", Type::Table,
         "Sparing of idle RVEs in `run` (docs/design/sparing.md): off unless `tolerance` > 0.");

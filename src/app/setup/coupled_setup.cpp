@@ -53,7 +53,7 @@ dem::RveParams rve_params(const Job& job) {
   p.material = dem_material(job);
   p.numerics = dem_numerics(job);
   fill_from_job(job, dem::kRveParams, p);
-  fill_choices_from_job(job, dem::kRveChoices, p);  // end_forces, rate, contact_loss
+  fill_choices_from_job(job, dem::kRveChoices, p);  // end_forces, rate, contact_loss, free_flight
   p.initial_pressure = 0.0;  // the prototype is prepared by prepared_sample()
   p.validate();
   return p;
