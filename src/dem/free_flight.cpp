@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <vector>
 
 #include "dem/neighbor_search.hpp"
 
@@ -44,12 +43,11 @@ bool free_flight_holds(const Simulation& sim, double dt, const Mat3& l, double m
   const Mat3 h_end = h + (dt * l) * h;
   const Mat3 f0 = h * vs.h_ref_inv;
   const Mat3 f1 = h_end * vs.h_ref_inv;
-  double a0 = 0.0;
+  const double a0 = max_drift2(s, f0, vs);
   double a1 = 0.0;
   for (std::size_t q = 0; q < s.size(); ++q) {
     const Vec3 x_end = s.x[q] + dt * (s.u[q] + l * s.x[q]);
     if (!x_end.allFinite()) return false;  // (a NaN would drop out of the maximum)
-    a0 = std::max(a0, (s.x[q] - f0 * vs.x_ref[q]).squaredNorm());
     a1 = std::max(a1, (x_end - f1 * vs.x_ref[q]).squaredNorm());
   }
   return rebuild_measure(a0, f0, vs.r_max, vs.skin) < vs.skin &&

@@ -14,8 +14,8 @@ namespace dem {
 ///   x_j + H k - x_i moves linearly in time, d(t) = d0 + t (u_j - u_i + L d0), so its closest
 ///   approach on [0, dt] is exact; it must stay above r_i + r_j by `margin` times r_i + r_j;
 /// - no pair outside the list can touch: the list's drift measure (2 max|a| + ||F - I|| (2 r_max
-///   + skin), neighbor_search.hpp) is below the skin at the step's end, hence during it (the drift
-///   a and F are linear in t, the measure convex).
+///   + skin), neighbor_search.hpp) is below the skin at both ends of the step, hence during it (the
+///   drift a and F are linear in t, the measure convex).
 /// False when the list is not current (a rebuild is pending, or it was built for other spheres).
 /// The step itself (x <- x + dt (u + L x), H <- (I + L dt) H) differs from n steps of dt / n by
 /// O((|L| dt)^2) relative to the branches: `margin` must cover it (Rve uses 4 (max|L dt|)^2 +
