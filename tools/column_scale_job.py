@@ -325,9 +325,14 @@ def main():
         return 1 if fails else 0
     if not (args.job and args.l0 and args.out):
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
-    open(args.out, "w").write(scale(open(args.job).read(), args.l0, args.job, args.tag,
-                                    args.damping, args.young_modulus, tuple(args.mpm),
-                                    args.spheres, tuple(args.coupling), tuple(args.set)))
+    try:
+        text = scale(open(args.job).read(), args.l0, args.job, args.tag, args.damping,
+                     args.young_modulus, tuple(args.mpm), args.spheres, tuple(args.coupling),
+                     tuple(args.set))
+    except ValueError as e:
+        print(f"column_scale_job.py: {e}", file=sys.stderr)
+        return 2
+    open(args.out, "w").write(text)
     return 0
 
 
