@@ -10,8 +10,8 @@
 
 namespace mpm {
 
-GradientRegularisation::GradientRegularisation(double length, double modulus)
-    : average_(length), modulus_(modulus) {
+GradientRegularisation::GradientRegularisation(double length, double modulus, AverageKind average)
+    : average_(make_point_average(average, length)), modulus_(modulus) {
   if (!(modulus > 0.0) || !std::isfinite(modulus)) {
     throw common::InputError("mpm.regularisation.modulus = " + std::to_string(modulus) +
                              " Pa: the regularisation needs a finite modulus > 0");
@@ -32,8 +32,8 @@ double GradientRegularisation::update(const std::vector<common::Vec3>& x,
     const auto p = static_cast<std::size_t>(ip);
     rate_[p] = 0.5 * (L[p] + L[p].transpose());
   });
-  average_.prepare(x, volume, material);
-  average_.apply(rate_, average_rate_);
+  average_->prepare(x, volume, material);
+  average_->apply(rate_, average_rate_);
   thread_local std::vector<double> terms;
   compute_terms(static_cast<std::int64_t>(n), terms, [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
@@ -61,8 +61,8 @@ void GradientRegularisation::add_force_stress(const std::vector<common::Vec3>& x
   for (std::size_t p = 0; p < n; ++p) tau_[p] = modulus_ * strain_[p];
   // The neighbours of the last update when the points have not moved since (USF: the same step;
   // MUSL: the previous step's end), found again otherwise (after a restart: the same bits).
-  if (!average_.prepared_for(x, volume)) average_.prepare(x, volume, material);
-  average_.apply_adjoint(tau_, smoothed_);
+  if (!average_->prepared_for(x, volume)) average_->prepare(x, volume, material);
+  average_->apply_adjoint(tau_, smoothed_);
   for_each_index(static_cast<std::int64_t>(n), [&](std::int64_t ip) {
     const auto p = static_cast<std::size_t>(ip);
     stress[p] += tau_[p] - smoothed_[p];

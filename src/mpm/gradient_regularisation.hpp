@@ -7,17 +7,19 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "common/types.hpp"
-#include "mpm/nonlocal_average.hpp"
+#include "mpm/point_average.hpp"
 
 namespace mpm {
 
 class GradientRegularisation {
  public:
-  /// length: l [m] > 0; modulus: H [Pa] > 0 (common::InputError otherwise).
-  GradientRegularisation(double length, double modulus);
+  /// length: l [m] > 0; modulus: H [Pa] > 0 (common::InputError otherwise); average: how the
+  /// nonlocal average is computed (point_average.hpp).
+  GradientRegularisation(double length, double modulus, AverageKind average = AverageKind::pairs);
 
   /// One step's strain increment: e_p += dt (D_p - Dbar_p + W_p e_p - e_p W_p), D and W the
   /// symmetric and skew parts of L_p, Dbar the nonlocal average of D (same material). Returns the
@@ -38,11 +40,11 @@ class GradientRegularisation {
   [[nodiscard]] const std::vector<common::Mat3>& strain() const { return strain_; }
   /// Restores the state (a checkpoint's); n entries, one per point.
   void set_strain(std::vector<common::Mat3> strain) { strain_ = std::move(strain); }
-  [[nodiscard]] double length() const { return average_.length(); }
+  [[nodiscard]] double length() const { return average_->length(); }
   [[nodiscard]] double modulus() const { return modulus_; }
 
  private:
-  NonlocalAverage average_;
+  std::unique_ptr<PointAverage> average_;
   double modulus_;
   std::vector<common::Mat3> strain_;        ///< e [-]
   std::vector<common::Mat3> rate_;          ///< D [1/s] (scratch)

@@ -127,8 +127,7 @@ void NonlocalAverage::prepare(const std::vector<common::Vec3>& x, const std::vec
   prepared_ = true;
 }
 
-void NonlocalAverage::apply(const std::vector<common::Mat3>& in,
-                            std::vector<common::Mat3>& out) const {
+void NonlocalAverage::apply(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) {
   const std::size_t n = in.size();
   if (!prepared_ || n != weight_sum_.size()) {
     throw common::NumericalError("NonlocalAverage::apply: not prepared for these points");
@@ -146,7 +145,7 @@ void NonlocalAverage::apply(const std::vector<common::Mat3>& in,
 }
 
 void NonlocalAverage::apply_adjoint(const std::vector<common::Mat3>& in,
-                                    std::vector<common::Mat3>& out) const {
+                                    std::vector<common::Mat3>& out) {
   const std::size_t n = in.size();
   if (!prepared_ || n != weight_sum_.size()) {
     throw common::NumericalError("NonlocalAverage::apply_adjoint: not prepared for these points");
@@ -163,24 +162,6 @@ void NonlocalAverage::apply_adjoint(const std::vector<common::Mat3>& in,
     }
     out[q] = sum;
   });
-}
-
-void NonlocalAverage::apply(const std::vector<common::Vec3>& x, const std::vector<double>& volume,
-                            const std::vector<std::int32_t>& group,
-                            const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) {
-  check_sizes(x.size(), volume.size(), group.size(), in.size());
-  prepare(x, volume, group);
-  apply(in, out);
-}
-
-void NonlocalAverage::apply_adjoint(const std::vector<common::Vec3>& x,
-                                    const std::vector<double>& volume,
-                                    const std::vector<std::int32_t>& group,
-                                    const std::vector<common::Mat3>& in,
-                                    std::vector<common::Mat3>& out) {
-  check_sizes(x.size(), volume.size(), group.size(), in.size());
-  prepare(x, volume, group);
-  apply_adjoint(in, out);
 }
 
 }  // namespace mpm

@@ -1,6 +1,7 @@
 // Nonlocal (integral) average of a per-point tensor over a material length l (Bazant & Jirasek
-// 2002, J. Eng. Mech. 128) and its adjoint: the operator of the macro scale's regularisation
-// (gradient_regularisation.hpp; docs/design/mpm.md, "Regularisation").
+// 2002, J. Eng. Mech. 128) and its adjoint, summed over the pairs of points: one operator of the
+// macro scale's regularisation (point_average.hpp, gradient_regularisation.hpp;
+// docs/design/mpm.md, "Regularisation").
 #pragma once
 
 #include <cstdint>
@@ -8,11 +9,9 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "mpm/point_average.hpp"
 
 namespace mpm {
-
-/// The Gaussian kernel is cut at this many lengths (its weight there: exp(-4.5) = 1.1 %) [-].
-inline constexpr double kNonlocalCutoff = 3.0;
 
 /// Lbar_p = sum_q w_pq V_q L_q / sum_q w_pq V_q over the points q of the same group as p (a group
 /// is a material: materials are never mixed), with w_pq = exp(-|x_p - x_q|^2 / (2 l^2)) for
@@ -21,8 +20,11 @@ inline constexpr double kNonlocalCutoff = 3.0;
 /// boundary (there the average is one-sided). Each point's sum runs over its neighbours in a fixed
 /// order (bins of side 3 l, then point order): the result depends on neither the thread count
 /// nor the order of the calls.
-class NonlocalAverage {
+class NonlocalAverage final : public PointAverage {
  public:
+  using PointAverage::apply;
+  using PointAverage::apply_adjoint;
+
   /// length: l [m], > 0 (common::InputError otherwise).
   explicit NonlocalAverage(double length);
 
@@ -32,32 +34,23 @@ class NonlocalAverage {
   /// cells, about 1,000 pairs per point). Pre: x, volume and group have the same size (common::
   /// NumericalError otherwise), volumes > 0.
   void prepare(const std::vector<common::Vec3>& x, const std::vector<double>& volume,
-               const std::vector<std::int32_t>& group);
+               const std::vector<std::int32_t>& group) override;
   /// True when the last prepare saw exactly these positions and volumes (bit for bit).
   [[nodiscard]] bool prepared_for(const std::vector<common::Vec3>& x,
-                                  const std::vector<double>& volume) const {
+                                  const std::vector<double>& volume) const override {
     return prepared_ && x == x_ && volume == volume_;
   }
 
   /// out[p] = Lbar_p with the prepared neighbours (out is resized; it must not alias in). Pre:
   /// prepared, for in.size() points (common::NumericalError otherwise).
-  void apply(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) const;
+  void apply(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) override;
   /// The adjoint (transpose) of apply in the volume-weighted inner product: out[q] = sum_p w_pq
   /// V_p in[p] / W_p, W_p = sum_r w_pr V_r (same groups, same kernel): sum_p V_p s_p : (N L)_p =
   /// sum_q V_q (N^T s)_q : L_q for any fields s, L, so a stress paired with averaged rates becomes
   /// one of internal forces. Keeps sum_q V_q out[q] = sum_p V_p in[p]. Pre: as apply.
-  void apply_adjoint(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) const;
+  void apply_adjoint(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) override;
 
-  /// prepare, then apply.
-  void apply(const std::vector<common::Vec3>& x, const std::vector<double>& volume,
-             const std::vector<std::int32_t>& group, const std::vector<common::Mat3>& in,
-             std::vector<common::Mat3>& out);
-  /// prepare, then apply_adjoint.
-  void apply_adjoint(const std::vector<common::Vec3>& x, const std::vector<double>& volume,
-                     const std::vector<std::int32_t>& group, const std::vector<common::Mat3>& in,
-                     std::vector<common::Mat3>& out);
-
-  [[nodiscard]] double length() const { return length_; }
+  [[nodiscard]] double length() const override { return length_; }
 
  private:
   /// fn(q, r^2) for every q of p's group within 3 l of p, p included, in the fixed order.

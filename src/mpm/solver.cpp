@@ -43,7 +43,8 @@ Solver::Solver(SolverConfig config, MaterialPoints points, std::vector<MaterialM
   check_shape_domains(config_.shape, config_.grid, points_, config_.plane_strain_axis);
   fields_.resize(config_.grid);
   if (config_.regularisation_length > 0.0) {
-    regularisation_.emplace(config_.regularisation_length, config_.regularisation_modulus);
+    regularisation_.emplace(config_.regularisation_length, config_.regularisation_modulus,
+                            config_.regularisation_average);
   }
 }
 

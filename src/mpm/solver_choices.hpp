@@ -9,7 +9,7 @@
 
 namespace mpm {
 
-inline constexpr common::ChoiceTable<SolverConfig, 9> kSolverChoices{
+inline constexpr common::ChoiceTable<SolverConfig, 10> kSolverChoices{
     "mpm",
     {common::choice<&SolverConfig::shape, kShapeKindNames>(
          "shape_function", "Shape functions: linear (the paper's), uGIMP or quadratic B-spline."),
@@ -59,6 +59,13 @@ inline constexpr common::ChoiceTable<SolverConfig, 9> kSolverChoices{
          "transfer",
          "flip: the FLIP/PIC velocity blend of mpm.flip (the paper's); apic: affine PIC (Jiang et "
          "al. 2015), each point also carries the grid's velocity gradient, so a homogeneous "
-         "deformation survives with one point per cell (docs/design/mpm.md, Transfers).")}};
+         "deformation survives with one point per cell (docs/design/mpm.md, Transfers)."),
+     common::choice<&SolverConfig::regularisation_average, kAverageKindNames>(
+         "regularisation.average",
+         "How the regularisation's Gaussian average over l is computed. pairs: summed over every "
+         "pair of points within 3 l (exact; its cost grows as the points times (3 l / point "
+         "spacing)^2 in plane strain). lattice: the points' tensors spread to a lattice of "
+         "spacing l / 3, smoothed there axis by axis and read back (the same kernel to a few per "
+         "cent; its cost grows as the points; docs/design/mpm.md, Regularisation).")}};
 
 }  // namespace mpm
