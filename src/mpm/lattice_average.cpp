@@ -102,12 +102,9 @@ void LatticeAverage::prepare(const std::vector<common::Vec3>& x, const std::vect
     }
     corner_[p] = idx[0] + n_[0] * (idx[1] + n_[1] * idx[2]);
   });
-  // W_p: the smoothing of the volumes (a scalar carried in the (0, 0) component).
-  std::vector<common::Mat3> ones(n, common::Mat3::Zero());
-  for (auto& m : ones) m(0, 0) = 1.0;
-  std::vector<common::Mat3> sums;
-  smooth(ones, volume, sums);
-  for (std::size_t p = 0; p < n; ++p) weight_sum_[p] = sums[p](0, 0);  // > 0: p's own weight
+  // W_p: the smoothing of the volumes.
+  smooth<1>([&](std::size_t p, double* v) { v[0] = volume[p]; },
+            [&](std::size_t p, const double* sum) { weight_sum_[p] = sum[0]; });  // > 0: p's own
   prepared_ = true;
 }
 
@@ -149,37 +146,36 @@ void LatticeAverage::convolve(std::vector<double>& f, int components) {
   }
 }
 
-void LatticeAverage::smooth(const std::vector<common::Mat3>& in, const std::vector<double>& a,
-                            std::vector<common::Mat3>& out) {
-  const std::size_t n = in.size();
-  out.assign(n, common::Mat3::Zero());
+template <int C, class Value, class Store>
+void LatticeAverage::smooth(Value&& value, Store&& store) {
+  const std::size_t n = corner_.size();
   const std::int64_t nodes = n_[0] * n_[1] * n_[2];
   for (std::size_t g = 0; g < groups_; ++g) {
-    field_.assign(static_cast<std::size_t>(nodes * kTensor), 0.0);
+    field_.assign(static_cast<std::size_t>(nodes * C), 0.0);
     // Onto the lattice in point order (a fixed order: the same bits on any thread count).
     for (std::size_t p = 0; p < n; ++p) {
       if (static_cast<std::size_t>(slot_[p]) != g) continue;
-      const common::Mat3 v = a[p] * in[p];
+      double v[C];
+      value(p, v);
       for (int c = 0; c < 8; ++c) {
         const double w = corner_weight(frac_[p], c);
         if (w == 0.0) continue;
-        double* dst = &field_[static_cast<std::size_t>(corner_node(corner_[p], c, n_) * kTensor)];
-        for (int k = 0; k < kTensor; ++k) dst[k] += w * v.data()[k];
+        double* dst = &field_[static_cast<std::size_t>(corner_node(corner_[p], c, n_) * C)];
+        for (int k = 0; k < C; ++k) dst[k] += w * v[k];
       }
     }
-    convolve(field_, kTensor);
+    convolve(field_, C);
     for_each_index(static_cast<std::int64_t>(n), [&](std::int64_t ip) {
       const auto p = static_cast<std::size_t>(ip);
       if (static_cast<std::size_t>(slot_[p]) != g) return;
-      common::Mat3 sum = common::Mat3::Zero();
+      double sum[C] = {};
       for (int c = 0; c < 8; ++c) {
         const double w = corner_weight(frac_[p], c);
         if (w == 0.0) continue;
-        const double* src =
-            &field_[static_cast<std::size_t>(corner_node(corner_[p], c, n_) * kTensor)];
-        for (int k = 0; k < kTensor; ++k) sum.data()[k] += w * src[k];
+        const double* src = &field_[static_cast<std::size_t>(corner_node(corner_[p], c, n_) * C)];
+        for (int k = 0; k < C; ++k) sum[k] += w * src[k];
       }
-      out[p] = sum;
+      store(p, sum);
     });
   }
 }
@@ -189,11 +185,14 @@ void LatticeAverage::apply(const std::vector<common::Mat3>& in, std::vector<comm
   if (!prepared_ || n != weight_sum_.size()) {
     throw common::NumericalError("LatticeAverage::apply: not prepared for these points");
   }
-  smooth(in, volume_, out);
-  for_each_index(static_cast<std::int64_t>(n), [&](std::int64_t ip) {
-    const auto p = static_cast<std::size_t>(ip);
-    out[p] /= weight_sum_[p];
-  });
+  out.resize(n);
+  smooth<kTensor>(
+      [&](std::size_t p, double* v) {
+        for (int k = 0; k < kTensor; ++k) v[k] = volume_[p] * in[p].data()[k];
+      },
+      [&](std::size_t p, const double* sum) {
+        for (int k = 0; k < kTensor; ++k) out[p].data()[k] = sum[k] / weight_sum_[p];
+      });
 }
 
 void LatticeAverage::apply_adjoint(const std::vector<common::Mat3>& in,
@@ -202,9 +201,15 @@ void LatticeAverage::apply_adjoint(const std::vector<common::Mat3>& in,
   if (!prepared_ || n != weight_sum_.size()) {
     throw common::NumericalError("LatticeAverage::apply_adjoint: not prepared for these points");
   }
-  scale_.resize(n);
-  for (std::size_t p = 0; p < n; ++p) scale_[p] = volume_[p] / weight_sum_[p];
-  smooth(in, scale_, out);
+  out.resize(n);
+  smooth<kTensor>(
+      [&](std::size_t p, double* v) {
+        const double a = volume_[p] / weight_sum_[p];
+        for (int k = 0; k < kTensor; ++k) v[k] = a * in[p].data()[k];
+      },
+      [&](std::size_t p, const double* sum) {
+        for (int k = 0; k < kTensor; ++k) out[p].data()[k] = sum[k];
+      });
 }
 
 std::unique_ptr<PointAverage> make_point_average(AverageKind kind, double length) {

@@ -51,10 +51,10 @@ class LatticeAverage final : public PointAverage {
   [[nodiscard]] double spacing() const { return spacing_; }
 
  private:
-  /// out[p] = sum_u c_up (G f)_u for the points of every group, f_u = sum_q c_uq a_q in[q]: the
-  /// smoothing of the per-point tensors a_q in[q] (a_q given per point), one group at a time.
-  void smooth(const std::vector<common::Mat3>& in, const std::vector<double>& a,
-              std::vector<common::Mat3>& out);
+  /// store(p, sum_u c_up (G f)_u) for the points of every group, one group at a time, with
+  /// f_u = sum_q c_uq value(q): the smoothing of C per-point numbers (value(q, double[C])).
+  template <int C, class Value, class Store>
+  void smooth(Value&& value, Store&& store);
   /// The separable Gaussian on the lattice field f (nodes x C doubles, node-major), axis by axis.
   void convolve(std::vector<double>& f, int components);
 
@@ -71,7 +71,6 @@ class LatticeAverage final : public PointAverage {
   std::vector<common::Vec3> x_;             ///< x_p at prepare [m]
   std::vector<double> volume_;              ///< V_p at prepare [m^3]
   std::vector<double> weight_sum_;          ///< W_p [m^3]
-  std::vector<double> scale_;               ///< scratch: a_p
   std::vector<double> field_;               ///< scratch: the lattice field
   std::vector<double> line_;                ///< scratch: one line of it
 };
