@@ -19,7 +19,7 @@ KINDS = ["set-up and development", "job writers", "analysis and figures", "pure-
 KIND = {
     "dev": 0, "device": 0, "node_bundle.sh": 0, "regress": 0, "run_jobs.py": 0, "tools_index.py": 0,
     "biaxial_make_jobs.py": 1, "footing_make_job.py": 1, "column_scale_job.py": 1,
-    "band_fit.py": 2, "biaxial_analysis.py": 2, "biaxial_compare.py": 2, "biaxial_dem_seeds.py": 2,
+    "band_fit.py": 2, "biaxial_analysis.py": 2, "biaxial_field_convergence.py": 2, "biaxial_compare.py": 2, "biaxial_dem_seeds.py": 2,
     "biaxial_j_maps.py": 2, "biaxial_paraview.py": 2, "biaxial_seed_mean.py": 2,
     "column_cell_stress.py": 2, "column_frictional_family.py": 2, "column_grain_scale.py": 2, "column_inertial_numbers.py": 2, "column_resolution_figure.py": 2,
     "footing_curves.py": 2, "footing_sparing_map.py": 2, "footing_family.py": 2, "bearing_capacity.py": 2,

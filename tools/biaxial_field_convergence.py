@@ -1,0 +1,144 @@
+#!/usr/bin/python3
+"""How far apart the biaxial runs of a mesh study are, field by field: each run's accumulated deviatoric strain at one axial strain, averaged over common bins of the undeformed specimen, and the relative RMS difference between successive meshes.
+
+A band that is set by the mesh moves and thins from mesh to mesh, so the difference between two
+successive meshes stays large; a field that converges (a material length resolved by the cells)
+differs less and less. The fields are compared in the material frame: each point is binned by its
+position in the first output row (the undeformed specimen), so the bins are the same material on
+every mesh. Bins: the coarsest run's cells (each then holds whole cells' points of every finer
+mesh). Volume-weighted means per bin; the difference of runs a and b is sqrt(sum_bins (a - b)^2
+/ sum_bins b^2), b the finer.
+
+    /usr/bin/python3 tools/biaxial_field_convergence.py RUN_16x32 RUN_32x64 RUN_64x128 [--at-strain 0.105]
+    /usr/bin/python3 tools/biaxial_field_convergence.py --self-test
+
+Needs python3-h5py and python3-numpy (Debian); reads what tools/biaxial_analysis.py reads.
+"""
+import argparse
+import os
+import sys
+
+try:
+    import numpy as np
+except ImportError:  # the test suite skips the self-test without numpy (exit 77)
+    sys.exit(77 if __name__ == "__main__" else "biaxial_field_convergence: numpy is needed")
+
+
+def hencky_dev(F):
+    """Equivalent deviatoric Hencky strain sqrt(2/3 e':e') of each row of F (n x 9)."""
+    F = F.reshape(-1, 3, 3)
+    C = np.einsum("nki,nkj->nij", F, F)
+    w, v = np.linalg.eigh(C)
+    E = np.einsum("nij,nj,nkj->nik", v, 0.5 * np.log(w), v)
+    tr = np.trace(E, axis1=1, axis2=2)
+    dev = E - tr[:, None, None] / 3.0 * np.eye(3)
+    return np.sqrt(2.0 / 3.0 * np.einsum("nij,nij->n", dev, dev))
+
+
+def binned(x0, value, volume, lo, size, shape):
+    """Volume-weighted mean of value over the bins of the (x, z) plane (NaN where a bin is empty)."""
+    i = np.clip(((x0[:, 0] - lo[0]) / size[0]).astype(int), 0, shape[0] - 1)
+    k = np.clip(((x0[:, 2] - lo[1]) / size[1]).astype(int), 0, shape[1] - 1)
+    num = np.zeros(shape)
+    den = np.zeros(shape)
+    np.add.at(num, (i, k), volume * value)
+    np.add.at(den, (i, k), volume)
+    with np.errstate(invalid="ignore"):
+        return num / den
+
+
+def relative_difference(a, b):
+    """sqrt(sum (a - b)^2 / sum b^2) over the bins both fill."""
+    both = np.isfinite(a) & np.isfinite(b)
+    return float(np.sqrt(((a - b)[both] ** 2).sum() / (b[both] ** 2).sum()))
+
+
+def read_run(path, at_strain):
+    import h5py
+    import tomllib
+    with open(os.path.join(path, "job.toml"), "rb") as f:
+        job = tomllib.load(f)
+    body = job["mpm"]["body"][0]
+    h = job["mpm"]["grid"]["spacing"]
+    with h5py.File(os.path.join(path, "results.h5"), "r") as f:
+        names = f["constraints"].attrs["names"]
+        names = (names.decode() if isinstance(names, bytes) else names).split(",")
+        platen = [k for k, n in enumerate(names) if n.startswith("platen")][0]
+        H = body["max"][2] - body["min"][2]
+        D = f["constraints/displacement"][:, platen, 2]
+        eps = -np.log(1.0 + D / H)
+        past = np.nonzero(eps >= at_strain)[0]
+        row = int(past[0]) if past.size else len(eps) - 1
+        x0 = f["points/x"][0]
+        F = f["points/F"][row]
+        vol = f["points/volume"][row]
+    return {"label": os.path.basename(os.path.normpath(path)), "x0": x0, "eps_dev": hencky_dev(F),
+            "volume": vol, "h": (h[0], h[2]), "lo": (body["min"][0], body["min"][2]),
+            "size": (body["max"][0] - body["min"][0], H), "eps": float(eps[row])}
+
+
+def compare(runs):
+    """Rows (a, b, difference) for successive runs, binned on the coarsest run's cells."""
+    coarse = max(runs, key=lambda r: r["h"][0])
+    size = coarse["h"]
+    shape = (int(round(coarse["size"][0] / size[0])), int(round(coarse["size"][1] / size[1])))
+    fields = [binned(r["x0"], r["eps_dev"], r["volume"], coarse["lo"], size, shape) for r in runs]
+    rows = []
+    for a in range(len(runs) - 1):
+        rows.append((runs[a]["label"], runs[a + 1]["label"],
+                     relative_difference(fields[a], fields[a + 1])))
+    return rows, fields
+
+
+def self_test():
+    """A band of fixed width converges, a band one cell wide on every mesh does not."""
+    rng = np.random.default_rng(1)
+
+    def run(cells, width_of):
+        h = 0.05 / cells
+        xs = (np.arange(2 * cells) + 0.5) * 0.5 * h
+        zs = (np.arange(4 * cells) + 0.5) * 0.5 * h
+        X, Z = np.meshgrid(xs, zs, indexing="ij")
+        x0 = np.stack([X.ravel(), np.zeros(X.size), Z.ravel()], axis=1)
+        d = np.abs((Z.ravel() - 0.05) - (X.ravel() - 0.025)) / np.sqrt(2.0)
+        w = width_of(h)
+        value = np.exp(-0.5 * (d / w) ** 2) * 0.2 * 0.005 / w + 1e-3 * rng.random(d.size)
+        return {"label": f"{cells}", "x0": x0, "eps_dev": value, "volume": np.full(d.size, h * h),
+                "h": (h, h), "lo": (0.0, 0.0), "size": (0.05, 0.1), "eps": 0.1}
+
+    fixed = [run(c, lambda h: 0.004) for c in (16, 32, 64)]
+    mesh = [run(c, lambda h: 1.0 * h) for c in (16, 32, 64)]
+    df = [r[2] for r in compare(fixed)[0]]
+    dm = [r[2] for r in compare(mesh)[0]]
+    assert df[1] < df[0] and df[1] < 0.05, df
+    assert dm[1] > 0.3 and dm[0] > 0.3, dm
+    print(f"self-test: fixed width {df[0]:.3f} -> {df[1]:.3f}; one cell wide {dm[0]:.3f} -> {dm[1]:.3f}: ok")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("runs", nargs="*", help="run directories, coarse to fine")
+    ap.add_argument("--at-strain", type=float, default=0.105, help="log axial strain (default 0.105)")
+    ap.add_argument("--self-test", action="store_true")
+    args = ap.parse_args()
+    if args.self_test:
+        self_test()
+        return 0
+    if len(args.runs) < 2:
+        ap.error("give at least two runs, coarse to fine")
+    runs = [read_run(p, args.at_strain) for p in args.runs]
+    rows, fields = compare(runs)
+    print("| run | axial strain | eps_dev bin max / mean |")
+    print("|---|---|---|")
+    for r, f in zip(runs, fields):
+        print(f"| {r['label']} | {r['eps']:.4f} | {np.nanmax(f):.3f} / {np.nanmean(f):.3f} |")
+    print()
+    print("| coarser | finer | relative RMS difference of the binned fields |")
+    print("|---|---|---|")
+    for a, b, d in rows:
+        print(f"| {a} | {b} | {d:.3f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
