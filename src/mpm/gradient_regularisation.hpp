@@ -19,7 +19,7 @@ class GradientRegularisation {
  public:
   /// length: l [m] > 0; modulus: H [Pa] > 0 (common::InputError otherwise); average: how the
   /// nonlocal average is computed (point_average.hpp).
-  GradientRegularisation(double length, double modulus, AverageKind average = AverageKind::pairs);
+  GradientRegularisation(double length, double modulus, AverageKind average);
 
   /// One step's strain increment: e_p += dt (D_p - Dbar_p + W_p e_p - e_p W_p), D and W the
   /// symmetric and skew parts of L_p, Dbar the nonlocal average of D (same material). Returns the

@@ -64,7 +64,7 @@ class PointAverage {
 /// How the average is computed (job key mpm.regularisation.average).
 enum class AverageKind {
   pairs,    ///< the exact sum over the pairs of points within 3 l (NonlocalAverage)
-  lattice,  ///< through an auxiliary lattice of spacing l / 3 (LatticeAverage)
+  lattice,  ///< through an auxiliary lattice of spacing l / 3 (LatticeAverage; the default)
 };
 inline constexpr std::array<common::Named<AverageKind>, 2> kAverageKindNames{
     {{"pairs", AverageKind::pairs}, {"lattice", AverageKind::lattice}}};

@@ -122,10 +122,10 @@ struct SolverConfig {
   double regularisation_length = 0.0;
   /// Its modulus H [Pa]: the stiffness of the energy on a point's strain minus its average.
   double regularisation_modulus = 0.0;
-  /// How the regularisation's Gaussian average is computed: pairs (exact, cost ~ points x
-  /// neighbours within 3 l) or lattice (through a lattice of spacing l / 3, cost ~ points +
-  /// lattice nodes; docs/design/mpm.md, "Regularisation").
-  AverageKind regularisation_average = AverageKind::pairs;
+  /// How the regularisation's Gaussian average is computed: lattice (through a lattice of
+  /// spacing l / 3, cost ~ points + lattice nodes) or pairs (exact, cost ~ points x neighbours
+  /// within 3 l; docs/design/mpm.md, "Regularisation").
+  AverageKind regularisation_average = AverageKind::lattice;
   /// Sub-cell stress relaxation (mpm/subcell_relaxation.hpp; docs/design/mpm.md): the points of
   /// a cell relax their stresses towards the cell's mean over tau = subcell_relaxation h / c (h
   /// the smallest grid spacing, c the materials' largest wave speed, mass-scaled); 0 = off [-].
