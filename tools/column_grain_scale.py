@@ -769,7 +769,9 @@ VARIANTS = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99
            ("the same, strained, free flight in one DEM step, gravity x (1 + 1e-6)",
             "2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_g1e-6"),
            ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3"),
-           ("the same, sub-cell relaxation r = 2", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2")]
+           ("the same, sub-cell relaxation r = 2", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2"),
+           ("the same, RVEs without contacts strained, not held",
+            "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained")]
 
 
 def gap(value, ref):
