@@ -156,6 +156,13 @@ void expect_choices_in_schema(const common::ChoiceTable<S, N>& table) {
     only_choices.add(section.substr(0, dot), app::Type::Table, "a parent section");
   }
   only_choices.add(section, app::Type::Table, "the section");
+  for (const auto& row : table) {  // a row in a sub-table of the section (regularisation.average)
+    const std::string key(row.key);
+    for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', dot + 1)) {
+      const std::string sub = section + "." + key.substr(0, dot);
+      if (only_choices.find(sub) == nullptr) only_choices.add(sub, app::Type::Table, "a sub-table");
+    }
+  }
   app::add_choices(only_choices, table);
   for (const auto& row : table) {
     for (std::size_t i = 0; i < row.count; ++i) {
