@@ -74,6 +74,7 @@ class Run:
         self.W = body["max"][0] - body["min"][0]
         self.T = body["max"][1] - body["min"][1]
         self.H = body["max"][2] - body["min"][2]
+        self.lo = (body["min"][0], body["min"][2])  # the specimen's corner in (x, z) [m]
         self.cells = (round(self.W / self.h), round(self.H / job["mpm"]["grid"]["spacing"][2]))
         f = h5py.File(os.path.join(path, "results.h5"), "r")
         self.f = f

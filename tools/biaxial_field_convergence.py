@@ -12,7 +12,7 @@ mesh). Volume-weighted means per bin; the difference of runs a and b is sqrt(sum
     /usr/bin/python3 tools/biaxial_field_convergence.py RUN_16x32 RUN_32x64 RUN_64x128 [--at-strain 0.105]
     /usr/bin/python3 tools/biaxial_field_convergence.py --self-test
 
-Needs python3-h5py and python3-numpy (Debian); reads what tools/biaxial_analysis.py reads.
+Needs python3-numpy, and python3-h5py to read runs (Debian); reads them with tools/biaxial_analysis.py.
 """
 import argparse
 import os
@@ -22,17 +22,6 @@ try:
     import numpy as np
 except ImportError:  # --help works without it; the self-test exits 77 (skipped by the suite)
     np = None
-
-
-def hencky_dev(F):
-    """Equivalent deviatoric Hencky strain sqrt(2/3 e':e') of each row of F (n x 9)."""
-    F = F.reshape(-1, 3, 3)
-    C = np.einsum("nki,nkj->nij", F, F)
-    w, v = np.linalg.eigh(C)
-    E = np.einsum("nij,nj,nkj->nik", v, 0.5 * np.log(w), v)
-    tr = np.trace(E, axis1=1, axis2=2)
-    dev = E - tr[:, None, None] / 3.0 * np.eye(3)
-    return np.sqrt(2.0 / 3.0 * np.einsum("nij,nij->n", dev, dev))
 
 
 def binned(x0, value, volume, lo, size, shape):
@@ -54,27 +43,14 @@ def relative_difference(a, b):
 
 
 def read_run(path, at_strain):
-    import h5py
-    import tomllib
-    with open(os.path.join(path, "job.toml"), "rb") as f:
-        job = tomllib.load(f)
-    body = job["mpm"]["body"][0]
-    h = job["mpm"]["grid"]["spacing"]
-    with h5py.File(os.path.join(path, "results.h5"), "r") as f:
-        names = f["constraints"].attrs["names"]
-        names = (names.decode() if isinstance(names, bytes) else names).split(",")
-        platen = [k for k, n in enumerate(names) if n.startswith("platen")][0]
-        H = body["max"][2] - body["min"][2]
-        D = f["constraints/displacement"][:, platen, 2]
-        eps = -np.log(1.0 + D / H)
-        past = np.nonzero(eps >= at_strain)[0]
-        row = int(past[0]) if past.size else len(eps) - 1
-        x0 = f["points/x"][0]
-        F = f["points/F"][row]
-        vol = f["points/volume"][row]
-    return {"label": os.path.basename(os.path.normpath(path)), "x0": x0, "eps_dev": hencky_dev(F),
-            "volume": vol, "h": (h[0], h[2]), "lo": (body["min"][0], body["min"][2]),
-            "size": (body["max"][0] - body["min"][0], H), "eps": float(eps[row])}
+    """A run as tools/biaxial_analysis.py reads it, at the first row past the axial strain."""
+    from biaxial_analysis import Run  # the biaxial's reader (needs h5py), beside this tool
+    r = Run(path)
+    row = r.row_at(at_strain)
+    return {"label": r.label, "x0": r.x[0], "eps_dev": r.eps_dev(row),
+            "volume": r.f["points/volume"][row], "h": (r.h, r.H / r.cells[1]),
+            "lo": r.lo,
+            "size": (r.W, r.H), "eps": float(r.eps[row])}
 
 
 def compare(runs):
