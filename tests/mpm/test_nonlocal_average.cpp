@@ -1,14 +1,10 @@
-// Tests of nonlocal_average.hpp: a homogeneous field is unchanged everywhere, a linear one in the
-// interior of a regular arrangement, a point source spreads as the cut Gaussian of standard
-// deviation l and keeps its integral, materials are not mixed, threads do not change a bit, and
-// the adjoint is the transpose in the volume-weighted product.
+// Tests of nonlocal_average.hpp (the pairs' sum) beyond the contract both averages share
+// (test_point_average.cpp): a linear field is unchanged in the interior of a regular arrangement
+// and a point source spreads as the cut Gaussian of standard deviation l, keeping its integral.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <cmath>
-#include <random>
 
-#include "common/errors.hpp"
 #include "mpm/nonlocal_average.hpp"
 #include "plane_lattice.hpp"
 
@@ -28,24 +24,6 @@ void lattice(int n, double h, std::vector<Vec3>& x, std::vector<double>& vol) {
   x.clear();
   vol.clear();
   mpm_test::plane_lattice(n, n, h, x, vol);
-}
-
-TEST(NonlocalAverage, HomogeneousFieldUnchangedEverywhere) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<Vec3> x;
-  std::vector<double> vol;
-  for (int p = 0; p < 300; ++p) {
-    x.emplace_back(u(rng), 0.3 * u(rng), 2.0 * u(rng));
-    vol.push_back(0.1 + u(rng));
-  }
-  const std::vector<std::int32_t> group(x.size(), 0);
-  const std::vector<Mat3> L(x.size(), filled(0.7));
-  std::vector<Mat3> out;
-  mpm::NonlocalAverage avg(0.1);
-  avg.apply(x, vol, group, L, out);
-  // A normalised mean of equal tensors: a few ulps of |L| ~ 3.
-  for (std::size_t p = 0; p < x.size(); ++p) EXPECT_LT((out[p] - L[p]).norm(), 1e-14) << p;
 }
 
 TEST(NonlocalAverage, LinearFieldUnchangedWhereTheKernelIsWhole) {
@@ -105,91 +83,6 @@ TEST(NonlocalAverage, PointSourceSpreadsOverTheLength) {
   EXPECT_NEAR(std::sqrt(second / integral / 2.0), expected, 0.01 * expected);
   EXPECT_LT(farthest, mpm::kNonlocalCutoff * l);
   EXPECT_GT(farthest, mpm::kNonlocalCutoff * l - 1.5 * h);
-}
-
-TEST(NonlocalAverage, MaterialsAreNotMixed) {
-  const double h = 0.01;
-  std::vector<Vec3> x;
-  std::vector<double> vol;
-  lattice(12, h, x, vol);
-  std::vector<std::int32_t> group;
-  std::vector<Mat3> L;
-  for (std::size_t p = 0; p < x.size(); ++p) {
-    group.push_back(static_cast<std::int32_t>(p % 3 == 0));
-    L.push_back(filled(group.back() == 1 ? 2.0 : -1.0));
-  }
-  std::vector<Mat3> out;
-  mpm::NonlocalAverage(0.02).apply(x, vol, group, L, out);
-  for (std::size_t p = 0; p < x.size(); ++p) EXPECT_LT((out[p] - L[p]).norm(), 1e-14) << p;
-}
-
-TEST(NonlocalAverage, ThreadCountDoesNotChangeABit) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> x;
-  std::vector<double> vol;
-  std::vector<Mat3> L;
-  for (int p = 0; p < 6000; ++p) {  // above kMinParallelPoints: a parallel loop
-    x.emplace_back(u(rng), 0.1 * u(rng), u(rng));
-    vol.push_back(1.5 + u(rng));
-    L.push_back(filled(u(rng)));
-  }
-  const std::vector<std::int32_t> group(x.size(), 0);
-  std::vector<Mat3> one, three;
-  mpm::NonlocalAverage avg(0.05);
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(1);
-  avg.apply(x, vol, group, L, one);
-  omp_set_num_threads(3);
-  avg.apply(x, vol, group, L, three);
-  omp_set_num_threads(before);
-  for (std::size_t p = 0; p < x.size(); ++p) ASSERT_TRUE(one[p] == three[p]) << p;
-}
-
-// The stress of the internal forces: <sigma, N L>_V = <N^T sigma, L>_V for any fields (the forces'
-// power on the points' L is the materials' on the average), and N^T keeps the integral.
-TEST(NonlocalAverage, AdjointIsTheTransposeInTheVolumeProduct) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Vec3> x;
-  std::vector<double> vol;
-  std::vector<Mat3> L, sigma;
-  std::vector<std::int32_t> group;
-  for (int p = 0; p < 400; ++p) {
-    x.emplace_back(u(rng), 0.0, 2.0 * u(rng));
-    vol.push_back(1.5 + u(rng));
-    L.push_back(filled(u(rng)) + u(rng) * Mat3::Identity());
-    sigma.push_back(filled(u(rng)).transpose() + u(rng) * Mat3::Identity());
-    group.push_back(p % 5 == 0 ? 1 : 0);
-  }
-  mpm::NonlocalAverage avg(0.2);
-  std::vector<Mat3> NL, Ns;
-  avg.apply(x, vol, group, L, NL);
-  avg.apply_adjoint(x, vol, group, sigma, Ns);
-  double lhs = 0.0, rhs = 0.0, scale = 0.0;
-  Mat3 before = Mat3::Zero(), after = Mat3::Zero();
-  for (std::size_t p = 0; p < x.size(); ++p) {
-    lhs += vol[p] * sigma[p].cwiseProduct(NL[p]).sum();
-    rhs += vol[p] * Ns[p].cwiseProduct(L[p]).sum();
-    scale += vol[p] * sigma[p].norm() * L[p].norm();
-    before += vol[p] * sigma[p];
-    after += vol[p] * Ns[p];
-  }
-  // Sums of 400 terms of order 1 in another order: 1e-13 of their magnitude is rounding.
-  EXPECT_NEAR(lhs, rhs, 1e-13 * scale);
-  EXPECT_LT((before - after).norm(), 1e-13 * scale);
-  // It is not the plain average (the kernel sums differ near the edges): the test can fail.
-  std::vector<Mat3> plain;
-  avg.apply(x, vol, group, sigma, plain);
-  double differ = 0.0;
-  for (std::size_t p = 0; p < x.size(); ++p) differ = std::max(differ, (plain[p] - Ns[p]).norm());
-  EXPECT_GT(differ, 1e-3);
-}
-
-TEST(NonlocalAverage, RefusesANonPositiveLength) {
-  EXPECT_THROW(mpm::NonlocalAverage(0.0), common::InputError);
-  EXPECT_THROW(mpm::NonlocalAverage(-1e-3), common::InputError);
-  EXPECT_THROW(mpm::NonlocalAverage(std::nan("")), common::InputError);
 }
 
 }  // namespace
