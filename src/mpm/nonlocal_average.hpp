@@ -35,21 +35,14 @@ class NonlocalAverage final : public PointAverage {
   /// NumericalError otherwise), volumes > 0.
   void prepare(const std::vector<common::Vec3>& x, const std::vector<double>& volume,
                const std::vector<std::int32_t>& group) override;
-  /// True when the last prepare saw exactly these positions and volumes (bit for bit).
   [[nodiscard]] bool prepared_for(const std::vector<common::Vec3>& x,
                                   const std::vector<double>& volume) const override {
     return prepared_ && x == x_ && volume == volume_;
   }
-
-  /// out[p] = Lbar_p with the prepared neighbours (out is resized; it must not alias in). Pre:
-  /// prepared, for in.size() points (common::NumericalError otherwise).
+  /// With the prepared neighbours (PointAverage::apply).
   void apply(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) override;
-  /// The adjoint (transpose) of apply in the volume-weighted inner product: out[q] = sum_p w_pq
-  /// V_p in[p] / W_p, W_p = sum_r w_pr V_r (same groups, same kernel): sum_p V_p s_p : (N L)_p =
-  /// sum_q V_q (N^T s)_q : L_q for any fields s, L, so a stress paired with averaged rates becomes
-  /// one of internal forces. Keeps sum_q V_q out[q] = sum_p V_p in[p]. Pre: as apply.
+  /// With the prepared neighbours: q's own row lists its p's (PointAverage::apply_adjoint).
   void apply_adjoint(const std::vector<common::Mat3>& in, std::vector<common::Mat3>& out) override;
-
   [[nodiscard]] double length() const override { return length_; }
 
  private:
