@@ -1,4 +1,5 @@
-// Test helper: a regular plane (x, z) lattice of points, the nonlocal average's test field.
+// Test helpers: a regular plane (x, z) lattice of points and a tensor field value, the nonlocal
+// averages' test fields.
 #pragma once
 
 #include <vector>
@@ -16,6 +17,13 @@ inline void plane_lattice(int nx, int nz, double h, std::vector<common::Vec3>& x
       volume.push_back(h * h);
     }
   }
+}
+
+/// A tensor with distinct entries, scaled by a: a field value that no symmetry hides.
+inline common::Mat3 filled(double a) {
+  common::Mat3 m;
+  m << a, 2 * a, 3 * a, -a, 0.5 * a, 0.0, 0.25 * a, a, -2 * a;
+  return m;
 }
 
 }  // namespace mpm_test

@@ -18,11 +18,7 @@ namespace {
 using common::Mat3;
 using common::Vec3;
 
-Mat3 filled(double a) {
-  Mat3 m;
-  m << a, 2 * a, 3 * a, -a, 0.5 * a, 0.0, 0.25 * a, a, -2 * a;
-  return m;
-}
+using mpm_test::filled;
 
 template <class Average>
 class PointAverage : public ::testing::Test {};
