@@ -771,7 +771,9 @@ VARIANTS = [("cells of L0/8, 2 x 2 points per cell", "2x2_E3MPa_wallpts_flip0.99
            ("cells of L0/16, 2 x 2 points per cell", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3"),
            ("the same, sub-cell relaxation r = 2", "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_subcell2"),
            ("the same, RVEs without contacts strained, not held",
-            "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained")]
+            "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
+           ("the same, strained, free flight in one DEM step",
+            "h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight")]
 
 
 def gap(value, ref):
