@@ -14,9 +14,9 @@ namespace mpm {
 
 namespace {
 
-void check_sizes(std::size_t n, std::size_t volume, std::size_t group, std::size_t in) {
-  if (volume != n || group != n || in != n) {
-    throw common::NumericalError("NonlocalAverage: x, volume, group and the field differ in size");
+void check_sizes(std::size_t n, std::size_t volume, std::size_t group) {
+  if (volume != n || group != n) {
+    throw common::NumericalError("NonlocalAverage: x, volume and group differ in size");
   }
 }
 
@@ -64,7 +64,7 @@ void NonlocalAverage::for_neighbours(std::size_t p, const std::vector<common::Ve
 void NonlocalAverage::prepare(const std::vector<common::Vec3>& x, const std::vector<double>& volume,
                               const std::vector<std::int32_t>& group) {
   const std::size_t n = x.size();
-  check_sizes(n, volume.size(), group.size(), n);
+  check_sizes(n, volume.size(), group.size());
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
     throw common::NumericalError("NonlocalAverage: more than 2^31 points");
   }
