@@ -97,7 +97,9 @@ def self_test():
 
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
-        smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0):
+        smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0, softening=None):
+    """softening: None, or (residual friction angle [deg], softening strain [-]) of the frictional
+    continuum."""
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
@@ -114,8 +116,8 @@ def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header
         base_where = 'face = "z-"\n'
     initial_stress = '\ninitial_stress = ["-100 kPa", "-100 kPa", "-100 kPa", 0.0, 0.0, 0.0]'
     if material == "frictional":
-        title = (f"Plane-strain biaxial, frictional continuum (Drucker-Prager, {friction_angle:g} deg), "
-                 f"{nx} x {nz} cells")
+        title = (f"Plane-strain biaxial, frictional continuum (Drucker-Prager, {friction_angle:g} deg"
+                 + (f" softening to {softening[0]:g} deg" if softening else "") + f"), {nx} x {nz} cells")
     else:
         title = f"Plane-strain biaxial, MPM x DEM, {nx} x {nz} cells, {4 * nx * nz} RVEs of {spheres} spheres"
     if reg_mm > 0:
@@ -159,6 +161,10 @@ young_modulus = "50 MPa"
 poisson_ratio = 0.3
 friction_angle = "{friction_angle:g} deg"
 """
+    if softening:
+        elastic_table = elastic_table.replace("elastic-perfectly plastic", "elastic-plastic, friction softening,")
+        elastic_table += (f'residual_friction_angle = "{softening[0]:g} deg"\n'
+                          f"softening_strain = {softening[1]:g}         # accumulated plastic shear strain to the residual\n")
     lines = [header.rstrip(), f'title = "{title}"', "",
              elastic_table if material == "frictional" else dem_tables,
              f"""[mpm]
@@ -243,6 +249,9 @@ def main():
                     help="dem: every point an RVE; frictional: the Drucker-Prager continuum "
                          "(mpm.elastic with friction_angle), a cheap reference for the mesh studies")
     ap.add_argument("--friction-angle", type=float, default=40.0, help="frictional: phi [deg]")
+    ap.add_argument("--softening", type=float, nargs=2, default=None, metavar=("PHI_R_DEG", "GAMMA"),
+                    help="frictional: friction softening to the residual angle PHI_R_DEG, reached at "
+                         "the accumulated plastic shear strain GAMMA (default: none)")
     ap.add_argument("--header", default="")
     ap.add_argument("--out")
     ap.add_argument("--self-test", action="store_true")
@@ -254,7 +263,8 @@ def main():
         a.pad = math.ceil(0.025 / (W / a.mesh[0]) - 1e-9)
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
                a.mass_scaling, a.every, a.header, a.platen,
-               a.smoothing, a.shape, a.regularisation[0], a.regularisation[1], a.material, a.friction_angle)
+               a.smoothing, a.shape, a.regularisation[0], a.regularisation[1], a.material, a.friction_angle,
+               a.softening)
     open(a.out, "w").write(text)
 
 

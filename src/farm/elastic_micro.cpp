@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "common/tensor.hpp"
 #include "mpm/drucker_prager.hpp"
+#include "mpm/friction_softening.hpp"
 
 namespace farm {
 
@@ -40,6 +41,17 @@ void ElasticMicroParams::validate() const {
     bad("friction_angle", friction_angle, "must be in [0, pi/2) rad");
   if (!(dilatancy_angle >= 0.0 && dilatancy_angle <= friction_angle))
     bad("dilatancy_angle", dilatancy_angle, "must be in [0, friction_angle] rad");
+  if (!(softening_strain >= 0.0 && std::isfinite(softening_strain)))
+    bad("softening_strain", softening_strain, "must be finite and >= 0");
+  if (softening_strain > 0.0) {
+    if (!(friction_angle > 0.0))
+      bad("softening_strain", softening_strain, "needs a friction angle > 0");
+    if (dilatancy_angle != 0.0)
+      bad("softening_strain", softening_strain, "needs dilatancy_angle = 0 (a deviatoric flow)");
+    if (!(residual_friction_angle >= 0.0 && residual_friction_angle <= friction_angle))
+      bad("residual_friction_angle", residual_friction_angle,
+          "must be in [0, friction_angle] rad");
+  }
 }
 
 ElasticMicro::ElasticMicro(std::int64_t id, const ElasticMicroParams& params)
@@ -93,6 +105,15 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
   const mpm::DruckerPragerCone cone =
       mpm::plane_strain_cone(params_.friction_angle, params_.dilatancy_angle);
   auto ret = [&](const common::Mat3& trial) {
+    if (params_.softening_strain > 0.0) {
+      const mpm::FrictionSoftening softening{std::sin(params_.friction_angle),
+                                             std::sin(params_.residual_friction_angle),
+                                             params_.softening_strain};
+      const mpm::SofteningResult r =
+          mpm::softening_return(trial, softening, plastic_shear_, c.mu);
+      plastic_shear_ = r.gamma;
+      return r.result;
+    }
     return mpm::drucker_prager_return(trial, cone, bulk, c.mu);
   };
   if (free_volume_ > 0.0) {  // disconnected: a dilation adds to the free volume, stress-free
@@ -138,12 +159,16 @@ void ElasticMicro::save(common::StateWriter& w) const {
   w.write("elastic/params/initial_stress", nine(params_.initial_stress));
   common::write_scalar(w, "elastic/params/friction_angle", params_.friction_angle);
   common::write_scalar(w, "elastic/params/dilatancy_angle", params_.dilatancy_angle);
+  common::write_scalar(w, "elastic/params/softening_strain", params_.softening_strain);
+  common::write_scalar(w, "elastic/params/residual_friction_angle",
+                       params_.residual_friction_angle);
   common::write_scalar(w, "elastic/params/substeps", params_.substeps);
   common::write_scalar(w, "elastic/params/fail_id", params_.fail_id);
   common::write_scalar(w, "elastic/params/fail_step", params_.fail_step);
   w.write("elastic/stress", nine(stress_));
   common::write_scalar(w, "elastic/j", j_);
   common::write_scalar(w, "elastic/free_volume", free_volume_);
+  common::write_scalar(w, "elastic/plastic_shear_strain", plastic_shear_);
   common::write_scalar(w, "elastic/steps", steps_);
 }
 
@@ -152,10 +177,10 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   // elastic/int_params (3).
   const std::int64_t version =
       r.has("elastic/version") ? common::read_scalar_i64(r, "elastic/version") : 1;
-  if (version != kElasticStateVersion && version != 2 && version != 3) {
+  if (version < 2 || version > kElasticStateVersion) {
     throw common::InputError(
         "elastic micro state: field 'elastic/version' = " + std::to_string(version) +
-        (r.has("elastic/version") ? "" : " (absent)") + ": this build reads versions 2, 3 and " +
+        (r.has("elastic/version") ? "" : " (absent)") + ": this build reads versions 2 to " +
         std::to_string(kElasticStateVersion) +
         " only (version 1 stored the parameters as the positional array "
         "'elastic/params'; versions 2 to 4 store named fields such as 'elastic/params/young'); "
@@ -180,6 +205,13 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
       version >= 3 ? common::read_scalar_f64(r, "elastic/params/friction_angle") : 0.0;
   params.dilatancy_angle =
       version >= 4 ? common::read_scalar_f64(r, "elastic/params/dilatancy_angle") : 0.0;
+  if (version >= 5) {
+    params.softening_strain = common::read_scalar_f64(r, "elastic/params/softening_strain");
+    params.residual_friction_angle =
+        common::read_scalar_f64(r, "elastic/params/residual_friction_angle");
+  } else {
+    params.residual_friction_angle = params.friction_angle;
+  }
   params.substeps = common::read_scalar_i64(r, "elastic/params/substeps");
   params.fail_id = common::read_scalar_i64(r, "elastic/params/fail_id");
   params.fail_step = common::read_scalar_i64(r, "elastic/params/fail_step");
@@ -196,6 +228,14 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
     if (!(m->free_volume_ >= 0.0 && std::isfinite(m->free_volume_))) {
       throw common::InputError("elastic micro state: field 'elastic/free_volume' = " +
                                std::to_string(m->free_volume_) + ": must be finite and >= 0");
+    }
+  }
+  if (version >= 5) {
+    m->plastic_shear_ = common::read_scalar_f64(r, "elastic/plastic_shear_strain");
+    if (!(m->plastic_shear_ >= 0.0 && std::isfinite(m->plastic_shear_))) {
+      throw common::InputError("elastic micro state: field 'elastic/plastic_shear_strain' = " +
+                               std::to_string(m->plastic_shear_) +
+                               ": must be finite and >= 0");
     }
   }
   return m;

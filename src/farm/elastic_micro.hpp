@@ -15,8 +15,10 @@ namespace farm {
 /// field): positional arrays elastic/params and elastic/int_params; 2: one named field per
 /// parameter; 3: adds elastic/params/friction_angle and elastic/free_volume (a version-2 state is
 /// read as friction_angle = 0, free volume 0); 4: adds elastic/params/dilatancy_angle (a version-2
-/// or 3 state is read as dilatancy_angle = 0).
-inline constexpr std::int64_t kElasticStateVersion = 4;
+/// or 3 state is read as dilatancy_angle = 0); 5: adds elastic/params/residual_friction_angle,
+/// elastic/params/softening_strain and elastic/plastic_shear_strain (an older state is read
+/// without softening: softening_strain = 0, residual_friction_angle = friction_angle).
+inline constexpr std::int64_t kElasticStateVersion = 5;
 
 struct ElasticMicroParams {
   double young = 0.0;        ///< E [Pa], > 0
@@ -31,6 +33,14 @@ struct ElasticMicroParams {
   /// angle (mpm::plane_strain_cone) [rad], in [0, friction_angle]. 0: deviatoric flow; equal to
   /// friction_angle: associated flow, for which Prandtl's bearing capacity is exact.
   double dilatancy_angle = 0.0;
+  /// Friction softening (mpm/friction_softening.hpp): sin(phi) falls linearly with the
+  /// accumulated plastic shear strain from sin(friction_angle) to sin(residual_friction_angle),
+  /// reached at softening_strain [-]. 0: no softening (perfectly plastic). > 0 needs a friction
+  /// angle and no dilatancy.
+  double softening_strain = 0.0;
+  /// Residual friction angle of the softening [rad], in [0, friction_angle]; read only when
+  /// softening_strain > 0.
+  double residual_friction_angle = 0.0;
   /// Cost knob: every step is split into this many equal sub-increments (>= 1). Gives RVEs of
   /// different cost for balancing tests; the stress depends on it (it is part of the model).
   std::int64_t substeps = 1;
@@ -87,6 +97,7 @@ class ElasticMicro final : public MicroModel {
 
   double j_ = 1.0;            ///< volume ratio V / V0 [-]
   double free_volume_ = 0.0;  ///< ln(V / V_connected) >= 0 of a disconnected material [-]
+  double plastic_shear_ = 0.0;  ///< accumulated plastic shear strain of the softening [-]
   std::int64_t steps_ = 0;
 };
 

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <utility>
 #include <variant>
@@ -90,10 +92,11 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   p.void_ratio0 = 0.55;
   p.friction_angle = 0.5;
   p.dilatancy_angle = 0.25;
+  p.residual_friction_angle = 0.4;  // read only with softening_strain > 0, saved always
   const farm::ElasticMicro m(4, p);
   common::StateStore s;
   m.save(s);
-  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{4});
+  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{5});
   EXPECT_EQ(s.read_i64("elastic/id"), std::vector<std::int64_t>{4});
   EXPECT_EQ(s.read_f64("elastic/params/young"), std::vector<double>{p.young});
   EXPECT_EQ(s.read_f64("elastic/params/poisson"), std::vector<double>{p.poisson});
@@ -105,6 +108,9 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   EXPECT_EQ(s0[8], p.initial_stress(2, 2));
   EXPECT_EQ(s.read_f64("elastic/params/friction_angle"), std::vector<double>{0.5});
   EXPECT_EQ(s.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{0.25});
+  EXPECT_EQ(s.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{0.4});
+  EXPECT_EQ(s.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
+  EXPECT_EQ(s.read_f64("elastic/plastic_shear_strain"), std::vector<double>{0.0});
   EXPECT_EQ(s.read_i64("elastic/params/substeps"), std::vector<std::int64_t>{3});
   EXPECT_EQ(s.read_i64("elastic/params/fail_id"), std::vector<std::int64_t>{9});
   EXPECT_EQ(s.read_i64("elastic/params/fail_step"), std::vector<std::int64_t>{11});
@@ -127,7 +133,7 @@ TEST(ElasticMicro, OldVersionRefused) {
     ADD_FAILURE() << "a version-1 state was loaded";
   } catch (const common::InputError& e) {
     const std::string m = e.what();
-    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2, 3 and 4 only",
+    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2 to 5 only",
                                "elastic/params/young"}) {
       EXPECT_NE(m.find(needle), std::string::npos) << m;
     }
@@ -142,7 +148,9 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
   common::StateStore v2;
   for (const auto& [name, field] : s.fields()) {
     if (name == "elastic/params/friction_angle" || name == "elastic/params/dilatancy_angle" ||
-        name == "elastic/version")
+        name == "elastic/params/softening_strain" ||
+        name == "elastic/params/residual_friction_angle" ||
+        name == "elastic/plastic_shear_strain" || name == "elastic/version")
       continue;
     std::visit([&v2, &name](const auto& values) { v2.write(name, values); }, field);
   }
@@ -168,7 +176,10 @@ TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
   m.save(s);
   common::StateStore v3;
   for (const auto& [name, field] : s.fields()) {
-    if (name == "elastic/params/dilatancy_angle" || name == "elastic/version") continue;
+    if (name == "elastic/params/dilatancy_angle" || name == "elastic/params/softening_strain" ||
+        name == "elastic/params/residual_friction_angle" ||
+        name == "elastic/plastic_shear_strain" || name == "elastic/version")
+      continue;
     std::visit([&v3, &name](const auto& values) { v3.write(name, values); }, field);
   }
   v3.write("elastic/version", std::vector<std::int64_t>{3});
@@ -178,6 +189,88 @@ TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
     (void)loaded->step(L, 1e-4);
   }
   EXPECT_EQ(loaded->stress(), m.stress());
+}
+
+// A version-4 state (before the softening) is read without softening and continues as the same
+// state saved by this version would.
+TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
+  farm::ElasticMicroParams p = params();
+  p.friction_angle = 0.6;
+  p.dilatancy_angle = 0.2;
+  farm::ElasticMicro m(4, p, -1e4 * common::Mat3::Identity());
+  common::Mat3 L = common::Mat3::Zero();
+  L(0, 2) = 1.0;
+  for (int k = 0; k < 50; ++k) (void)m.step(L, 1e-4);
+  common::StateStore s;
+  m.save(s);
+  common::StateStore v4;
+  for (const auto& [name, field] : s.fields()) {
+    if (name == "elastic/params/softening_strain" ||
+        name == "elastic/params/residual_friction_angle" ||
+        name == "elastic/plastic_shear_strain" || name == "elastic/version")
+      continue;
+    std::visit([&v4, &name](const auto& values) { v4.write(name, values); }, field);
+  }
+  v4.write("elastic/version", std::vector<std::int64_t>{4});
+  const auto loaded = farm::ElasticMicro::load(v4);
+  common::StateStore again;
+  loaded->save(again);
+  EXPECT_EQ(again.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
+  EXPECT_EQ(again.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{0.6});
+  for (int k = 0; k < 50; ++k) {
+    (void)m.step(L, 1e-4);
+    (void)loaded->step(L, 1e-4);
+  }
+  EXPECT_EQ(loaded->stress(), m.stress());
+}
+
+// With softening, a simple shear at constant volume mobilises the peak friction, then falls to
+// the residual one (tau = p0 sin(phi)); a state saved on the softening branch continues bit for
+// bit, carrying its plastic shear strain.
+TEST(ElasticMicro, SofteningFallsFromPeakToResidualFriction) {
+  farm::ElasticMicroParams p = params();
+  p.friction_angle = 40.0 * M_PI / 180.0;
+  p.residual_friction_angle = 30.0 * M_PI / 180.0;
+  p.softening_strain = 0.05;
+  const double p0 = 1e5;
+  farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
+  common::Mat3 L = common::Mat3::Zero();
+  L(0, 2) = 1.0;  // simple shear, 1 /s
+  double peak = 0.0;
+  std::unique_ptr<farm::MicroModel> copy;
+  for (int k = 1; k <= 1500; ++k) {  // gamma = 0.15: three times the softening strain
+    (void)m.step(L, 1e-4);
+    peak = std::max(peak, std::abs(m.stress()(0, 2)));
+    if (copy) (void)copy->step(L, 1e-4);
+    if (k == 400) {
+      common::StateStore s;
+      m.save(s);
+      const double gamma_p = s.read_f64("elastic/plastic_shear_strain")[0];
+      EXPECT_GT(gamma_p, 0.0);
+      EXPECT_LT(gamma_p, p.softening_strain);  // on the softening branch
+      copy = farm::ElasticMicro::load(s);
+    }
+  }
+  EXPECT_NEAR(peak, p0 * std::sin(p.friction_angle), 0.01 * p0);
+  EXPECT_NEAR(std::abs(m.stress()(0, 2)), p0 * std::sin(p.residual_friction_angle), 0.01 * p0);
+  EXPECT_TRUE(copy->stress() == m.stress());
+}
+
+// Softening needs a friction angle and a deviatoric flow, and a residual angle not above the peak.
+TEST(ElasticMicro, SofteningParametersAreChecked) {
+  farm::ElasticMicroParams p = params();
+  p.softening_strain = 0.05;
+  EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);  // no friction angle
+  p.friction_angle = 0.6;
+  p.residual_friction_angle = 0.7;
+  EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);  // residual above the peak
+  p.residual_friction_angle = 0.5;
+  p.dilatancy_angle = 0.1;
+  EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);  // dilatant
+  p.dilatancy_angle = 0.0;
+  EXPECT_NO_THROW(farm::ElasticMicro(0, p));
+  p.softening_strain = -1.0;
+  EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);
 }
 
 // With a friction angle the model is elastic-perfectly plastic: a simple shear at constant volume

@@ -190,8 +190,39 @@ void regularisation_rules(const Job& job, Rules& r) {
   }
 }
 
-// The dilatancy of the Drucker-Prager continuum: with its friction angle, and not above it.
+// The friction softening: both keys or neither, with a friction angle above the residual one and
+// a deviatoric flow.
+void softening_rules(const Job& job, Rules& r) {
+  const std::string phi_r = "mpm.elastic.residual_friction_angle";
+  const std::string gamma = "mpm.elastic.softening_strain";
+  if (!job.has(phi_r) && !job.has(gamma)) return;
+  if (!job.has(gamma)) {
+    r.fail(phi_r, "needs mpm.elastic.softening_strain: the strain at which it is reached");
+    return;
+  }
+  if (!job.has(phi_r)) {
+    r.fail(gamma, "needs mpm.elastic.residual_friction_angle: the friction it softens to");
+    return;
+  }
+  const std::string phi = "mpm.elastic.friction_angle";
+  if (!job.has(phi)) {
+    r.fail(phi_r, "needs mpm.elastic.friction_angle: the peak it softens from");
+  } else if (job.number(phi_r) > job.number(phi)) {
+    r.fail(phi_r, fmt::format("must be <= mpm.elastic.friction_angle ({:g} deg): friction "
+                              "softens, it does not harden",
+                              job.number(phi)));
+  }
+  const std::string psi = "mpm.elastic.dilatancy_angle";
+  if (job.has(psi) && job.number(psi) != 0.0) {
+    r.fail(psi, "must be 0 with mpm.elastic.softening_strain: the softening cone has a "
+                "deviatoric flow");
+  }
+}
+
+// The dilatancy of the Drucker-Prager continuum: with its friction angle, and not above it; then
+// its softening.
 void continuum_rules(const Job& job, Rules& r) {
+  softening_rules(job, r);
   const std::string psi = "mpm.elastic.dilatancy_angle";
   if (!job.has(psi)) return;
   const std::string phi = "mpm.elastic.friction_angle";

@@ -116,6 +116,17 @@ void add_elastic(Schema& s) {
         "equal to friction_angle: associated flow, for which Prandtl's bearing capacity is exact.")
       .unit(Q::Angle)
       .in(0, 90, false, true);
+  s.add("mpm.elastic.residual_friction_angle", Type::Float,
+        "Friction softening (with softening_strain; needs friction_angle, no dilatancy): sin(phi) "
+        "falls linearly with the accumulated plastic shear strain from sin(friction_angle) to "
+        "sin(residual_friction_angle), at most friction_angle (docs/design/mpm.md, Frictional "
+        "continuum). Absent: perfectly plastic.")
+      .unit(Q::Angle)
+      .in(0, 90, false, true);
+  s.add("mpm.elastic.softening_strain", Type::Float,
+        "The accumulated plastic shear strain at which the friction reaches "
+        "residual_friction_angle (with it).")
+      .in(0, std::nullopt, true);
 }
 
 // The boundary conditions: [[mpm.velocity]] constraints and [[mpm.traction]] loads.

@@ -44,6 +44,10 @@ farm::ElasticMicroParams elastic_params(const Job& job, const MpmSetup& setup,
     p.friction_angle = job.number("mpm.elastic.friction_angle") * M_PI / 180.0;
   if (job.has("mpm.elastic.dilatancy_angle"))
     p.dilatancy_angle = job.number("mpm.elastic.dilatancy_angle") * M_PI / 180.0;
+  if (job.has("mpm.elastic.softening_strain")) {
+    p.softening_strain = job.number("mpm.elastic.softening_strain");
+    p.residual_friction_angle = job.number("mpm.elastic.residual_friction_angle") * M_PI / 180.0;
+  }
   p.validate();
   return p;
 }
