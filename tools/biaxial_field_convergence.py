@@ -10,7 +10,12 @@ mesh). Volume-weighted means per bin; the difference of runs a and b is sqrt(sum
 / sum_bins b^2), b the finer.
 
     /usr/bin/python3 tools/biaxial_field_convergence.py RUN_16x32 RUN_32x64 RUN_64x128 [--at-strain 0.105]
+    /usr/bin/python3 tools/biaxial_field_convergence.py --maps FIG.png RUN[:LABEL] ... [--at-strain 0.105]
     /usr/bin/python3 tools/biaxial_field_convergence.py --self-test
+
+--maps draws, instead of the table, one panel per run: its points in the deformed specimen
+coloured by the accumulated deviatoric strain at the axial strain (one colour scale for all, to
+the 99th percentile of every run's), the label (default: the run's directory name) as title.
 
 Needs python3-numpy, and python3-h5py to read runs (Debian); reads them with tools/biaxial_analysis.py.
 """
@@ -42,12 +47,12 @@ def relative_difference(a, b):
     return float(np.sqrt(((a - b)[both] ** 2).sum() / (b[both] ** 2).sum()))
 
 
-def read_run(path, at_strain):
+def read_run(path, at_strain, label=None):
     """A run as tools/biaxial_analysis.py reads it, at the first row past the axial strain."""
     from biaxial_analysis import Run  # the biaxial's reader (needs h5py), beside this tool
-    r = Run(path)
+    r = Run(path, label)
     row = r.row_at(at_strain)
-    return {"label": r.label, "x0": r.x[0], "eps_dev": r.eps_dev(row),
+    return {"label": r.label, "x0": r.x[0], "x": r.x[row], "eps_dev": r.eps_dev(row),
             "volume": r.f["points/volume"][row], "h": (r.h, r.H / r.cells[1]),
             "lo": r.lo,
             "size": (r.W, r.H), "eps": float(r.eps[row])}
@@ -64,6 +69,34 @@ def compare(runs):
         rows.append((runs[a]["label"], runs[a + 1]["label"],
                      relative_difference(fields[a], fields[a + 1])))
     return rows, fields
+
+
+def draw_maps(runs, out):
+    """One panel per run: the points where they are, coloured by eps_dev, one colour scale."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    top = max(float(np.percentile(r["eps_dev"], 99)) for r in runs)
+    fig, axs = plt.subplots(1, len(runs), figsize=(2.5 * len(runs) + 1.0, 4.4), squeeze=False,
+                            layout="constrained")
+    for ax, r in zip(axs[0], runs):
+        x = 1e3 * r["x"][:, 0]
+        z = 1e3 * r["x"][:, 2]
+        ax.set_xlim(x.min() - 2.0, x.max() + 2.0)
+        ax.set_ylim(z.min() - 2.0, z.max() + 2.0)
+        ax.set_aspect("equal")
+        fig.canvas.draw()  # the axes' final size: one square marker per point spacing
+        pts_per_mm = (ax.transData.transform((1.0, 0.0)) - ax.transData.transform((0.0, 0.0)))[0] \
+            * 72.0 / fig.dpi
+        side = 1.4 * 0.5e3 * r["h"][0] * pts_per_mm  # 2 points per cell, overlapping where they spread
+        sc = ax.scatter(x, z, c=r["eps_dev"], s=side ** 2, marker="s", cmap="viridis", vmin=0.0,
+                        vmax=top, linewidths=0)
+        ax.set_xlabel("x [mm]")
+        ax.set_title(f"{r['label']}\neps_a {100 * r['eps']:.1f} %", fontsize=8)
+    axs[0][0].set_ylabel("z [mm]")
+    fig.colorbar(sc, ax=axs[0].tolist(), label="accumulated deviatoric strain", shrink=0.8)
+    fig.savefig(out, dpi=110)
+    print("wrote", out)
 
 
 def self_test():
@@ -95,6 +128,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="*", help="run directories, coarse to fine")
     ap.add_argument("--at-strain", type=float, default=0.105, help="log axial strain (default 0.105)")
+    ap.add_argument("--maps", metavar="FIG", help="draw the runs' strain maps (RUN[:LABEL]) to FIG")
     ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
     if np is None:
@@ -102,6 +136,10 @@ def main():
         return 77 if args.self_test else 1
     if args.self_test:
         self_test()
+        return 0
+    if args.maps:
+        specs = [p.split(":", 1) if ":" in p else (p, None) for p in args.runs]
+        draw_maps([read_run(p, args.at_strain, label) for p, label in specs], args.maps)
         return 0
     if len(args.runs) < 2:
         ap.error("give at least two runs, coarse to fine")
