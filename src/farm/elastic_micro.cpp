@@ -49,8 +49,7 @@ void ElasticMicroParams::validate() const {
     if (dilatancy_angle != 0.0)
       bad("softening_strain", softening_strain, "needs dilatancy_angle = 0 (a deviatoric flow)");
     if (!(residual_friction_angle >= 0.0 && residual_friction_angle <= friction_angle))
-      bad("residual_friction_angle", residual_friction_angle,
-          "must be in [0, friction_angle] rad");
+      bad("residual_friction_angle", residual_friction_angle, "must be in [0, friction_angle] rad");
   }
 }
 
@@ -109,8 +108,7 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
       const mpm::FrictionSoftening softening{std::sin(params_.friction_angle),
                                              std::sin(params_.residual_friction_angle),
                                              params_.softening_strain};
-      const mpm::SofteningResult r =
-          mpm::softening_return(trial, softening, plastic_shear_, c.mu);
+      const mpm::SofteningResult r = mpm::softening_return(trial, softening, plastic_shear_, c.mu);
       plastic_shear_ = r.gamma;
       return r.result;
     }
@@ -234,8 +232,7 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
     m->plastic_shear_ = common::read_scalar_f64(r, "elastic/plastic_shear_strain");
     if (!(m->plastic_shear_ >= 0.0 && std::isfinite(m->plastic_shear_))) {
       throw common::InputError("elastic micro state: field 'elastic/plastic_shear_strain' = " +
-                               std::to_string(m->plastic_shear_) +
-                               ": must be finite and >= 0");
+                               std::to_string(m->plastic_shear_) + ": must be finite and >= 0");
     }
   }
   return m;

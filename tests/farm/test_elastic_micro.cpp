@@ -1,8 +1,8 @@
 // Unit tests of the ElasticMicro verification model (farm/elastic_micro.hpp).
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -24,6 +24,25 @@ farm::ElasticMicroParams params() {
   p.initial_stress = -1e5 * common::Mat3::Identity();
   p.initial_stress(0, 1) = p.initial_stress(1, 0) = 2e4;
   return p;
+}
+
+// The state s as an older version of ElasticMicro wrote it: without the fields added since (the
+// version history of farm/elastic_micro.hpp), with that version's number.
+common::StateStore as_version(const common::StateStore& s, std::int64_t version) {
+  const std::vector<std::pair<std::int64_t, std::string>> added = {
+      {3, "elastic/params/friction_angle"},          {3, "elastic/free_volume"},
+      {4, "elastic/params/dilatancy_angle"},         {5, "elastic/params/softening_strain"},
+      {5, "elastic/params/residual_friction_angle"}, {5, "elastic/plastic_shear_strain"}};
+  common::StateStore old;
+  for (const auto& [name, field] : s.fields()) {
+    const bool later = std::any_of(added.begin(), added.end(), [&](const auto& a) {
+      return a.first > version && a.second == name;
+    });
+    if (later || name == "elastic/version") continue;
+    std::visit([&old, &name](const auto& values) { old.write(name, values); }, field);
+  }
+  old.write("elastic/version", std::vector<std::int64_t>{version});
+  return old;
 }
 
 }  // namespace
@@ -133,8 +152,8 @@ TEST(ElasticMicro, OldVersionRefused) {
     ADD_FAILURE() << "a version-1 state was loaded";
   } catch (const common::InputError& e) {
     const std::string m = e.what();
-    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2 to 5 only",
-                               "elastic/params/young"}) {
+    for (const char* needle :
+         {"'elastic/version' = 1 (absent)", "reads versions 2 to 5 only", "elastic/params/young"}) {
       EXPECT_NE(m.find(needle), std::string::npos) << m;
     }
   }
@@ -145,16 +164,7 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
   const farm::ElasticMicro m(4, params());
   common::StateStore s;
   m.save(s);
-  common::StateStore v2;
-  for (const auto& [name, field] : s.fields()) {
-    if (name == "elastic/params/friction_angle" || name == "elastic/params/dilatancy_angle" ||
-        name == "elastic/params/softening_strain" ||
-        name == "elastic/params/residual_friction_angle" ||
-        name == "elastic/plastic_shear_strain" || name == "elastic/version")
-      continue;
-    std::visit([&v2, &name](const auto& values) { v2.write(name, values); }, field);
-  }
-  v2.write("elastic/version", std::vector<std::int64_t>{2});
+  const common::StateStore v2 = as_version(s, 2);
   const auto loaded = farm::ElasticMicro::load(v2);
   common::StateStore again;
   loaded->save(again);
@@ -174,15 +184,7 @@ TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
   for (int k = 0; k < 50; ++k) (void)m.step(L, 1e-4);
   common::StateStore s;
   m.save(s);
-  common::StateStore v3;
-  for (const auto& [name, field] : s.fields()) {
-    if (name == "elastic/params/dilatancy_angle" || name == "elastic/params/softening_strain" ||
-        name == "elastic/params/residual_friction_angle" ||
-        name == "elastic/plastic_shear_strain" || name == "elastic/version")
-      continue;
-    std::visit([&v3, &name](const auto& values) { v3.write(name, values); }, field);
-  }
-  v3.write("elastic/version", std::vector<std::int64_t>{3});
+  const common::StateStore v3 = as_version(s, 3);
   const auto loaded = farm::ElasticMicro::load(v3);
   for (int k = 0; k < 50; ++k) {
     (void)m.step(L, 1e-4);
@@ -203,15 +205,7 @@ TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
   for (int k = 0; k < 50; ++k) (void)m.step(L, 1e-4);
   common::StateStore s;
   m.save(s);
-  common::StateStore v4;
-  for (const auto& [name, field] : s.fields()) {
-    if (name == "elastic/params/softening_strain" ||
-        name == "elastic/params/residual_friction_angle" ||
-        name == "elastic/plastic_shear_strain" || name == "elastic/version")
-      continue;
-    std::visit([&v4, &name](const auto& values) { v4.write(name, values); }, field);
-  }
-  v4.write("elastic/version", std::vector<std::int64_t>{4});
+  const common::StateStore v4 = as_version(s, 4);
   const auto loaded = farm::ElasticMicro::load(v4);
   common::StateStore again;
   loaded->save(again);

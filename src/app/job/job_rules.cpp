@@ -214,8 +214,9 @@ void softening_rules(const Job& job, Rules& r) {
   }
   const std::string psi = "mpm.elastic.dilatancy_angle";
   if (job.has(psi) && job.number(psi) != 0.0) {
-    r.fail(psi, "must be 0 with mpm.elastic.softening_strain: the softening cone has a "
-                "deviatoric flow");
+    r.fail(psi,
+           "must be 0 with mpm.elastic.softening_strain: the softening cone has a "
+           "deviatoric flow");
   }
 }
 
