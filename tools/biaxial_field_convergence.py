@@ -13,6 +13,8 @@ mesh). Volume-weighted means per bin; the difference of runs a and b is sqrt(sum
     /usr/bin/python3 tools/biaxial_field_convergence.py --maps FIG.png RUN[:LABEL] ... [--at-strain 0.105]
     /usr/bin/python3 tools/biaxial_field_convergence.py --self-test
 
+The table gives per run also A50, the share of the specimen's volume that carries half of its
+accumulated deviatoric strain (a width measure that needs no band fit: it suits a diffuse X).
 --maps draws, instead of the table, one panel per run: its points in the deformed specimen
 coloured by the accumulated deviatoric strain at the axial strain (one colour scale for all, to
 the 99th percentile of every run's), the label (default: the run's directory name) as title.
@@ -56,6 +58,17 @@ def read_run(path, at_strain, label=None):
             "volume": r.f["points/volume"][row], "h": (r.h, r.H / r.cells[1]),
             "lo": r.lo,
             "size": (r.W, r.H), "eps": float(r.eps[row])}
+
+
+def a50(run):
+    """The share of the specimen's volume that carries half of its accumulated deviatoric strain
+    (the points with the largest strain first): about w L / (2 A) for a band of thickness w and
+    length L in a specimen of area A; 0.5 for a uniform field."""
+    e, v = run["eps_dev"], run["volume"]
+    order = np.argsort(-e, kind="stable")
+    carried = np.cumsum((e * v)[order]) / float((e * v).sum())
+    n = int(np.searchsorted(carried, 0.5)) + 1
+    return float(v[order][:n].sum() / v.sum())
 
 
 def compare(runs):
@@ -121,7 +134,12 @@ def self_test():
     dm = [r[2] for r in compare(mesh)[0]]
     assert df[1] < df[0] and df[1] < 0.05, df
     assert dm[1] > 0.3 and dm[0] > 0.3, dm
-    print(f"self-test: fixed width {df[0]:.3f} -> {df[1]:.3f}; one cell wide {dm[0]:.3f} -> {dm[1]:.3f}: ok")
+    uniform = dict(fixed[0], eps_dev=np.ones(fixed[0]["eps_dev"].size))
+    assert abs(a50(uniform) - 0.5) < 0.01, a50(uniform)
+    band = a50(mesh[2])  # a band one cell (0.78 mm) wide, 0.141 m long, in 0.05 x 0.1 m
+    assert 0.005 < band < 0.05, band
+    print(f"self-test: fixed width {df[0]:.3f} -> {df[1]:.3f}; one cell wide {dm[0]:.3f} -> {dm[1]:.3f}; "
+          f"A50 uniform {a50(uniform):.3f}, thin band {band:.3f}: ok")
 
 
 def main():
@@ -145,10 +163,11 @@ def main():
         ap.error("give at least two runs, coarse to fine")
     runs = [read_run(p, args.at_strain) for p in args.runs]
     rows, fields = compare(runs)
-    print("| run | axial strain | eps_dev bin max / mean |")
-    print("|---|---|---|")
+    print("| run | axial strain | eps_dev bin max / mean | A50 (share carrying half the strain) |")
+    print("|---|---|---|---|")
     for r, f in zip(runs, fields):
-        print(f"| {r['label']} | {r['eps']:.4f} | {np.nanmax(f):.3f} / {np.nanmean(f):.3f} |")
+        print(f"| {r['label']} | {r['eps']:.4f} | {np.nanmax(f):.3f} / {np.nanmean(f):.3f} | "
+              f"{a50(r):.3f} |")
     print()
     print("| coarser | finer | relative RMS difference of the binned fields |")
     print("|---|---|---|")
