@@ -45,6 +45,20 @@ common::StateStore as_version(const common::StateStore& s, std::int64_t version)
   return old;
 }
 
+// Simple shear, 1 /s.
+const common::Mat3 kShear = [] {
+  common::Mat3 L = common::Mat3::Zero();
+  L(0, 2) = 1.0;
+  return L;
+}();
+
+// A model of these parameters from an isotropic 10 kPa, sheared by kShear for 50 steps.
+farm::ElasticMicro sheared(const farm::ElasticMicroParams& p) {
+  farm::ElasticMicro m(4, p, -1e4 * common::Mat3::Identity());
+  for (int k = 0; k < 50; ++k) (void)m.step(kShear, 1e-4);
+  return m;
+}
+
 // A model and its reloaded copy, stepped alike by L, keep the same stress bit for bit.
 void expect_same_continuation(farm::MicroModel& a, farm::MicroModel& b, const common::Mat3& L) {
   for (int k = 0; k < 50; ++k) {
@@ -187,15 +201,12 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
 TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
   farm::ElasticMicroParams p = params();
   p.friction_angle = 0.6;
-  farm::ElasticMicro m(4, p, -1e4 * common::Mat3::Identity());
-  common::Mat3 L = common::Mat3::Zero();
-  L(0, 2) = 1.0;
-  for (int k = 0; k < 50; ++k) (void)m.step(L, 1e-4);
+  farm::ElasticMicro m = sheared(p);
   common::StateStore s;
   m.save(s);
   const common::StateStore v3 = as_version(s, 3);
   const auto loaded = farm::ElasticMicro::load(v3);
-  expect_same_continuation(m, *loaded, L);
+  expect_same_continuation(m, *loaded, kShear);
 }
 
 // A version-4 state (before the softening) is read without softening and continues as the same
@@ -204,10 +215,7 @@ TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
   farm::ElasticMicroParams p = params();
   p.friction_angle = 0.6;
   p.dilatancy_angle = 0.2;
-  farm::ElasticMicro m(4, p, -1e4 * common::Mat3::Identity());
-  common::Mat3 L = common::Mat3::Zero();
-  L(0, 2) = 1.0;
-  for (int k = 0; k < 50; ++k) (void)m.step(L, 1e-4);
+  farm::ElasticMicro m = sheared(p);
   common::StateStore s;
   m.save(s);
   const common::StateStore v4 = as_version(s, 4);
@@ -216,7 +224,7 @@ TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
   loaded->save(again);
   EXPECT_EQ(again.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
   EXPECT_EQ(again.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{0.6});
-  expect_same_continuation(m, *loaded, L);
+  expect_same_continuation(m, *loaded, kShear);
 }
 
 // With softening, a simple shear at constant volume mobilises the peak friction, then falls to
