@@ -6,6 +6,7 @@ I = 2.5e-4. Prints every round and the median and range of each (a benchmark: ne
 
 Usage (from the repository, after tools/dev build; YADE from the Debian package):
   /usr/bin/python3 tools/bench_contact_laws.py [--rounds 3] [--steps 3000] [--no-yade]
+      [--bench build/src/dem/bench_dem]
 """
 import argparse
 import os
@@ -29,10 +30,11 @@ def main():
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--steps", type=int, default=3000)
     ap.add_argument("--no-yade", action="store_true")
+    ap.add_argument("--bench", default=BENCH, help="the bench_dem binary (default: build/src/dem/bench_dem)")
     a = ap.parse_args()
     cases = {
-        "mpmxdem, CohFrict": [BENCH, "", "1", "1", str(a.steps), "cohfrict"],
-        "mpmxdem, Hertz-Mindlin": [BENCH, "", "1", "1", str(a.steps), "hertz_mindlin"],
+        "mpmxdem, CohFrict": [a.bench, "", "1", "1", str(a.steps), "cohfrict"],
+        "mpmxdem, Hertz-Mindlin": [a.bench, "", "1", "1", str(a.steps), "hertz_mindlin"],
     }
     if not a.no_yade:
         cases["YADE 2023.02a, Hertz-Mindlin"] = [

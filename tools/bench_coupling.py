@@ -7,7 +7,7 @@ Runs each scene of tools/bench_sparing.py with each variant of its [dem.coupling
 first is the reference; a variant is one or more lines joined with '+', e.g.
 'dt_refresh = 20+end_forces = "carried"'), in repetitions that
 alternate the variants (the machine's load drifts), every run on --np ranks with one thread per
-rank, niced. Per variant: the DEM steps (the log's "work:" line), the medians of the loop's wall
+rank, niced. Per variant: the DEM steps (the run's run_summary.json), the medians of the loop's wall
 time and of the critical rank's RVE time, their ratios to the reference's (medians of the
 per-repetition ratios: each repetition runs every variant within a few minutes), and the error
 of the scene's reference quantity against the reference run (bench_sparing's measures: footing
@@ -60,11 +60,16 @@ def split_variant(args, variant):
     return lines, tol, numerics, mpm
 
 
-def run(args, scene, variant, rep, perturbed):
-    lines, tol, numerics, mpm = split_variant(args, variant)
-    name = "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol, "" if not perturbed else
+def run_name(scene, variant, tol, rep, perturbed):
+    """The name of a run's job and output directory under --out (jobs/NAME.toml, runs/NAME)."""
+    return "%s_%s_tol%g%s_rep%d" % (scene, slug(variant), tol, "" if not perturbed else
                                     "_perturbed" + ("_" + slug(perturbed) if isinstance(perturbed, str) else ""),
                                     rep)
+
+
+def run(args, scene, variant, rep, perturbed):
+    lines, tol, numerics, mpm = split_variant(args, variant)
+    name = run_name(scene, variant, tol, rep, perturbed)
     job = os.path.join(args.out, "jobs", name + ".toml")
     out = os.path.join(args.out, "runs", name)
     os.makedirs(os.path.dirname(job), exist_ok=True)
@@ -79,9 +84,9 @@ def run(args, scene, variant, rep, perturbed):
         text += "\n[dem.numerics]\n" + "".join(x + "\n" for x in numerics)
     with open(job, "w") as f:
         f.write(text)
-    log_txt = os.path.join(out, "log.txt")
-    if args.reuse and os.path.exists(log_txt) and "] info: work: " in open(log_txt).read():
-        return (out,) + bs.parse_log(open(log_txt).read())
+    summary = os.path.join(out, "run_summary.json")
+    if args.reuse and os.path.exists(summary):
+        return (out,) + bs.read_summary(summary)
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
     cmd = ["nice", "-n", "5", "mpirun", "-n", str(args.np), args.exe, "run", job, "--out", out,
@@ -95,7 +100,7 @@ def run(args, scene, variant, rep, perturbed):
             return None
         sys.exit("run failed (exit %d): %s\n%s" % (log.returncode, " ".join(cmd),
                                                    log.stderr[-3000:]))
-    return (out,) + bs.parse_log(log.stdout + log.stderr)
+    return (out,) + bs.read_summary(summary)
 
 
 def label(perturbed):
@@ -130,7 +135,7 @@ def main():
                     help="also the reference with the job text OLD replaced by NEW ('OLD=>NEW', "
                     "repeatable): more samples of the scene's sensitivity")
     ap.add_argument("--reuse", action="store_true",
-                    help="analyse the runs already in --out (their log.txt) instead of running them")
+                    help="analyse the runs already in --out (their run_summary.json) instead of running them")
     args = ap.parse_args()
     args.exe = os.path.abspath(args.exe)
     os.makedirs(args.out, exist_ok=True)
