@@ -178,7 +178,7 @@ void Simulation::pair_forces() {
   }
 }
 
-// Long by design (~80 lines): the force loop over one block of pairs, gather, law and scatter,
+// long-function: the force loop over one block of pairs, gather, law and scatter,
 // kept in one body so that the compiler sees the whole hot loop (docs/design/dem.md, "Speed").
 void Simulation::pair_block(std::int64_t b, CohFrictBatch& batch) {
   const auto np = static_cast<std::int64_t>(contacts_.size());

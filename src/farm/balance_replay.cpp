@@ -39,6 +39,22 @@ double step_busy(const std::vector<double>& cost, const std::vector<int>& owner,
   return work;
 }
 
+// The start-up, as RveFarm: blocks, then a fresh partition on the start-up weights renamed
+// after them, its moves booked in the ledger (opened on n RVEs) and in res. Returns the owners.
+std::vector<int> start_up(const CostTraceData& trace, const ReplayOptions& o, std::size_t n,
+                          CostLedger& ledger, ReplayResult& res) {
+  std::vector<int> owner = partition_blocks(n, o.parts);
+  std::vector<int> part =
+      partition_fresh(o.style, trace.graph, trace.start_weight, o.parts, o.seed);
+  res.startup_moves = keep_owners(owner, part, o.parts);
+  ledger.reset(n, nullptr);
+  const std::int64_t first_step = trace.steps.front() - 1;
+  ledger.set_step(first_step);
+  ledger.add_migration(res.startup_moves, static_cast<double>(res.startup_moves) * o.move_s_per_rve,
+                       first_step);
+  return part;
+}
+
 }  // namespace
 
 ReplayResult replay_balance(const CostTraceData& trace, const ReplayOptions& o) {
@@ -47,19 +63,8 @@ ReplayResult replay_balance(const CostTraceData& trace, const ReplayOptions& o) 
   const std::size_t n = trace.cpu_s.front().size();
   const auto P = static_cast<std::size_t>(o.parts);
   ReplayResult res;
-  // The start-up, as RveFarm: blocks, then a fresh partition on the start-up weights renamed
-  // after them.
-  std::vector<int> owner = partition_blocks(n, o.parts);
-  std::vector<int> part =
-      partition_fresh(o.style, trace.graph, trace.start_weight, o.parts, o.seed);
-  res.startup_moves = keep_owners(owner, part, o.parts);
-  owner = std::move(part);
   CostLedger ledger;
-  ledger.reset(n, nullptr);
-  const std::int64_t first_step = trace.steps.front() - 1;
-  ledger.set_step(first_step);
-  ledger.add_migration(res.startup_moves, static_cast<double>(res.startup_moves) * o.move_s_per_rve,
-                       first_step);
+  std::vector<int> owner = start_up(trace, o, n, ledger, res);
   std::mt19937_64 rng(o.jitter_seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   double sum_mean = 0.0;

@@ -309,7 +309,7 @@ std::vector<std::string> list_checkpoints(const std::string& dir) {
   return out;
 }
 
-// Long by design (~85 lines): one collective sequence (create, every rank's datasets, checksums,
+// long-function: one collective sequence (create, every rank's datasets, checksums,
 // close, publish) that every rank runs in the same order, read in one place.
 void write_checkpoint(MPI_Comm comm, const std::string& final_path, const CheckpointData& d,
                       bool abort_mid_write) {

@@ -233,6 +233,26 @@ Share<T> share_of(std::span<const Block> blocks, const T* data, std::uint64_t ch
   return out;
 }
 
+/// Creates the dataset `name` of global_n values of T in `file` (rank 0's), in chunks of `chunk`
+/// values, shuffled and deflated (an empty one unchunked); lcpl: the link creation properties.
+template <class T>
+Handle create_chunked(hid_t file, hid_t lcpl, const std::string& name, std::uint64_t global_n,
+                      std::uint64_t chunk) {
+  const hsize_t dims[1] = {global_n};
+  Handle fspace(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
+  Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+  if (global_n > 0) {
+    const hsize_t dim[1] = {chunk};
+    check(H5Pset_chunk(dcpl.get(), 1, dim), "H5Pset_chunk " + name);
+    check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
+    check(H5Pset_deflate(dcpl.get(), kDeflateLevel), "H5Pset_deflate");
+  }
+  return Handle(check(H5Dcreate2(file, name.c_str(), native_type<T>(), fspace.get(), lcpl,
+                                 dcpl.get(), H5P_DEFAULT),
+                      "create dataset " + name),
+                H5Dclose);
+}
+
 }  // namespace
 
 template <Element T>
@@ -256,21 +276,8 @@ void File::write_blocks(const std::string& name, std::uint64_t global_n,
     return;
   }
   Handle dset;
-  on_root(name.c_str(), [&] {
-    const hsize_t dims[1] = {global_n};
-    Handle fspace(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
-    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
-    if (global_n > 0) {
-      const hsize_t dim[1] = {chunk};
-      check(H5Pset_chunk(dcpl.get(), 1, dim), "H5Pset_chunk " + name);
-      check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
-      check(H5Pset_deflate(dcpl.get(), kDeflateLevel), "H5Pset_deflate");
-    }
-    dset = Handle(check(H5Dcreate2(file_.get(), name.c_str(), native_type<T>(), fspace.get(),
-                                   lcpl_.get(), dcpl.get(), H5P_DEFAULT),
-                        "create dataset " + name),
-                  H5Dclose);
-  });
+  on_root(name.c_str(),
+          [&] { dset = create_chunked<T>(file_.get(), lcpl_.get(), name, global_n, chunk); });
   // Chunks covered in part by a rank's share, filled from every rank's raw values.
   std::map<std::uint64_t, std::vector<T>> partial;
   const auto store = [&](const Share<T>& sh) {

@@ -12,29 +12,38 @@
 
 namespace farm {
 
+namespace {
+
+/// One row's DataItem of a point series, split around the row index.
+struct Slab {
+  std::string head;  ///< text before the row index
+  std::string tail;  ///< text after it
+};
+
+/// The DataItem of row t of results.h5's dataset `ds` (m points of `per` values, nt rows), in
+/// Xdmf3's hyperslab form "file:/dataset|start:stride:count:dims", which ParaView's default
+/// reader (Xdmf3) reads; a HyperSlab DataItem with an XML selection (XDMF 2's form) gave it
+/// empty grids (ParaView 5.11, issue 19). ParaView's legacy "XDMF Reader" does not read it.
+Slab hyperslab(const char* ds, int per, std::size_t m, std::int64_t nt) {
+  const std::string dims = per > 1 ? fmt::format("{} {}", m, per) : fmt::format("{}", m);
+  Slab s;
+  s.head = fmt::format(
+      "<DataItem Dimensions=\"{}\" NumberType=\"Float\" Precision=\"8\" "
+      "Format=\"HDF\">results.h5:/{}|",
+      dims, ds);
+  s.tail = per > 1 ? fmt::format(" 0 0:1 1 1:1 {0} {1}:{2} {0} {1}</DataItem>", m, per, nt)
+                   : fmt::format(" 0:1 1:1 {0}:{1} {0}</DataItem>", m, nt);
+  return s;
+}
+
+}  // namespace
+
 void ResultsWriter::write_xdmf() const {
   // Formatted with fmt and the row-invariant text prepared once: rewriting the index of a long
   // run (13,000 rows) with iostreams took 0.4 s per flush.
   const std::size_t m = point_ids_.size();
   const std::int64_t nt = rows_;
-  struct Slab {
-    std::string head;  ///< text before the row index
-    std::string tail;  ///< text after it
-  };
-  // Xdmf3's hyperslab form "file:/dataset|start:stride:count:dims", which ParaView's default
-  // reader (Xdmf3) reads; a HyperSlab DataItem with an XML selection (XDMF 2's form) gave it
-  // empty grids (ParaView 5.11, issue 19). ParaView's legacy "XDMF Reader" does not read it.
-  auto slab = [&](const char* ds, int per) {
-    const std::string dims = per > 1 ? fmt::format("{} {}", m, per) : fmt::format("{}", m);
-    Slab s;
-    s.head = fmt::format(
-        "<DataItem Dimensions=\"{}\" NumberType=\"Float\" Precision=\"8\" "
-        "Format=\"HDF\">results.h5:/{}|",
-        dims, ds);
-    s.tail = per > 1 ? fmt::format(" 0 0:1 1 1:1 {0} {1}:{2} {0} {1}</DataItem>", m, per, nt)
-                     : fmt::format(" 0:1 1:1 {0}:{1} {0}</DataItem>", m, nt);
-    return s;
-  };
+  auto slab = [&](const char* ds, int per) { return hyperslab(ds, per, m, nt); };
   const Slab x = slab("points/x", 3);
   // Every attribute of a row, in the index's order: name in ParaView = the dataset's name.
   struct Attr {

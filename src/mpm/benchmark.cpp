@@ -80,6 +80,30 @@ void with_threads(int threads, F&& f) {
   omp_set_num_threads(saved);
 }
 
+/// The scene's base: held nodes (every node at or below z = 0), or (walls) a rigid rough wall on
+/// z = 0 and a gate at x = x_gate removed half-way through the `steps` timed steps
+/// (SceneFeatures::walls).
+void add_scene_base(Solver& solver, bool walls, double x_gate, int steps) {
+  if (walls) {
+    VelocityConstraint base{common::Vec3(-1e3, -1e3, 0.0), common::Vec3(1e3, 1e3, 0.0), {}, {}, {}};
+    base.wall = {2, -1, 10.0, WallContact::fixed};
+    base.name = "base";
+    solver.add_constraint(base);
+    VelocityConstraint gate{
+        common::Vec3(x_gate, -1e3, 0.0), common::Vec3(x_gate, 1e3, 1e3), {}, {}, {}};
+    gate.wall = {0, 1, 0.0, WallContact::no_penetration};
+    gate.until = (2 + steps / 2) * solver.next_dt();
+    gate.name = "gate";
+    solver.add_constraint(gate);
+  } else {
+    solver.add_constraint({common::Vec3::Constant(-1e3),
+                           common::Vec3(1e3, 1e3, 0.0),
+                           {true, true, true},
+                           common::Vec3::Zero(),
+                           {}});
+  }
+}
+
 }  // namespace
 
 SceneBenchmarkResult run_scene_benchmark(std::int64_t num_points, int threads, int steps,
@@ -118,27 +142,7 @@ SceneBenchmarkResult run_scene_benchmark(std::int64_t num_points, int threads, i
   fill_box(points, cfg.grid, common::Vec3::Zero(), common::Vec3(nx, ny, nz) * h,
            features.plane_strain ? common::Vec3i(2, 1, 2) : common::Vec3i(2, 2, 2), density, 0);
   Solver solver(cfg, std::move(points), {&material});
-  // Base: held nodes (every node at or below z = 0), or a rigid rough wall on z = 0 and a gate
-  // on the x+ side removed half-way through the timed steps (SceneFeatures::walls).
-  if (features.walls) {
-    VelocityConstraint base{common::Vec3(-1e3, -1e3, 0.0), common::Vec3(1e3, 1e3, 0.0), {}, {}, {}};
-    base.wall = {2, -1, 10.0, WallContact::fixed};
-    base.name = "base";
-    solver.add_constraint(base);
-    const double x_gate = nx * h;
-    VelocityConstraint gate{
-        common::Vec3(x_gate, -1e3, 0.0), common::Vec3(x_gate, 1e3, 1e3), {}, {}, {}};
-    gate.wall = {0, 1, 0.0, WallContact::no_penetration};
-    gate.until = (2 + steps / 2) * solver.next_dt();
-    gate.name = "gate";
-    solver.add_constraint(gate);
-  } else {
-    solver.add_constraint({common::Vec3::Constant(-1e3),
-                           common::Vec3(1e3, 1e3, 0.0),
-                           {true, true, true},
-                           common::Vec3::Zero(),
-                           {}});
-  }
+  add_scene_base(solver, features.walls, nx * h, steps);
   SceneBenchmarkResult r;
   with_threads(threads, [&] {
     auto step = [&] {

@@ -218,6 +218,41 @@ ShapeKind face_basis(ShapeKind kind) {
   return kind == ShapeKind::bspline2 ? ShapeKind::bspline2 : ShapeKind::linear;
 }
 
+/// The active nodes of `Shape`'s stencil at x (clipped, in cell units, to [margin, s_hi]) with
+/// their weights: node_k and S_k, the first m entries. Returns the weights' sum.
+template <class Shape, std::size_t K>
+double gather_stencil(const Grid& grid, const GridFields& fields, const common::Vec3& x,
+                      double margin, const std::array<double, 3>& s_hi,
+                      std::array<std::int64_t, K>& node_k, std::array<double, K>& S_k, int& m) {
+  constexpr int ns = Shape::support;
+  std::array<int, 3> base{};
+  std::array<std::array<double, ns>, 3> w{};
+  for (int d = 0; d < 3; ++d) {
+    const auto du = static_cast<std::size_t>(d);
+    const double sd = std::clamp((x[d] - grid.origin[d]) / grid.spacing[d], margin, s_hi[du]);
+    base[du] = Shape::stencil_base(sd, 0.0);
+    for (int i = 0; i < ns; ++i)
+      w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
+  }
+  m = 0;
+  double sum = 0.0;
+  for (int k = 0; k < ns; ++k) {
+    for (int j = 0; j < ns; ++j) {
+      for (int i = 0; i < ns; ++i) {
+        const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
+        const double S = w[0][static_cast<std::size_t>(i)] * w[1][static_cast<std::size_t>(j)] *
+                         w[2][static_cast<std::size_t>(k)];
+        if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
+        sum += S;
+        node_k[static_cast<std::size_t>(m)] = node;
+        S_k[static_cast<std::size_t>(m)] = S;
+        ++m;
+      }
+    }
+  }
+  return sum;
+}
+
 /// Forces of one traction load on its facets (Nanson area vectors, 2 x 2 Gauss points per
 /// facet), distributed with the value-only weights of `Shape` (the stencil is computed once per
 /// Gauss point and kept for the distribution pass). Returns the loaded (deformed) area [m^2].
@@ -254,36 +289,10 @@ double traction_on_facets(const Grid& grid, const TractionLoad& load, const Mate
     const common::Vec3 centre = points.x[p] + G.col(n) * (load.side * hw[n]);
     const common::Vec3 g1 = G.col(t1) * hw[t1];
     const common::Vec3 g2 = G.col(t2) * hw[t2];
-    // The active nodes of the stencil at x with their weights (node_k, S_k, m) and the weights'
-    // sum.
+    // The active nodes of the stencil at x with their weights (node_k, S_k, m); their sum.
     int m = 0;
     auto gather = [&](const common::Vec3& x) {
-      std::array<int, 3> base{};
-      std::array<std::array<double, ns>, 3> w{};
-      for (int d = 0; d < 3; ++d) {
-        const auto du = static_cast<std::size_t>(d);
-        const double sd = std::clamp((x[d] - grid.origin[d]) / grid.spacing[d], margin, s_hi[du]);
-        base[du] = Shape::stencil_base(sd, 0.0);
-        for (int i = 0; i < ns; ++i)
-          w[du][static_cast<std::size_t>(i)] = Shape::value(sd - (base[du] + i), 0.0);
-      }
-      m = 0;
-      double sum = 0.0;
-      for (int k = 0; k < ns; ++k) {
-        for (int j = 0; j < ns; ++j) {
-          for (int i = 0; i < ns; ++i) {
-            const std::int64_t node = grid.node_index(base[0] + i, base[1] + j, base[2] + k);
-            const double S = w[0][static_cast<std::size_t>(i)] * w[1][static_cast<std::size_t>(j)] *
-                             w[2][static_cast<std::size_t>(k)];
-            if (S == 0.0 || !fields.is_active[static_cast<std::size_t>(node)]) continue;
-            sum += S;
-            node_k[static_cast<std::size_t>(m)] = node;
-            S_k[static_cast<std::size_t>(m)] = S;
-            ++m;
-          }
-        }
-      }
-      return sum;
+      return gather_stencil<Shape>(grid, fields, x, margin, s_hi, node_k, S_k, m);
     };
     for (const double alpha : {-g, g}) {
       for (const double beta : {-g, g}) {

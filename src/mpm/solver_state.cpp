@@ -44,6 +44,23 @@ void unflatten(const std::vector<double>& d, std::vector<common::Mat3>& v) {
   for (std::size_t p = 0; p < v.size(); ++p) v[p] = common::row_major(d.data() + 9 * p);
 }
 
+/// The point slots of each of `loads` traction loads' facets, each checked to lie in [0, n).
+std::vector<std::vector<std::int64_t>> read_facet_slots(const common::StateReader& r,
+                                                        std::size_t loads, std::size_t n) {
+  std::vector<std::vector<std::int64_t>> facets(loads);
+  for (std::size_t k = 0; k < loads; ++k) {
+    const std::string name = "loads/traction_" + std::to_string(k) + "/point_slots";
+    facets[k] = r.read_i64(name);
+    for (const std::int64_t slot : facets[k]) {
+      if (slot < 0 || static_cast<std::size_t>(slot) >= n) {
+        throw common::InputError("mpm checkpoint: " + name + " holds slot " + std::to_string(slot) +
+                                 " outside [0, " + std::to_string(n) + ")");
+      }
+    }
+  }
+  return facets;
+}
+
 }  // namespace
 
 void Solver::save(common::StateWriter& w) const {
@@ -124,17 +141,7 @@ void Solver::load(const common::StateReader& r) {
     pts.material[p] = static_cast<std::int32_t>(mat[p]);
   }
   pts.validate();
-  std::vector<std::vector<std::int64_t>> facets(tractions_.size());
-  for (std::size_t k = 0; k < tractions_.size(); ++k) {
-    const std::string name = "loads/traction_" + std::to_string(k) + "/point_slots";
-    facets[k] = r.read_i64(name);
-    for (const std::int64_t slot : facets[k]) {
-      if (slot < 0 || static_cast<std::size_t>(slot) >= n) {
-        throw common::InputError("mpm checkpoint: " + name + " holds slot " + std::to_string(slot) +
-                                 " outside [0, " + std::to_string(n) + ")");
-      }
-    }
-  }
+  std::vector<std::vector<std::int64_t>> facets = read_facet_slots(r, tractions_.size(), n);
   // Constraint displacements: saved for windowed or field constraints; absent (an older
   // checkpoint, or none of those), each is v t of its constant velocity.
   std::vector<common::Vec3> disp(constraints_.size(), common::Vec3::Zero());

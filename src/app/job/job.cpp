@@ -261,6 +261,59 @@ class Validator {
     return true;
   }
 
+  // The rule a string outside key.choices breaks, with a "did you mean" for a near choice.
+  static std::string choice_rule(const Key& key, const std::string& s) {
+    std::string rule = fmt::format("must be one of {}", fmt::join(key.choices, ", "));
+    std::size_t best_d = 3;
+    std::string best;
+    for (const auto& c : key.choices) {
+      const std::size_t d = edit_distance(s, c);
+      if (d < best_d) {
+        best_d = d;
+        best = c;
+      }
+    }
+    if (!best.empty()) rule += fmt::format("; did you mean '{}'?", best);
+    return rule;
+  }
+
+  // Reads a list key (Type::FloatList or Type::IntList) into value; returns the rule the list
+  // breaks, or "" when it is valid (value then set).
+  std::string read_list(const Key& key, const toml::node& node, Value& value) const {
+    const auto* arr = node.as_array();
+    if (arr == nullptr) return fmt::format("must be {}", type_name(key));
+    if (arr->size() < key.min_len || arr->size() > key.max_len) {
+      return key.min_len == key.max_len
+                 ? fmt::format("must have {} entries, not {}", key.min_len, arr->size())
+                 : fmt::format("must have {} to {} entries, not {}", key.min_len, key.max_len,
+                               arr->size());
+    }
+    std::vector<double> fv;
+    std::vector<std::int64_t> iv;
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::node& el = *arr->get(i);
+      if (key.type == Type::IntList) {
+        const auto* n = el.as_integer();
+        if (n == nullptr) return fmt::format("entry {} must be an integer", i + 1);
+        if (!in_range(key, static_cast<double>(n->get())))
+          return fmt::format("entry {}: {}", i + 1, range_rule(key));
+        iv.push_back(n->get());
+      } else {
+        std::string why;
+        const auto v = read_number(key, el, why);
+        if (!v) return fmt::format("entry {} {}", i + 1, why);
+        if (!in_range(key, *v)) return fmt::format("entry {}: {}", i + 1, range_rule(key));
+        fv.push_back(*v);
+      }
+    }
+    if (key.type == Type::IntList) {
+      value = std::move(iv);
+    } else {
+      value = std::move(fv);
+    }
+    return {};
+  }
+
   void scalar(const Key& key, const toml::node& node, const std::string& cpath) {
     const int line = node_line(node);
     const std::string raw = node_text(node);
@@ -313,56 +366,14 @@ class Validator {
         if (s == nullptr) return fail("must be a string");
         if (!key.choices.empty() &&
             std::find(key.choices.begin(), key.choices.end(), s->get()) == key.choices.end()) {
-          std::string rule = fmt::format("must be one of {}", fmt::join(key.choices, ", "));
-          std::size_t best_d = 3;
-          std::string best;
-          for (const auto& c : key.choices) {
-            const std::size_t d = edit_distance(s->get(), c);
-            if (d < best_d) {
-              best_d = d;
-              best = c;
-            }
-          }
-          if (!best.empty()) rule += fmt::format("; did you mean '{}'?", best);
-          return fail(rule);
+          return fail(choice_rule(key, s->get()));
         }
         value = s->get();
         break;
       }
       case Type::FloatList:
       case Type::IntList: {
-        const auto* arr = node.as_array();
-        if (arr == nullptr) return fail(fmt::format("must be {}", type_name(key)));
-        if (arr->size() < key.min_len || arr->size() > key.max_len) {
-          return fail(key.min_len == key.max_len
-                          ? fmt::format("must have {} entries, not {}", key.min_len, arr->size())
-                          : fmt::format("must have {} to {} entries, not {}", key.min_len,
-                                        key.max_len, arr->size()));
-        }
-        std::vector<double> fv;
-        std::vector<std::int64_t> iv;
-        for (std::size_t i = 0; i < arr->size(); ++i) {
-          const toml::node& el = *arr->get(i);
-          if (key.type == Type::IntList) {
-            const auto* n = el.as_integer();
-            if (n == nullptr) return fail(fmt::format("entry {} must be an integer", i + 1));
-            if (!in_range(key, static_cast<double>(n->get())))
-              return fail(fmt::format("entry {}: {}", i + 1, range_rule(key)));
-            iv.push_back(n->get());
-          } else {
-            std::string why;
-            const auto v = read_number(key, el, why);
-            if (!v) return fail(fmt::format("entry {} {}", i + 1, why));
-            if (!in_range(key, *v))
-              return fail(fmt::format("entry {}: {}", i + 1, range_rule(key)));
-            fv.push_back(*v);
-          }
-        }
-        if (key.type == Type::IntList) {
-          value = std::move(iv);
-        } else {
-          value = std::move(fv);
-        }
+        if (std::string rule = read_list(key, node, value); !rule.empty()) return fail(rule);
         break;
       }
       case Type::Table:

@@ -251,7 +251,7 @@ std::string DemPool::prepare_group(dem::Simulation& sim, const Key& key) const {
       stress_text(m.stress), m.void_ratio, m.unbalanced);
 }
 
-// Long by design (~110 lines): one collective sequence (what each rank lacks and holds, then the
+// long-function: one collective sequence (what each rank lacks and holds, then the
 // samples, then the group RVEs, each made, shared and agreed on) that every rank runs in the same
 // order; kept in one piece so that the order of the collectives is read in one place.
 void DemPool::prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm) {

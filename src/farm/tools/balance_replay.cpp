@@ -82,6 +82,37 @@ void print_swings(const farm::CostTraceData& t) {
       pairs > 0 ? std::to_string(corr / static_cast<double>(pairs)).c_str() : "(no edges)");
 }
 
+// Prints the trace's size, its RVEs' CPU time in all and the recorded run's own balance.
+void print_recorded(const farm::CostTraceData& trace, const char* path) {
+  const std::size_t n = trace.cpu_s.front().size();
+  double total = 0.0;
+  for (const auto& row : trace.cpu_s)
+    for (const double c : row) total += c;
+  // The recorded run's own balance (its ranks' wall times, noise and all).
+  double rec_mean = 0.0;
+  double rec_max = 0.0;
+  std::size_t rec_ranks = 0;
+  for (const auto& row : trace.busy_s) {
+    double mx = 0.0;
+    double sum = 0.0;
+    std::size_t used = 0;
+    for (const double b : row) {
+      if (b <= 0.0) continue;  // rank 0 left to the MPM
+      mx = std::max(mx, b);
+      sum += b;
+      ++used;
+    }
+    rec_ranks = std::max(rec_ranks, used);
+    if (used > 0) rec_mean += sum / static_cast<double>(used);
+    rec_max += mx;
+  }
+  std::printf("trace %s: %zu RVEs, %zu steps (%lld..%lld), RVE CPU time %.3f s in all\n", path, n,
+              trace.steps.size(), static_cast<long long>(trace.steps.front()),
+              static_cast<long long>(trace.steps.back()), total);
+  std::printf("recorded on %zu rank(s): balance (mean/max busy, wall) %.3f\n", rec_ranks,
+              rec_max > 0.0 ? rec_mean / rec_max : 1.0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,33 +132,7 @@ int main(int argc, char** argv) {
   };
   try {
     const farm::CostTraceData trace = farm::read_cost_trace(argv[1]);
-    const std::size_t n = trace.cpu_s.front().size();
-    double total = 0.0;
-    for (const auto& row : trace.cpu_s)
-      for (const double c : row) total += c;
-    // The recorded run's own balance (its ranks' wall times, noise and all).
-    double rec_mean = 0.0;
-    double rec_max = 0.0;
-    std::size_t rec_ranks = 0;
-    for (const auto& row : trace.busy_s) {
-      double mx = 0.0;
-      double sum = 0.0;
-      std::size_t used = 0;
-      for (const double b : row) {
-        if (b <= 0.0) continue;  // rank 0 left to the MPM
-        mx = std::max(mx, b);
-        sum += b;
-        ++used;
-      }
-      rec_ranks = std::max(rec_ranks, used);
-      if (used > 0) rec_mean += sum / static_cast<double>(used);
-      rec_max += mx;
-    }
-    std::printf("trace %s: %zu RVEs, %zu steps (%lld..%lld), RVE CPU time %.3f s in all\n", argv[1],
-                n, trace.steps.size(), static_cast<long long>(trace.steps.front()),
-                static_cast<long long>(trace.steps.back()), total);
-    std::printf("recorded on %zu rank(s): balance (mean/max busy, wall) %.3f\n", rec_ranks,
-                rec_max > 0.0 ? rec_mean / rec_max : 1.0);
+    print_recorded(trace, argv[1]);
     print_swings(trace);
     farm::ReplayOptions o;
     o.threshold = std::stod(get("threshold", "1.2"));

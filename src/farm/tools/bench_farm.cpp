@@ -184,17 +184,10 @@ void overhead(const Args& a, MPI_Comm comm) {
   }
 }
 
-// Load balance of RVEs of mixed cost: mean over max of the ranks' RVE busy times, for
-// round-robin and METIS partitions. --micro elastic: ElasticMicro RVEs of cost classes 1/2/5/10
-// (substeps); --micro dem: DEM RVEs of 1000 / 2000 / 4000 spheres (the reference packing tiled
-// 1x1x1, 2x1x1, 2x2x1: the same prepared state in larger cells) under the paper's strain rate.
-void balance(const Args& a, MPI_Comm comm) {
-  const bool dem = a.get("micro", "elastic") == "dem";
-  const int n = std::stoi(a.get("rves", dem ? "12" : "32"));
-  const int steps = std::stoi(a.get("steps", "20"));
-  const int size = size_of(comm);
+// The RVEs of `balance`: n DEM RVEs of three sizes or n ElasticMicro RVEs of four cost classes
+// (by id, scrambled); what: their description.
+farm::MicroKind balance_kind(const Args& a, bool dem, int n, std::string& what) {
   farm::MicroKind kind;
-  std::string what;
   static const int kClass[] = {1, 10, 2, 5, 1, 2, 10, 1, 5, 2, 1, 5};  // scrambled cost classes
   if (dem) {
     const dem::Packing base = dem::read_packing(a.get("packing", MPMXDEM_DEFAULT_PACKING));
@@ -230,6 +223,20 @@ void balance(const Args& a, MPI_Comm comm) {
     what = std::to_string(n) + " ElasticMicro RVEs of cost classes 1/2/5/10 x " +
            std::to_string(base) + " substeps";
   }
+  return kind;
+}
+
+// Load balance of RVEs of mixed cost: mean over max of the ranks' RVE busy times, for
+// round-robin and METIS partitions. --micro elastic: ElasticMicro RVEs of cost classes 1/2/5/10
+// (substeps); --micro dem: DEM RVEs of 1000 / 2000 / 4000 spheres (the reference packing tiled
+// 1x1x1, 2x1x1, 2x2x1: the same prepared state in larger cells) under the paper's strain rate.
+void balance(const Args& a, MPI_Comm comm) {
+  const bool dem = a.get("micro", "elastic") == "dem";
+  const int n = std::stoi(a.get("rves", dem ? "12" : "32"));
+  const int steps = std::stoi(a.get("steps", "20"));
+  const int size = size_of(comm);
+  std::string what;
+  farm::MicroKind kind = balance_kind(a, dem, n, what);
   std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
   std::vector<Vec3> x(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
