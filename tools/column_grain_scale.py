@@ -27,6 +27,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            2) of the transfer family against the time from the release, beside the grains'
   --resolution-table       prints the page's table of the a = 1 and a = 2 columns (FLIP 0.99 with
                            XPIC(3)) on three discretisations, each quantity with its gap to the grains'
+  --aspect-table           prints the page's table of the grain-scale configuration at a = 0.5, 1
+                           and 2, each against the grains' column of the same size
   --resolution-figure      writes FIG/column_resolution.png: their final deposits and fronts over YADE's
   --self-test              checks the gate's release time and the shifted time axes
 
@@ -294,11 +296,11 @@ def back_mass_height(profile, L0, H0):
     return sum(vals) / len(vals)
 
 
-def rows(data, yade, runs=None):
-    """The table's figures: YADE's from its summaries, ours from the CSVs of `runs` (default
-    RUNS; stdlib only)."""
+def rows(data, yade, runs=None, refs=None):
+    """The table's figures: YADE's from its summaries (refs: {a: YADE tag}, default YADE), ours
+    from the CSVs of `runs` (default RUNS; stdlib only)."""
     out = {}
-    for a, stem in YADE.items():
+    for a, stem in (YADE if refs is None else refs).items():
         s = read_csv(os.path.join(yade, f"{stem}_summary.csv"))[0]
         out[(a, "yade")] = dict(front=float(s["runout_over_L0"]), cont=float(s["runout_cont_over_L0"]),
                                 hf=float(s["Hf_over_H0"]), a_meas=float(s["a"]),
@@ -647,14 +649,16 @@ TRANSFER = {
 TRANSFER_YADE = {2: ["dense_a2_l14.4_E3e6", "dense_a2_l28.8_E3e6"], 1: ["dense_a1_l14.4_E3e6"]}
 
 
-def stored_run(data, yade, a, stem):
+def stored_run(data, yade, a, stem, ref=None):
     """(summary row, L0, H0, the table's figures from rows()) of the stored MPM x DEM run STEM of
-    aspect a; None when DATA has none."""
+    aspect a (its profile against the YADE column REF, default YADE's of that aspect); None when
+    DATA has none."""
     path = os.path.join(data, f"{stem}_summary.csv")
     if not os.path.exists(path):
         return None
     s = read_csv(path)[0]
-    return s, float(s["L0_m"]), float(s["H0_m"]), rows(data, yade, [(a, stem, "")])[(a, stem)]
+    refs = {a: ref} if ref else None
+    return s, float(s["L0_m"]), float(s["H0_m"]), rows(data, yade, [(a, stem, "")], refs)[(a, stem)]
 
 
 def transfer_table(data, yade, a=2):
@@ -780,41 +784,83 @@ def gap(value, ref):
     return f"{value:.2f} ({100 * (value / ref - 1):+.0f} %)" if ref else f"{value:.2f}"
 
 
+RESOLUTION_HEADER = ["| a | column | runout to h < 0.05 H0 | H_f/H0 | h_vol/H0 at the back (x < L0/4) | "
+                     "continuous front at 1 t* | at 2 t* | at 3 t* | centre of mass x / L0 | "
+                     "end (t*), kinetic energy / (M g H0) |", "|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def back_height(xs, hs, L0, H0):
+    """The mean deposit height over the back quarter of the column, over H0."""
+    v = [h for x, h in zip(xs, hs) if x < L0 / 4]
+    return sum(v) / len(v) / H0
+
+
+def grains_row(yade, a, tag):
+    """(Markdown row, reference figures) of the pure-DEM column TAG of aspect a."""
+    s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+    L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+    prof = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
+    r5, _, xc, _ = deposit_measures(*prof, L0, H0)
+    ref = dict(r5=r5, hf=float(s["Hf_over_H0"]), xc=xc, back=back_height(*prof, L0, H0),
+               f=[float(s[f"front{k}_cont_over_L0"]) for k in (1, 2, 3)])
+    return (f"| {a:g} | pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {r5:.2f} | {ref['hf']:.2f} | "
+            f"{ref['back']:.2f} | " + " | ".join(f"{f:.2f}" for f in ref["f"]) + f" | {xc:.2f} | |"), ref
+
+
+def run_row(data, yade, a, stem, label, ref, tag=None):
+    """The Markdown row of the stored MPM x DEM run STEM, each figure with its gap to REF's (the
+    figures of the YADE column TAG); None when DATA has no such run."""
+    run = stored_run(data, yade, a, stem, tag)
+    if run is None:
+        return None
+    m, Lm, Hm, r = run
+    prof = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
+    m5, _, mxc, _ = deposit_measures(*prof, Lm, Hm)
+    return (f"| {a:g} | MPM x DEM, {label} | {gap(m5, ref['r5'])} | {gap(float(m['Hf_over_H0']), ref['hf'])} | "
+            f"{gap(back_height(*prof, Lm, Hm), ref['back'])} | "
+            + " | ".join(gap(f, fr) for f, fr in zip(r["f123"], ref["f"]))
+            + f" | {gap(mxc, ref['xc'])} | {r['t_end']:.1f}, {float(m['Ekend_motion_over_MgH0']):.1e} |")
+
+
 def resolution_table(data, yade, family=None):
     """Markdown table: the quantities the column must match (runout, H_f, fronts at 1 / 2 / 3 t*)
     against the discretisation (or another family of (label, stem suffix) runs), each with its
     gap to the grains' column of the same modulus at L0 = 14.4 d50 (stdlib only)."""
     family = RESOLUTION if family is None else family
-    lines = ["| a | column | runout to h < 0.05 H0 | H_f/H0 | h_vol/H0 at the back (x < L0/4) | continuous front "
-             "at 1 t* | at 2 t* | at 3 t* | centre of mass x / L0 | end (t*), kinetic energy / (M g H0) |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
-
-    def back(xs, hs, L0, H0):  # the mean deposit height over the back quarter of the column
-        v = [h for x, h in zip(xs, hs) if x < L0 / 4]
-        return sum(v) / len(v) / H0
+    lines = list(RESOLUTION_HEADER)
     for a in (1, 2):
-        tag = TRANSFER_YADE[a][0]
-        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
-        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
-        prof = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
-        r5, _, xc, _ = deposit_measures(*prof, L0, H0)
-        ref = dict(r5=r5, hf=float(s["Hf_over_H0"]), xc=xc, back=back(*prof, L0, H0),
-                   f=[float(s[f"front{k}_cont_over_L0"]) for k in (1, 2, 3)])
-        lines.append(f"| {a} | pure DEM (YADE), L0 = {float(s['L0_over_d50']):.3g} d50 | {r5:.2f} | {ref['hf']:.2f} | "
-                     f"{ref['back']:.2f} | "
-                     + " | ".join(f"{f:.2f}" for f in ref["f"]) + f" | {xc:.2f} | |")
+        row, ref = grains_row(yade, a, TRANSFER_YADE[a][0])
+        lines.append(row)
         for label, suffix in family:
-            stem = f"a{a}_{suffix}"
-            run = stored_run(data, yade, a, stem)
-            if run is None:
-                continue
-            m, Lm, Hm, r = run
-            prof = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
-            m5, _, mxc, _ = deposit_measures(*prof, Lm, Hm)
-            lines.append(f"| {a} | MPM x DEM, {label} | {gap(m5, ref['r5'])} | {gap(float(m['Hf_over_H0']), ref['hf'])} | "
-                         f"{gap(back(*prof, Lm, Hm), ref['back'])} | "
-                         + " | ".join(gap(f, fr) for f, fr in zip(r["f123"], ref["f"]))
-                         + f" | {gap(mxc, ref['xc'])} | {r['t_end']:.1f}, {float(m['Ekend_motion_over_MgH0']):.1e} |")
+            row = run_row(data, yade, a, f"a{a}_{suffix}", label, ref)
+            if row is not None:
+                lines.append(row)
+    return "\n".join(lines)
+
+
+# The configuration of the shipped grain-scale jobs (cells of 1.8 d50, 2 x 2 points per cell, FLIP
+# 0.99 with XPIC(3), RVEs without contacts strained) at each aspect ratio, against the pure-DEM
+# column of the same size (--aspect-table): (a, YADE tag, MPM x DEM stem, label).
+ASPECTS = [(0.5, "dense_a0.5_l28.8_E3e6", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained",
+            "L0 = 28.8 d50, 16 x 8 cells, 2 x 2"),
+           (1, "dense_a1_l14.4_E3e6", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained",
+            "L0 = 14.4 d50, 8 x 8 cells, 2 x 2 (jobs/column_collapse_a1_grain_scale.toml)"),
+           (2, "dense_a2_l14.4_E3e6", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight",
+            "L0 = 14.4 d50, 8 x 16 cells, 2 x 2 (jobs/column_collapse_a2_grain_scale.toml)")]
+
+
+def aspect_table(data, yade):
+    """Markdown table: the grain-scale configuration at a = 0.5, 1 and 2 against the grains'
+    columns of the same size, each figure with its gap (stdlib only)."""
+    lines = list(RESOLUTION_HEADER)
+    for a, tag, stem, label in ASPECTS:
+        if not os.path.exists(os.path.join(yade, f"{tag}_summary.csv")):
+            continue
+        row, ref = grains_row(yade, a, tag)
+        lines.append(row)
+        row = run_row(data, yade, a, stem, label, ref, tag)
+        if row is not None:
+            lines.append(row)
     return "\n".join(lines)
 
 
@@ -869,6 +915,7 @@ def main():
     ap.add_argument("--transfer-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--resolution-table", action="store_true")
+    ap.add_argument("--aspect-table", action="store_true")
     ap.add_argument("--variants-table", action="store_true")
     ap.add_argument("--decay-table", action="store_true")
     ap.add_argument("--resolution-figure", action="store_true")
@@ -901,6 +948,8 @@ def main():
         print(onset_table(args.data, args.yade, args.onset_table))
     if args.resolution_table:
         print(resolution_table(args.data, args.yade))
+    if args.aspect_table:
+        print(aspect_table(args.data, args.yade))
     if args.variants_table:
         print(resolution_table(args.data, args.yade, VARIANTS))
     if args.decay_table:
@@ -909,7 +958,8 @@ def main():
         resolution_figure(args.data, args.yade, args.fig)
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
-            or args.transfer_table or args.onset_table or args.resolution_table or args.variants_table
+            or args.transfer_table or args.onset_table or args.resolution_table or args.aspect_table
+            or args.variants_table
             or args.decay_table or args.resolution_figure):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
