@@ -29,6 +29,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            XPIC(3)) on three discretisations, each quantity with its gap to the grains'
   --aspect-table           prints the page's table of the grain-scale configuration at a = 0.5, 1
                            and 2, each against the grains' column of the same size
+  --aspect-figure          writes FIG/column_aspect_ratios.png: their final deposits and fronts over
+                           the grains'
   --resolution-figure      writes FIG/column_resolution.png: their final deposits and fronts over YADE's
   --self-test              checks the gate's release time and the shifted time axes
 
@@ -864,6 +866,31 @@ def aspect_table(data, yade):
     return "\n".join(lines)
 
 
+def deposit_panels(ax_p, ax_f, data, yade, tag, runs, title, x_max):
+    """The final deposit (ax_p) and the continuous front against time (ax_f) of the YADE column
+    TAG and of the stored MPM x DEM runs [(label, stem, colour)] over it."""
+    s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+    L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+    label = f"pure DEM (YADE), {float(s['L0_over_d50']):.3g} d50"
+    xs, hs = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
+    ax_p.plot([x / L0 for x in xs], [h / H0 for h in hs], color="k", lw=2, label=label)
+    ts = read_csv(os.path.join(yade, f"{tag}_timeseries.csv"))
+    c0 = float(ts[0]["L_cont_m"])
+    ax_f.plot([float(r["t_over_tstar"]) for r in ts], [(float(r["L_cont_m"]) - c0) / L0 for r in ts],
+              color="k", lw=2, label=label)
+    for label, stem, color in runs:
+        if not os.path.exists(os.path.join(data, f"{stem}_summary.csv")):
+            continue
+        m = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
+        Lm, Hm = float(m["L0_m"]), float(m["H0_m"])
+        xs, hs = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
+        ax_p.plot([x / Lm for x in xs], [h / Hm for h in hs], color=color, ls="--", label=f"MPM x DEM, {label}")
+        tsm = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
+        ax_f.plot(released_times(data, stem, tsm), [(float(r["L_front_connected_m"]) - Lm) / Lm for r in tsm],
+                  color=color, ls="--", label=f"MPM x DEM, {label}")
+    style_axes(ax_p, ax_f, title, x_max)
+
+
 def resolution_figure(data, yade, fig_dir):
     """Final deposits and continuous fronts of the resolution family over the grains', a = 1, 2."""
     import matplotlib
@@ -872,29 +899,25 @@ def resolution_figure(data, yade, fig_dir):
 
     fig, axs = plt.subplots(2, 2, figsize=(12, 8))
     for row, a in enumerate((1, 2)):
-        ax_p, ax_f = axs[row]
-        tag = TRANSFER_YADE[a][0]
-        s = read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
-        L0, H0 = float(s["L0_m"]), float(s["H0_m"])
-        xs, hs = final_profile(os.path.join(yade, f"{tag}_profiles.csv"))
-        ax_p.plot([x / L0 for x in xs], [h / H0 for h in hs], color="k", lw=2, label="pure DEM (YADE), 14.4 d50")
-        ts = read_csv(os.path.join(yade, f"{tag}_timeseries.csv"))
-        c0 = float(ts[0]["L_cont_m"])
-        ax_f.plot([float(r["t_over_tstar"]) for r in ts], [(float(r["L_cont_m"]) - c0) / L0 for r in ts],
-                  color="k", lw=2, label="pure DEM (YADE), 14.4 d50")
-        for (label, suffix), color in zip(RESOLUTION, ("tab:blue", "tab:orange", "tab:red")):
-            stem = f"a{a}_{suffix}"
-            if not os.path.exists(os.path.join(data, f"{stem}_summary.csv")):
-                continue
-            m = read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
-            Lm, Hm = float(m["L0_m"]), float(m["H0_m"])
-            xs, hs = final_profile(os.path.join(data, f"{stem}_profiles.csv"))
-            ax_p.plot([x / Lm for x in xs], [h / Hm for h in hs], color=color, ls="--", label=f"MPM x DEM, {label}")
-            tsm = read_csv(os.path.join(data, f"{stem}_timeseries.csv"))
-            ax_f.plot(released_times(data, stem, tsm), [(float(r["L_front_connected_m"]) - Lm) / Lm for r in tsm],
-                      color=color, ls="--", label=f"MPM x DEM, {label}")
-        style_axes(ax_p, ax_f, f"a = {a}, E = 3 MPa, FLIP 0.99 + XPIC(3)", 1.5 if a == 1 else 2.5)
+        runs = [(label, f"a{a}_{suffix}", color)
+                for (label, suffix), color in zip(RESOLUTION, ("tab:blue", "tab:orange", "tab:red"))]
+        deposit_panels(*axs[row], data, yade, TRANSFER_YADE[a][0], runs,
+                       f"a = {a}, E = 3 MPa, FLIP 0.99 + XPIC(3)", 1.5 if a == 1 else 2.5)
     save(fig, fig_dir, "column_resolution.png")
+
+
+def aspect_figure(data, yade, fig_dir):
+    """Final deposits and continuous fronts of the grain-scale configuration at a = 0.5, 1 and 2
+    over the grains' columns of the same size (FIG/column_aspect_ratios.png)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axs = plt.subplots(len(ASPECTS), 2, figsize=(12, 4 * len(ASPECTS)))
+    for row, (a, tag, stem, label) in enumerate(ASPECTS):
+        deposit_panels(*axs[row], data, yade, tag, [(label.split(" (")[0], stem, "tab:red")],
+                       f"a = {a:g}", {0.5: 1.5, 1: 2.0, 2: 2.5}[a])
+    save(fig, fig_dir, "column_aspect_ratios.png")
 
 
 def main():
@@ -916,6 +939,7 @@ def main():
     ap.add_argument("--onset-table", nargs="?", type=int, const=2, choices=(1, 2), metavar="A")
     ap.add_argument("--resolution-table", action="store_true")
     ap.add_argument("--aspect-table", action="store_true")
+    ap.add_argument("--aspect-figure", action="store_true")
     ap.add_argument("--variants-table", action="store_true")
     ap.add_argument("--decay-table", action="store_true")
     ap.add_argument("--resolution-figure", action="store_true")
@@ -950,6 +974,8 @@ def main():
         print(resolution_table(args.data, args.yade))
     if args.aspect_table:
         print(aspect_table(args.data, args.yade))
+    if args.aspect_figure:
+        aspect_figure(args.data, args.yade, args.fig)
     if args.variants_table:
         print(resolution_table(args.data, args.yade, VARIANTS))
     if args.decay_table:
@@ -959,7 +985,7 @@ def main():
     if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
             or args.transfer_table or args.onset_table or args.resolution_table or args.aspect_table
-            or args.variants_table
+            or args.aspect_figure or args.variants_table
             or args.decay_table or args.resolution_figure):
         ap.error("one of --analyse, --table, --damping-table, --stiffness-table, --deposit-table, --figure, "
                  "--size-figure")
