@@ -117,6 +117,30 @@ class Run:
         return hencky_dev(self.F[row])
 
 
+# Axial-strain windows over which the stress ratio is averaged (it swings by +-2-5 % from row to row
+# on a localising specimen): docs/design/mpm.md, "Mass scaling" and "Regularisation".
+WINDOWS = [(0.01, 0.02), (0.04, 0.06), (0.09, 0.105)]
+
+
+def window_means(r):
+    """sigma_a/sigma_r (the global ratio) of run r averaged over each of WINDOWS (nan where the run
+    has no row)."""
+    out = []
+    for lo, hi in WINDOWS:
+        sel = (r.eps >= lo - 1e-9) & (r.eps <= hi + 1e-9)
+        out.append(float(r.ratio[sel].mean()) if sel.any() else float("nan"))
+    return out
+
+
+def print_windows(paths):
+    print("| run | " + " | ".join("mean over %g-%g %%" % (100 * lo, 100 * hi) for lo, hi in WINDOWS) + " |")
+    print("|---|" + "---|" * len(WINDOWS))
+    for path in paths:
+        spec, _, label = path.partition(":")
+        print(f"| {label or os.path.basename(os.path.normpath(spec))} | "
+              + " | ".join("%.2f" % m for m in window_means(Run(spec))) + " |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", nargs="+")
@@ -127,7 +151,13 @@ def main():
     ap.add_argument("--pre-peak-from", type=float, default=0.002)
     ap.add_argument("--at-strain", type=float, default=None,
                     help="band and maps at the first row past this axial strain (default: the last row)")
+    ap.add_argument("--windows", action="store_true",
+                    help="print only each run's sigma_a/sigma_r averaged over the axial-strain windows "
+                         + ", ".join("%g-%g %%" % (100 * lo, 100 * hi) for lo, hi in WINDOWS))
     a = ap.parse_args()
+    if a.windows:
+        print_windows(a.runs)
+        return
 
     dems = []
     for spec in a.dem:
