@@ -178,6 +178,12 @@ def biaxial_analysis(o, tmp):
     check(5 < peak < 15, f"first peak ratio {peak}")
     for f in ("biaxial_stress_strain.png", "biaxial_strain_maps.png"):
         png(os.path.join(tmp, f))
+    # --windows: the ratio's mean over the first window (the small run reaches a few % only)
+    out = tool("biaxial_analysis.py", "--windows", run + ":small")
+    row = [x for x in out.splitlines() if x.startswith("| small |")]
+    check(len(row) == 1, "the run's --windows row")
+    first = float(row[0].split("|")[2])
+    check(1 < first < 15, f"mean ratio over 1-2 % {first}")
 
 
 def biaxial_compare(o, tmp):
