@@ -12,12 +12,15 @@ is (tools/bearing_capacity.py), the wall time.
 
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_frictional --family frictional
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_associated --family associated
+    /usr/bin/python3 tools/footing_family.py --out docs/data/footing_regularised --family regularised
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_dem --family dem --np 2
     /usr/bin/python3 tools/footing_family.py --table docs/data/footing_frictional/summary.csv
     /usr/bin/python3 tools/footing_family.py --out docs/data/footing_associated --family associated --windows
 
-The frictional family takes about 40 min on one core (most of it the 3.125 mm mesh); the RVE
-family hours (docs/validation/footing.md gives each run's time).
+The frictional family takes about 40 min on one core (most of it the 3.125 mm mesh), the
+regularised one (the frictional continuum with a material length l and modulus H,
+[mpm.regularisation]) about 1.5 h; the RVE family hours (docs/validation/footing.md gives each
+run's time).
 """
 import argparse
 import csv
@@ -47,7 +50,7 @@ WINDOWS = {"associated": (0.02, 0.06)}
 # Empty grid above the surface [m]: the RVEs' dilatant layer heaves beside the footing by tens of mm
 # (with 50 mm a point left the grid at s/B = 0.2); the continuum, without dilatancy, much less.
 # An associated flow dilates as much as it shears: its surface heaves like the RVEs'.
-HEADROOM = {"dem": 0.06, "frictional": 0.025, "associated": 0.05}
+HEADROOM = {"dem": 0.06, "frictional": 0.025, "regularised": 0.025, "associated": 0.05}
 # name: footing_make_job options (besides settlement)
 FAMILIES = {
     "frictional": {
@@ -96,6 +99,18 @@ FAMILIES = {
         "phi40_psi40_w0.4_h6.25_smooth": dict(width=0.4, depth=0.2, cell=0.00625, footing_side="free",
                                               footing_base="smooth"),
     },
+    # The same continuum with a material length (mpm.regularisation): l and H, on meshes whose
+    # two finest have cells of at most l / 3
+    "regularised": {
+        "phi40_l%g_H%g_w%g_h%g" % (l * 1e3, h / 1e6, w, c * 1e3): dict(
+            width=w, depth=w / 2, cell=c, regularisation_length=l, regularisation_modulus=h,
+            **({"every": 100} if c < 0.005 else {}))
+        for l, h, w, c in [(0.02, 5e6, 0.4, 0.0125), (0.02, 5e6, 0.4, 0.00625), (0.02, 5e6, 0.4, 0.003125),
+                           (0.02, 20e6, 0.4, 0.0125), (0.02, 20e6, 0.4, 0.00625),
+                           (0.02, 1e6, 0.4, 0.0125), (0.02, 2e6, 0.4, 0.0125), (0.02, 1e6, 0.4, 0.00625),
+                           (0.01, 5e6, 0.4, 0.0125), (0.01, 5e6, 0.4, 0.00625),
+                           (0.02, 1e6, 0.4, 0.003125), (0.01, 1e6, 0.4, 0.0125), (0.01, 1e6, 0.4, 0.00625)]
+    },
     "dem": {
         "dem_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
         "dem_w0.4_h12.5": dict(width=0.4, depth=0.2, cell=0.0125),
@@ -114,7 +129,7 @@ COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell
 
 def options(family, opts):
     o = dict(footing_make_job.DEFAULTS, settlement=S_END, every=20)
-    if family == "frictional":
+    if family in ("frictional", "regularised"):
         o.update(material="frictional", damping=0.2)
     elif family == "associated":
         o.update(ASSOCIATED)
