@@ -43,7 +43,8 @@ from biaxial_make_jobs import grip_failures, staircase
 DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=0.005,
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
                 friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0,
-                footing_side="held", footing_base="rough")
+                footing_side="held", footing_base="rough", regularisation_length=0.0,
+                regularisation_modulus=0.0)
 LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
 
 
@@ -167,7 +168,8 @@ name = "{name}"
 
 def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
              material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0,
-             dilatancy_angle=0.0, footing_side="held", footing_base="rough"):
+             dilatancy_angle=0.0, footing_side="held", footing_base="rough", regularisation_length=0.0,
+             regularisation_modulus=0.0):
     nx, nz = round(width / cell), round(depth / cell)
     if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
         raise ValueError("width and depth must be whole numbers of cells")
@@ -193,6 +195,17 @@ initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{press
     flags += "" if mass_scaling == 10000 else f" --mass-scaling {mass_scaling:g}"
     flags += "" if footing_side == "held" else f" --footing-side {footing_side}"
     flags += "" if footing_base == "rough" else f" --footing-base {footing_base}"
+    if (regularisation_length > 0) != (regularisation_modulus > 0):
+        raise ValueError("regularisation_length and regularisation_modulus go together")
+    reg_table = ""
+    if regularisation_length > 0:
+        flags += (f"\n#   --regularisation-length {regularisation_length:g}"
+                  f" --regularisation-modulus {regularisation_modulus:g}")
+        reg_table = f"""
+[mpm.regularisation]           # nonlocal strain gradient: a material length l (docs/design/mpm.md)
+length = "{regularisation_length * 1e3:g} mm"
+modulus = "{regularisation_modulus / 1e6:g} MPa"
+"""
     what = (f"{nx} x {nz} cells of [2, 1, 2] points ({rves} RVEs of {spheres} spheres)" if not frictional else
             f"{nx} x {nz} cells of [2, 1, 2] points (Drucker-Prager, phi = {friction_angle:g} deg, "
             + ("no dilatancy)" if dilatancy_angle == 0 else f"psi = {dilatancy_angle:g} deg)"))
@@ -235,7 +248,7 @@ damping = {damping:g}                  # Cundall damping (eq. 8): a force on the
 mass_scaling = {mass_scaling:g}{' ' * (16 - len('%g' % mass_scaling))}# quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):.3g}
 cfl = 0.5
 end_time = "{t_end:g} s"
-
+{reg_table}
 [mpm.grid]                     # one empty cell left of the symmetry plane, beyond the far side and
 origin = [{fmt(x0)}, 0.0, {fmt(z0)}]    # under the base (uGIMP), {above_words} above the surface (the footing's planes)
 spacing = [{fmt(cell)}, {fmt(cell)}, {fmt(cell)}]
