@@ -1,8 +1,9 @@
 // bench_farm: figures of the RVE farm (a program, never a test). Run under mpiexec, e.g.
 //   mpiexec -n 2 --bind-to none bench_farm overhead [--wait auto|spin|sleep] [--steps 10]
 //       [--output-every 10] (rows of results.h5: the paper's job writes every 10th step)
-//   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12] [--steps
-//   20] mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8] [--micro dem|elastic]
+//   mpiexec -n 2 --bind-to none bench_farm balance  [--micro elastic|dem] [--rves 32|12]
+//       [--steps 20]
+//   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8] [--micro dem|elastic]
 //       [--owners metis|blocks]
 //   mpiexec -n 4 --bind-to none bench_farm exchange --rves 10000 [--steps 50] [--migrate 1]
 //   bench_farm partition --rves 10000 [--parts 1024] [--bytes-per-rve 266000]
@@ -24,6 +25,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bench_farm_args.hpp"
 #include "common/state_store.hpp"
 #include "dem/packing_io.hpp"
 #include "dem/reference_material.hpp"
@@ -38,21 +40,12 @@
 
 namespace {
 
+using bench_farm::Args;
+using bench_farm::lattice;
+using bench_farm::Lattice;
+using bench_farm::now;
 using common::Mat3;
 using common::Vec3;
-
-struct Args {
-  std::string mode = "overhead";
-  std::map<std::string, std::string> opt;
-  std::string get(const std::string& k, const std::string& def) const {
-    auto it = opt.find(k);
-    return it == opt.end() ? def : it->second;
-  }
-};
-
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 int rank_of(MPI_Comm c) {
   int r = 0;
@@ -314,20 +307,6 @@ farm::MicroKind tiny_kind() {
   return farm::ElasticMicro::kind(p);
 }
 
-/// n points on a cubic lattice in the unit cube, about 8 per cell of the grid.
-struct Lattice {
-  mpm::Grid grid;
-  std::vector<Vec3> x;
-};
-Lattice lattice(int n) {
-  const int c = std::max(1, static_cast<int>(std::ceil(std::cbrt(n / 8.0))));
-  const int m = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(n))));
-  Lattice l{{Vec3::Zero(), Vec3::Constant(1.0 / c), common::Vec3i::Constant(c)}, {}};
-  for (int k = 0; k < n; ++k)
-    l.x.emplace_back((k % m + 0.5) / m, ((k / m) % m + 0.5) / m, (k / (m * m) + 0.5) / m);
-  return l;
-}
-
 double max_over_ranks(MPI_Comm comm, double v) {
   double m = 0.0;
   MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -447,74 +426,6 @@ void exchange(const Args& a, MPI_Comm comm) {
   f.stop();
 }
 
-// METIS on the RVE graph at --rves RVEs (serial, as on rank 0): graph build, the start-up
-// partition, then a rebalance check after the costs changed: --perturb noise (default: every cost
-// x [0.7, 1.3], deterministic) or --perturb overload (part 0's RVEs x (1 + --overload, 0.1)).
-// Prints both proposals of the check (incremental from the current owners; METIS + renaming):
-// RVEs moved, imbalance, time, and the bytes the chosen one carries (--bytes-per-rve: a
-// 1000-sphere RVE's state).
-void partition(const Args& a) {
-  const int n = std::stoi(a.get("rves", "1000"));
-  const int parts = std::stoi(a.get("parts", "32"));
-  const double bytes_per_rve = std::stod(a.get("bytes-per-rve", "266000"));
-  const std::string perturb = a.get("perturb", "noise");
-  const Lattice lat = lattice(n);
-  double t = now();
-  const farm::RveGraph g = farm::cell_graph(lat.grid, lat.x);
-  const double t_graph = now() - t;
-  std::uint64_t lcg = 12345;
-  auto uniform = [&lcg] {
-    lcg = lcg * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(lcg >> 11) / 9007199254740992.0;
-  };
-  std::vector<double> cost(static_cast<std::size_t>(n));
-  for (double& c : cost) c = 1.0 + uniform();
-  t = now();
-  const std::vector<int> owner = farm::partition_metis(g, cost, parts);
-  const double t_metis = now() - t;
-  const double balance = farm::balance_efficiency(owner, cost, parts);
-  if (perturb == "noise") {
-    for (double& c : cost) c *= 0.7 + 0.6 * uniform();
-  } else if (perturb == "overload") {
-    const double over = std::stod(a.get("overload", "0.1"));
-    for (std::size_t k = 0; k < cost.size(); ++k) cost[k] *= owner[k] == 0 ? 1.0 + over : 1.0;
-  } else {
-    throw std::runtime_error("--perturb " + perturb + ": must be noise or overload");
-  }
-  // The renaming alone (keep_owners, finding 1 of docs/validation/scaling.md) on a fresh METIS
-  // partition.
-  std::vector<int> proposal = farm::partition_metis(g, cost, parts);
-  t = now();
-  const std::int64_t kept_moves = farm::keep_owners(owner, proposal, parts);
-  const double t_keep = now() - t;
-  const double threshold = std::stod(a.get("threshold", "1.0"));
-  t = now();
-  const farm::RebalancePlan plan = farm::plan_rebalance(g, owner, cost, parts, threshold, 1);
-  const double t_plan = now() - t;
-  std::printf("partition: %d RVEs, %zu graph edges, %d parts\n", n, g.adjncy.size() / 2, parts);
-  std::printf(
-      "  cell_graph %.4f s, partition_metis %.4f s (balance %.3f), plan_rebalance %.4f s "
-      "(of which keep_owners %.4f s)\n",
-      t_graph, t_metis, balance, t_plan, t_keep);
-  std::printf("  rebalance check after %s (threshold %.2f): imbalance now %.4f\n",
-              perturb == "noise" ? "+/-30 % cost noise" : "an overload of part 0", threshold,
-              plan.imbalance_now);
-  const auto row = [&](const char* name, const farm::RebalanceProposal& p) {
-    std::printf("    %-12s imbalance %.4f, %lld RVEs moved (%.2f %%), %.4f s%s\n", name,
-                p.imbalance, static_cast<long long>(p.moves),
-                100.0 * static_cast<double>(p.moves) / n, p.time_s,
-                p.beats_margin ? "" : " (gain within the noise margin)");
-  };
-  row("incremental", plan.incremental);
-  row("METIS", plan.metis);
-  std::printf(
-      "  chosen: %s, migrate %d, %lld RVEs moved (%.1f %%; renamed METIS proposal alone %lld) = "
-      "%.1f MB at %.0f B per RVE\n",
-      farm::to_string(plan.method), plan.migrate ? 1 : 0, static_cast<long long>(plan.moves),
-      100.0 * static_cast<double>(plan.moves) / n, static_cast<long long>(kept_moves),
-      static_cast<double>(plan.moves) * bytes_per_rve / 1e6, bytes_per_rve);
-}
-
 // What moving an RVE costs: 8 DEM RVEs of the reference packing under the paper's strain rate;
 // after --steps steps every RVE changes rank (owner 1 - owner), then --steps more. Prints the
 // migration's wall time per RVE and the moved RVEs' CPU time per step before and after the move
@@ -590,7 +501,7 @@ int main(int argc, char** argv) {
     } else if (a.mode == "exchange") {
       exchange(a, MPI_COMM_WORLD);
     } else if (a.mode == "partition") {
-      if (rank_of(MPI_COMM_WORLD) == 0) partition(a);
+      if (rank_of(MPI_COMM_WORLD) == 0) bench_farm::partition(a);
     } else {
       std::fprintf(
           stderr,
