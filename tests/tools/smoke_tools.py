@@ -216,13 +216,18 @@ def biaxial_j_maps(o, tmp):
     png(os.path.join(tmp, "j.png"))
 
 
-def biaxial_paraview(o, tmp):
-    out = tool("biaxial_paraview.py", os.path.join(tmp, "nothing"), os.path.join(tmp, "x.png"), rc=1)
+def render_run(o, tmp, script, run_name, *args):
+    """A ParaView renderer of a run's points.xmf: its message for a missing run, then (where
+    ParaView runs) a PNG of the suite's run RUN_NAME."""
+    out = tool(script, os.path.join(tmp, "nothing"), os.path.join(tmp, "x.png"), rc=1)
     check("points.xmf is missing" in out, "the missing run's message")
     prefix = need_paraview()
-    run = run_dir(o, "biaxial_small")
-    tool("biaxial_paraview.py", run, os.path.join(tmp, "b.png"), "--arrays", "q,z", prefix=prefix)
-    png(os.path.join(tmp, "b.png"))
+    tool(script, run_dir(o, run_name), os.path.join(tmp, "r.png"), *args, prefix=prefix)
+    png(os.path.join(tmp, "r.png"))
+
+
+def biaxial_paraview(o, tmp):
+    render_run(o, tmp, "biaxial_paraview.py", "biaxial_small", "--arrays", "q,z")
 
 
 def biaxial_seed_mean(o, tmp):
@@ -293,12 +298,7 @@ def plot_column_collapse(o, tmp):
 
 
 def render_column_collapse(o, tmp):
-    out = tool("render_column_collapse.py", os.path.join(tmp, "nothing"), os.path.join(tmp, "x.png"), rc=1)
-    check("points.xmf is missing" in out, "the missing run's message")
-    prefix = need_paraview()
-    run = run_dir(o, "column_collapse_tiny")
-    tool("render_column_collapse.py", run, os.path.join(tmp, "c.png"), "--times", "0,0.1", prefix=prefix)
-    png(os.path.join(tmp, "c.png"))
+    render_run(o, tmp, "render_column_collapse.py", "column_collapse_tiny", "--times", "0,0.1")
 
 
 def yade_column_collapse(o, tmp):
@@ -383,12 +383,7 @@ def plot_triaxial(o, tmp):
 
 
 def render_points(o, tmp):
-    out = tool("render_points.py", os.path.join(tmp, "nothing"), os.path.join(tmp, "x.png"), rc=1)
-    check("points.xmf is missing" in out, "the missing run's message")
-    prefix = need_paraview()
-    run = run_dir(o, "triaxial_mpmxdem_small")
-    tool("render_points.py", run, os.path.join(tmp, "p.png"), "--arrays", "q", prefix=prefix)
-    png(os.path.join(tmp, "p.png"))
+    render_run(o, tmp, "render_points.py", "triaxial_mpmxdem_small", "--arrays", "q")
 
 
 def render_rve(o, tmp):
