@@ -82,6 +82,16 @@ def self_test():
     assert lo == hi and max(hi) == 0.1 and len(hi) == len(tops), (lo, hi)
     assert all(abs(a - b - 0.0125) < 1e-12 for a, b in zip(hi, hi[1:])), hi
     assert "\nx = 0.0" in held and "\nx = 0.0" not in free
+    # A material length: the [mpm.regularisation] table in SI units' words, both keys or neither.
+    base = dict(DEFAULTS, material="frictional")
+    assert "[mpm.regularisation]" not in job_text(**base)
+    reg = job_text(**dict(base, regularisation_length=0.02, regularisation_modulus=1e6))
+    assert re.search(r'^\[mpm\.regularisation\].*\nlength = "20 mm"\nmodulus = "1 MPa"$', reg, re.M), reg
+    try:
+        job_text(**dict(base, regularisation_length=0.02))
+        raise AssertionError("a length without a modulus was accepted")
+    except ValueError:
+        pass
     print("footing_make_job self-test: the footing keeps its grip on cells of 25 / 12.5 / 6.25 mm "
           "to 30 mm of settlement; one held plane loses it %.2f cell down" % (bad[0][1] * 0.001 / 0.0125))
 
