@@ -33,6 +33,14 @@ def blank_non_code(text):
     line = 1
     at_line_start = True  # only blanks seen since the last newline
 
+    def literal_end(i, quote):
+        """Just past the string or character literal opened by the quote at i (escapes skipped;
+        an unclosed one ends at its line's end)."""
+        end = i + 1
+        while end < n and text[end] != quote and text[end] != "\n":
+            end += 2 if text[end] == "\\" else 1
+        return min(end + 1, n)
+
     def blank(a, b):
         nonlocal line
         for k in range(a, b):
@@ -89,10 +97,7 @@ def blank_non_code(text):
                 end = text.find(")" + m.group(1) + '"', i)
                 end = n if end < 0 else end + len(m.group(1)) + 2
             else:
-                end = i + 1
-                while end < n and text[end] != '"' and text[end] != "\n":
-                    end += 2 if text[end] == "\\" else 1
-                end = min(end + 1, n)
+                end = literal_end(i, '"')
             blank(i + 1, end - 1)
             i = end
             continue
@@ -104,10 +109,7 @@ def blank_non_code(text):
             if k < i and text[k].isdigit():
                 i += 1
                 continue
-            end = i + 1
-            while end < n and text[end] != "'" and text[end] != "\n":
-                end += 2 if text[end] == "\\" else 1
-            end = min(end + 1, n)
+            end = literal_end(i, "'")
             blank(i + 1, end - 1)
             i = end
             continue
