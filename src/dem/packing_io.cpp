@@ -125,11 +125,12 @@ std::string no_cell_message(long yade_format) {
       "its spheres";
   if (yade_format > 0) {
     // YADE's text export (yade.export.text) writes the spheres only, never the cell.
-    msg += "; line " + std::to_string(yade_format) +
-           " says this is a YADE text export (yade.export.text), which carries no cell: add the "
-           "line '# CELL' + O.cell.size (or '# HSIZE' + O.cell.hSize) before the spheres, give the "
-           "cell sizes in the job (dem.sample.cell = [Lx, Ly, Lz]), or export with "
-           "tools/yade_export_packing.py (docs/validation/yade_reference.md)";
+    msg +=
+        "; line " + std::to_string(yade_format) +
+        " says this is a YADE text export (yade.export.text), which carries no cell: add the "
+        "line '# CELL' + O.cell.size (or '# HSIZE' + O.cell.hSize) before the spheres, give the "
+        "cell sizes in the job (dem.sample.cell = [Lx, Ly, Lz]), or export with "
+        "tools/mpmxdem_tools/references/yade_export_packing.py (docs/validation/yade_reference.md)";
   }
   return msg;
 }

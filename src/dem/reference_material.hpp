@@ -1,6 +1,6 @@
-// The reference material of the project (the paper's Table 1 as YADE runs it; docs/design/dem.md gives
-// the sources): the one home of its parameters for tests, benchmarks and tools. Jobs carry their
-// own copy in TOML, as users do.
+// The reference material of the project (the paper's Table 1 as YADE runs it; docs/design/dem.md
+// gives the sources): the one home of its parameters for tests, benchmarks and tools. Jobs carry
+// their own copy in TOML, as users do.
 #pragma once
 
 #include "dem/params.hpp"
@@ -23,8 +23,8 @@ inline Material reference_material() {
 }
 
 /// The Hertz-Mindlin material of the YADE comparisons (jobs/triaxial_dem_hertz_mindlin.toml,
-/// tools/yade_triax_hertz_mindlin.py): rho 2650 kg/m^3, grains' E 3 GPa, nu 0.25, friction 30 deg,
-/// kr 1e-4 N m/rad, eta 0.3, no twisting.
+/// tools/mpmxdem_tools/references/yade_triax_hertz_mindlin.py): rho 2650 kg/m^3, grains' E 3 GPa,
+/// nu 0.25, friction 30 deg, kr 1e-4 N m/rad, eta 0.3, no twisting.
 inline Material hertz_mindlin_reference_material() {
   Material m;
   m.law = ContactLawKind::hertz_mindlin;

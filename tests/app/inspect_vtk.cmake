@@ -1,6 +1,6 @@
 # `mpmxdem inspect CKPT --rve ID --vtk DIR` end to end (issue 19, grain-scale views): a small
 # coupled run on 2 ranks writes a checkpoint; inspect writes the views of two RVEs and of all of
-# them; tools/check_grain_vtk.py (xml.etree + h5py, no ParaView) compares them with the checkpoint
+# them; tools/mpmxdem_tools/checks/check_grain_vtk.py (xml.etree + h5py, no ParaView) compares them with the checkpoint
 # and fails on a damaged view. Refusals: a missing id, an unusable DIR and a checkpoint without
 # DEM RVEs end with exit 2, a message naming the checkpoint, and nothing written.
 # Usage: cmake -DEXE -DMPIEXEC -DDIR [-DPYTHON] -P inspect_vtk.cmake (from the source root)
@@ -51,13 +51,13 @@ if(PYTHON)
   if(rc EQUAL 0)
     set(have_h5py TRUE)
   else()
-    message(STATUS "no h5py for ${PYTHON}: tools/check_grain_vtk.py not run")
+    message(STATUS "no h5py for ${PYTHON}: tools/mpmxdem-tools check_grain_vtk not run")
   endif()
 endif()
 if(have_h5py)
-  run_ok("${PYTHON}" tools/check_grain_vtk.py "${ckpt}" "${DIR}/two" --expect 2)
+  run_ok("${PYTHON}" tools/mpmxdem-tools check_grain_vtk "${ckpt}" "${DIR}/two" --expect 2)
   message(STATUS "${out}")
-  run_ok("${PYTHON}" tools/check_grain_vtk.py "${ckpt}" "${DIR}/all" --expect 8)
+  run_ok("${PYTHON}" tools/mpmxdem-tools check_grain_vtk "${ckpt}" "${DIR}/all" --expect 8)
   # The check can fail: one radius changed in a copy of a view.
   file(COPY "${DIR}/two/" DESTINATION "${DIR}/damaged")
   file(READ "${DIR}/damaged/rve_2_step_6_spheres.vtp" text)
@@ -67,7 +67,7 @@ if(have_h5py)
   string(REPLACE "${CMAKE_MATCH_1}" "1e-3" tail_bad "${tail}")
   string(SUBSTRING "${text}" 0 ${at} head)
   file(WRITE "${DIR}/damaged/rve_2_step_6_spheres.vtp" "${head}${tail_bad}")
-  execute_process(COMMAND "${PYTHON}" tools/check_grain_vtk.py "${ckpt}" "${DIR}/damaged"
+  execute_process(COMMAND "${PYTHON}" tools/mpmxdem-tools check_grain_vtk "${ckpt}" "${DIR}/damaged"
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
   expect_failure("${rc}" "${out}" 1 "radius != spheres/r")
 endif()

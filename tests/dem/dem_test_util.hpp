@@ -29,7 +29,7 @@ inline std::string reference_packing_path() {
 inline dem::Packing reference_packing() { return dem::read_packing(reference_packing_path()); }
 
 /// YADE's consolidation of the reference packing with the Hertz-Mindlin reference material
-/// (tools/yade_triax_hertz_mindlin.py; the packing of jobs/triaxial_dem_hertz_mindlin.toml).
+/// (tools/mpmxdem_tools/references/yade_triax_hertz_mindlin.py; the packing of jobs/triaxial_dem_hertz_mindlin.toml).
 inline dem::Packing hertz_mindlin_packing() {
   return dem::read_packing(MPMXDEM_SOURCE_DIR "/jobs/packings/packing_N1000_hertz_mindlin.txt");
 }

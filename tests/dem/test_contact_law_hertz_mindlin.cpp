@@ -1,6 +1,6 @@
 // The Hertz-Mindlin law against YADE 2023.02a: the coefficients of one pair and a two-sphere
 // golden trajectory (tests/data/dem/yade_hertz_mindlin_pair.csv, written by
-// tools/yade_hertz_mindlin_pair.py: normal loading, sliding back and forth, rolling to the cap and
+// tools/mpmxdem_tools/references/yade_hertz_mindlin_pair.py: normal loading, sliding back and forth, rolling to the cap and
 // back, twisting), run through Simulation (the force loop's batched law).
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -23,7 +23,7 @@ namespace {
 
 using common::Vec3;
 
-// The material of tools/yade_hertz_mindlin_pair.py.
+// The material of tools/mpmxdem_tools/references/yade_hertz_mindlin_pair.py.
 dem::Material yade_pair_material() {
   dem::Material m;
   m.law = dem::ContactLawKind::hertz_mindlin;

@@ -225,7 +225,7 @@ TEST(PackingIo, ReferencePackingPassesTheChecks) {
   EXPECT_NO_THROW(dem::check_packing(pk, "reference"));
 }
 
-// YADE's text export (yade.export.text, written by tools/yade_export_packing.py with YADE 2023.02a)
+// YADE's text export (yade.export.text, written by tools/mpmxdem_tools/references/yade_export_packing.py with YADE 2023.02a)
 // with the cell lines the script adds after '#format x_y_z_r': read as it is. YADE writes 6
 // significant digits, so the values are compared with the text of the file, exactly.
 TEST(PackingIo, ReadsAYadeExportWithTheCellAdded) {

@@ -108,7 +108,7 @@ TEST(Verification, DrainedTriaxialFirstPercentMatchesYade) {
 
 // The same with the Hertz-Mindlin law (jobs/triaxial_dem_hertz_mindlin.toml's material) on YADE's
 // packing consolidated with that law, against YADE's own triaxial of it
-// (tools/yade_triax_hertz_mindlin.py; the whole curve in docs/validation/yade_element_test.md).
+// (tools/mpmxdem_tools/references/yade_triax_hertz_mindlin.py; the whole curve in docs/validation/yade_element_test.md).
 // The same tolerances as the CohFrict law's; measured: max |q/p - YADE| 0.008, |eps_v - YADE| 1.5e-5,
 // lateral stress within 3e-5.
 TEST(Verification, HertzMindlinDrainedTriaxialFirstPercentMatchesYade) {

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The strip footing on the associated Drucker-Prager continuum (psi = phi = 40 deg), for which
 Prandtl's q0 N_q(phi) is the exact limit load of the weightless layer: what is left between them is
-the MPM's own error. The family's settings (tools/footing_family.py ASSOCIATED: E = 500 MPa, mass
+the MPM's own error. The family's settings (tools/mpmxdem_tools/analysis/footing_family.py ASSOCIATED: E = 500 MPa, mass
 scaling 1e3, to s/B = 0.06), on 400 x 200 mm with 25 mm cells (the footing two cells wide, 512
 points). Checks that the limit load (the mean bearing pressure over s/B in [0.02, 0.06]) is
 Prandtl's 3.21 MPa within 10 %: this coarsest mesh of docs/validation/footing.md gives 3.01 MPa
@@ -14,9 +14,9 @@ dilatancy (psi = 0) gives 2.59 MPa (-19 %), and with a cone not matched to plane
 import sys
 
 import footing_run  # also puts tools/ on the path
-import bearing_capacity  # noqa: E402 (tools/, put on the path by footing_run)
-import footing_family  # noqa: E402 (tools/, put on the path by footing_run)
-import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
+from mpmxdem_tools.analysis import bearing_capacity  # noqa: E402 (tools/, put on the path by footing_run)
+from mpmxdem_tools.analysis import footing_family  # noqa: E402 (tools/, put on the path by footing_run)
+from mpmxdem_tools.jobs import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
 
 TOLERANCE = 0.10
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Global equilibrium of the strip footing (tools/footing_make_job.py, coarse: 128 RVEs of 100
+"""Global equilibrium of the strip footing (tools/mpmxdem_tools/jobs/footing_make_job.py, coarse: 128 RVEs of 100
 spheres, 3 mm of settlement, no Cundall damping): the reactions of the four velocity
 constraints (base, symmetry plane, far roller, footing; reactions.csv) and the surcharge on the
 surface must balance, in x and z, within 0.5 % of the footing's load once the start transient is
@@ -14,7 +14,7 @@ thickness (the sides are held in x). With the job's Cundall damping (0.2) the im
 import sys
 
 import footing_run  # also puts tools/ on the path
-import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
+from mpmxdem_tools.jobs import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
 
 TOL = 5e-3
 

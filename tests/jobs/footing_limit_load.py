@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The strip footing to its limit load, on the Drucker-Prager continuum (tools/footing_make_job.py
+"""The strip footing to its limit load, on the Drucker-Prager continuum (tools/mpmxdem_tools/jobs/footing_make_job.py
 --material frictional: plane-strain Mohr-Coulomb, phi = 40 deg, no dilatancy), 200 x 100 mm on
 12.5 mm cells, pushed to s/B = 0.4 by the staircase of held planes (three boxes), with the job's
 Cundall damping 0.2 (without it, each plane the staircase takes over rings: the load dips by up to
@@ -7,7 +7,7 @@ Cundall damping 0.2 (without it, each plane the staircase takes over rings: the 
 checks equilibrium on one plane). Checks, against theory no one here wrote, that
 - the limit load (the mean bearing pressure over s/B in [0.3, 0.4]) lies between Davis's
   non-associated estimate q0 N_q(phi*), tan phi* = sin phi (psi = 0), and Prandtl's associated
-  q0 N_q(phi) (tools/bearing_capacity.py): 1.26 and 3.21 MPa. Measured: 2.07 MPa (phi mobilised
+  q0 N_q(phi) (tools/mpmxdem_tools/analysis/bearing_capacity.py): 1.26 and 3.21 MPa. Measured: 2.07 MPa (phi mobilised
   36.7 deg); an elastic layer, a plasticity that does not yield or a staircase that loses the
   footing's grip leaves that band.
 
@@ -16,8 +16,8 @@ checks equilibrium on one plane). Checks, against theory no one here wrote, that
 import sys
 
 import footing_run  # also puts tools/ on the path
-import bearing_capacity  # noqa: E402 (tools/, put on the path by footing_run)
-import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
+from mpmxdem_tools.analysis import bearing_capacity  # noqa: E402 (tools/, put on the path by footing_run)
+from mpmxdem_tools.jobs import footing_make_job  # noqa: E402 (tools/, put on the path by footing_run)
 
 PHI = 40.0
 

@@ -1,7 +1,7 @@
 """What the footing tests share (tests/jobs/footing_limit_load.py, footing_associated.py,
-footing_equilibrium.py): write a footing job with tools/footing_make_job.py, run it on 2 ranks,
+footing_equilibrium.py): write a footing job with tools/mpmxdem_tools/jobs/footing_make_job.py, run it on 2 ranks,
 and read its reactions.csv and load-settlement curve with the standard library (the staircase's
-boxes summed, as tools/footing_curves.py does with pandas)."""
+boxes summed, as tools/mpmxdem_tools/analysis/footing_curves.py does with pandas)."""
 import csv
 import os
 import re
@@ -10,7 +10,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
-import footing_make_job  # noqa: E402
+from mpmxdem_tools.jobs import footing_make_job  # noqa: E402
 
 
 def run_rows(mpiexec, exe, out, params):

@@ -1,6 +1,6 @@
 """Smoke run of the column analysis tools on a real run of tests/jobs/column_collapse_tiny.toml:
-tools/mpm_column_collapse.py writes its CSVs and figures, tools/column_grain_scale.py --analyse
-keeps them with the RVEs' series (tools/column_inertial_numbers.py and tools/column_cell_stress.py
+tools/mpmxdem-tools mpm_column_collapse writes its CSVs and figures, tools/mpmxdem-tools column_grain_scale --analyse
+keeps them with the RVEs' series (tools/mpmxdem_tools/analysis/column_inertial_numbers.py and tools/mpmxdem_tools/analysis/column_cell_stress.py
 beside it), and its time axis starts at the gate's release (the job's
 `until`, 0.01 s): the end time it reports is the run's less the gate's hold.
 
@@ -22,17 +22,17 @@ for module in ("h5py", "numpy", "pandas", "matplotlib"):
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
-import column_grain_scale as cgs  # noqa: E402
+from mpmxdem_tools.analysis import column_grain_scale as cgs  # noqa: E402
 
 run = os.path.abspath(sys.argv[1])
 with tempfile.TemporaryDirectory() as tmp:
-    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "mpm_column_collapse.py"), run,
+    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "mpmxdem-tools"), "mpm_column_collapse", run,
                     "--data", tmp, "--fig", tmp], check=True, cwd=ROOT, stdout=subprocess.DEVNULL)
     for name in ("column_mpm_front.png", "column_mpm_profiles.png", "column_mpm_inertial.png",
                  "summary.csv"):
         assert os.path.exists(os.path.join(tmp, name)), name
     data = os.path.join(tmp, "grain_scale")
-    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "column_grain_scale.py"),
+    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "mpmxdem-tools"), "column_grain_scale",
                     "--analyse", run, "tiny", "--data", data], check=True, cwd=ROOT,
                    stdout=subprocess.DEVNULL)
     for kind in ("timeseries", "profiles", "summary", "mobilised", "core"):
@@ -47,7 +47,7 @@ with tempfile.TemporaryDirectory() as tmp:
     want = float(summary["t_end_over_tstar"]) - 0.01 / tstar
     assert abs(r[(2, "tiny")]["t_end"] - want) < 1e-3, (r[(2, "tiny")]["t_end"], want)
     # The inertial numbers of the same run: every point counted once per row in one regime.
-    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "column_inertial_numbers.py"),
+    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "mpmxdem-tools"), "column_inertial_numbers",
                     "--analyse", run, "tiny", "--data", data], check=True, cwd=ROOT,
                    stdout=subprocess.DEVNULL)
     inertial = list(csv.DictReader(open(os.path.join(data, "tiny_inertial.csv"))))
@@ -64,7 +64,7 @@ with tempfile.TemporaryDirectory() as tmp:
     if fast:
         assert fast[len(fast) // 2] > float(points[0]["i_n"]), fast
     # How the points of a cell share its pressure: shares between 1/n and 1, one row per output.
-    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "column_cell_stress.py"),
+    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "mpmxdem-tools"), "column_cell_stress",
                     "--analyse", run, "tiny", "--data", data], check=True, cwd=ROOT,
                    stdout=subprocess.DEVNULL)
     cells = list(csv.DictReader(open(os.path.join(data, "tiny_cells.csv"))))

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""Smoke runs of the scripts of tools/: each runs on a stored result (docs/data, tests/data), on a
+"""Smoke runs of the tools of tools/mpmxdem_tools: each runs on a stored result (docs/data, tests/data), on a
 run of the suite (a job's output directory under the build tree) or on a tiny input, and its exit
 status and something it printed or wrote are checked.
 
 Usage: /usr/bin/python3 tests/tools/smoke_tools.py SCRIPT [--exe MPMXDEM] [--bench BENCH_DEM]
            [--runs BUILD/tests/jobs]
-SCRIPT: a script of tools/ (bench_sparing.py); one CTest test (tools.<script>.smoke) per script.
+SCRIPT: a tool's name (bench_sparing); one CTest test (tools.<script>.smoke) per tool.
 Outputs go to a temporary directory, never into docs/. Exit 77 (skipped) where a Python package,
 ParaView, a display or YADE is missing (the message says which), after what can be checked
 without it.
@@ -23,6 +23,7 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 TOOLS = os.path.join(ROOT, "tools")
+LAUNCHER = os.path.join(TOOLS, "mpmxdem-tools")
 DATA = os.path.join(ROOT, "docs", "data")
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1", MPLBACKEND="Agg")
@@ -55,23 +56,26 @@ def need_paraview():
 
 
 def tool(name, *args, rc=0, prefix=(), cwd=ROOT):
-    """Runs tools/NAME with ARGS; fails unless it exits RC; returns its stdout and stderr."""
-    cmd = list(prefix) + [sys.executable, os.path.join(TOOLS, name)] + [str(a) for a in args]
+    """Runs `tools/mpmxdem-tools NAME ARGS`; fails unless it exits RC; returns its stdout and
+    stderr."""
+    cmd = list(prefix) + [sys.executable, LAUNCHER, name] + [str(a) for a in args]
     r = subprocess.run(cmd, cwd=cwd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True)
     print(f"$ {' '.join(cmd)}\n{r.stdout}", flush=True)
     if r.returncode != rc:
-        sys.exit(f"FAILED: tools/{name} exited {r.returncode}, expected {rc}")
+        sys.exit(f"FAILED: tools/mpmxdem-tools {name} exited {r.returncode}, expected {rc}")
     return r.stdout
 
 
 def yade(name, *args):
-    cmd = ["yade", "-j1", "-n", "-x", os.path.join(TOOLS, name)] + [str(a) for a in args]
+    """Runs the YADE script NAME (tools/mpmxdem_tools/references/NAME.py) inside yade."""
+    script = os.path.join(TOOLS, "mpmxdem_tools", "references", name + ".py")
+    cmd = ["yade", "-j1", "-n", "-x", script] + [str(a) for a in args]
     r = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True)
     print(f"$ {' '.join(cmd)}\n{r.stdout[-4000:]}", flush=True)
     if r.returncode != 0:
-        sys.exit(f"FAILED: tools/{name} in yade exited {r.returncode}")
+        sys.exit(f"FAILED: {name} in yade exited {r.returncode}")
     return r.stdout
 
 
@@ -101,7 +105,7 @@ def run_dir(o, name):
 
 # --- benchmarks: the smallest runs of the binaries --------------------------------------------
 def bench_contact_laws(o, tmp):
-    out = tool("bench_contact_laws.py", "--no-yade", "--rounds", 1, "--steps", 20, "--bench", o.bench)
+    out = tool("bench_contact_laws", "--no-yade", "--rounds", 1, "--steps", 20, "--bench", o.bench)
     for law in ("CohFrict", "Hertz-Mindlin"):
         line = [x for x in out.splitlines() if x.startswith(f"| mpmxdem, {law} |")]
         check(len(line) == 1 and float(line[0].split("|")[2].split()[0]) > 0, f"no timing of {law}")
@@ -111,7 +115,7 @@ def bench_coupling(o, tmp):
     need("h5py", "numpy", "matplotlib")
     # The element scene (jobs/triaxial_mpmxdem_small.toml: 8 RVEs, about 1 s a run) with
     # dt_refresh 1 (the reference) and 5, one repetition on 2 ranks.
-    tool("bench_coupling.py", "--exe", o.exe, "--out", tmp, "--scenes", "element",
+    tool("bench_coupling", "--exe", o.exe, "--out", tmp, "--scenes", "element",
          "--refresh", "1,5", "--reps", 1, "--np", 2)
     r = rows(os.path.join(tmp, "bench_coupling.csv"))
     check([x["variant"] for x in r] == ["dt_refresh = 1", "dt_refresh = 5"], "variants of the CSV")
@@ -121,19 +125,19 @@ def bench_coupling(o, tmp):
 
 
 def bench_dem_pairs(o, tmp):
-    out = tool("bench_dem_pairs.py", o.bench, o.bench, "--steps", 20, "--reps", 1)
+    out = tool("bench_dem_pairs", o.bench, o.bench, "--steps", 20, "--reps", 1)
     check(out.count("old spheres 1000 threads 1") == 1 and "median ratio old/new" in out, "the pair's lines")
 
 
 def bench_dem_speedup(o, tmp):
-    out = tool("bench_dem_speedup.py", o.bench, "--steps", 5, "--reps", 1)
+    out = tool("bench_dem_speedup", o.bench, "--steps", 5, "--reps", 1)
     check("medians: 1 thread" in out and "speed-ups " in out, "the medians line")
 
 
 def bench_sparing(o, tmp):
     need("h5py", "numpy", "matplotlib")
     # Real runs: the element scene without sparing and with tolerance 1e-4 (about 1 s each).
-    tool("bench_sparing.py", "--exe", o.exe, "--out", tmp, "--scenes", "element",
+    tool("bench_sparing", "--exe", o.exe, "--out", tmp, "--scenes", "element",
          "--tolerances", "0,1e-4", "--reps", 1, "--np", 2)
     r = rows(os.path.join(tmp, "bench_sparing.csv"))
     check(len(r) == 2 and float(r[0]["q max"]) == 0.0 and int(r[1]["dem_steps"]) <= int(r[0]["dem_steps"]),
@@ -141,7 +145,7 @@ def bench_sparing(o, tmp):
     png(os.path.join(tmp, "bench_sparing.png"))
     # One table from earlier runs' stored CSVs.
     stored = ",".join(os.path.join(DATA, "sparing", f) for f in ("biaxial_4x8.csv", "footing_512.csv"))
-    out = tool("bench_sparing.py", "--out", os.path.join(tmp, "stored"), "--from-csv", stored)
+    out = tool("bench_sparing", "--out", os.path.join(tmp, "stored"), "--from-csv", stored)
     check("| footing |" in out and "| biaxial |" in out, "rows of both stored scenes")
     png(os.path.join(tmp, "stored", "bench_sparing.png"))
 
@@ -154,7 +158,7 @@ def bench_speed_error(o, tmp):
     with open(md, "w") as f:
         f.write("# page\n\nkept\n\n<!-- bench_speed_error:begin old -->\nold\n"
                 "<!-- bench_speed_error:end -->\ntail\n")
-    tool("bench_speed_error.py", "--sizes", 125, "--inertia", "4e-3", "--strain", 0.01, "--ranks", 1,
+    tool("bench_speed_error", "--sizes", 125, "--inertia", "4e-3", "--strain", 0.01, "--ranks", 1,
          "--exe", o.exe, "--work", os.path.join(tmp, "work"), "--markdown", md,
          "--figure", os.path.join(tmp, "pareto.png"))
     text = open(md).read()
@@ -170,7 +174,7 @@ def bench_speed_error(o, tmp):
 def biaxial_analysis(o, tmp):
     need("h5py", "numpy", "matplotlib")
     run = run_dir(o, "biaxial_small")
-    out = tool("biaxial_analysis.py", run + ":small", "--dem",
+    out = tool("biaxial_analysis", run + ":small", "--dem",
                os.path.join(DATA, "biaxial_dem", "dem_series_300.csv"), "--figures", tmp)
     row = [x for x in out.splitlines() if x.startswith("| small | 2 x 4 | 32 |")]
     check(len(row) == 1, "the run's row (2 x 4 cells, 32 RVEs)")
@@ -179,7 +183,7 @@ def biaxial_analysis(o, tmp):
     for f in ("biaxial_stress_strain.png", "biaxial_strain_maps.png"):
         png(os.path.join(tmp, f))
     # --windows: the ratio's mean over the first window (the small run reaches a few % only)
-    out = tool("biaxial_analysis.py", "--windows", run + ":small")
+    out = tool("biaxial_analysis", "--windows", run + ":small")
     row = [x for x in out.splitlines() if x.startswith("| small |")]
     check(len(row) == 1, "the run's --windows row")
     first = float(row[0].split("|")[2])
@@ -189,7 +193,7 @@ def biaxial_analysis(o, tmp):
 def biaxial_compare(o, tmp):
     need("h5py", "numpy", "matplotlib")
     run = run_dir(o, "biaxial_small")
-    out = tool("biaxial_compare.py", "--dem", os.path.join(DATA, "biaxial_dem", "dem_series_300.csv"),
+    out = tool("biaxial_compare", "--dem", os.path.join(DATA, "biaxial_dem", "dem_series_300.csv"),
                run + ":small", "--strains", "0.0025,0.005,0.01")
     row = [x for x in out.splitlines() if x.startswith("| small |")]
     check(len(row) == 1, "the run's row")
@@ -200,7 +204,7 @@ def biaxial_compare(o, tmp):
 def biaxial_dem_seeds(o, tmp):
     need("numpy", "pandas")
     # Two samples of 100 spheres to 0.5 % at I = 4e-3 (about 1 s), then their mean.
-    out = tool("biaxial_dem_seeds.py", tmp, "--samples", 2, "--spheres", 100, "--strain", 0.005,
+    out = tool("biaxial_dem_seeds", tmp, "--samples", 2, "--spheres", 100, "--strain", 0.005,
                "--inertial-number", "4e-3", "--exe", o.exe)
     check("seed 1: ok" in out and "seed 2: ok" in out, "both samples ran")
     mean = rows(os.path.join(tmp, "mean.csv"))
@@ -210,7 +214,7 @@ def biaxial_dem_seeds(o, tmp):
 def biaxial_j_maps(o, tmp):
     need("h5py", "numpy", "matplotlib")
     run = run_dir(o, "biaxial_small")
-    out = tool("biaxial_j_maps.py", f"{run}:small:0.005", f"{run}:end:0.01",
+    out = tool("biaxial_j_maps", f"{run}:small:0.005", f"{run}:end:0.01",
                "--out", os.path.join(tmp, "j.png"))
     check("wrote" in out, "wrote the figure")
     png(os.path.join(tmp, "j.png"))
@@ -227,13 +231,13 @@ def render_run(o, tmp, script, run_name, *args):
 
 
 def biaxial_paraview(o, tmp):
-    render_run(o, tmp, "biaxial_paraview.py", "biaxial_small", "--arrays", "q,z")
+    render_run(o, tmp, "biaxial_paraview", "biaxial_small", "--arrays", "q,z")
 
 
 def biaxial_seed_mean(o, tmp):
     need("numpy", "pandas")
     seeds = [os.path.join(DATA, "biaxial_dem", f"dem_series_300_seed{k}.csv") for k in (2, 3)]
-    out = tool("biaxial_seed_mean.py", os.path.join(tmp, "mean.csv"), *seeds)
+    out = tool("biaxial_seed_mean", os.path.join(tmp, "mean.csv"), *seeds)
     check("peak of the mean" in out, "the summary line")
     for r in rows(os.path.join(tmp, "mean.csv")):
         ratio = float(r["sig_a"]) / float(r["sig_r"])
@@ -247,8 +251,8 @@ def coupling_bias(o, tmp):
     # four runs (two variants x offsets 0 and 3) is the suite's small biaxial run; identical
     # families: no spread, no difference.
     sys.path.insert(0, TOOLS)
-    import bench_coupling as bc
-    import coupling_bias as cb
+    from mpmxdem_tools.bench import bench_coupling as bc
+    from mpmxdem_tools.bench import coupling_bias as cb
     run = run_dir(o, "biaxial_small")
     old, speed = cb.SPEED["biaxial"]
     variants = ['end_forces = "separate"', 'end_forces = "carried"']
@@ -258,7 +262,7 @@ def coupling_bias(o, tmp):
         for v in variants:
             os.makedirs(os.path.join(tmp, "runs"), exist_ok=True)
             os.symlink(run, os.path.join(tmp, "runs", bc.run_name("biaxial", v, 0.0, 0, pert)))
-    out = tool("coupling_bias.py", "--out", tmp, "--scene", "biaxial", "--offsets", "0,3", "--reuse",
+    out = tool("coupling_bias", "--out", tmp, "--scene", "biaxial", "--offsets", "0,3", "--reuse",
                "--exe", o.exe)
     check(out.count("biaxial [end_forces") == 4, "four runs analysed")
     check(any(x.startswith("| pre-peak | 0.00 %, 0.00 % |") for x in out.splitlines()), "the pre-peak row")
@@ -270,7 +274,7 @@ def coupling_bias(o, tmp):
 # --- the column collapse --------------------------------------------------------------------
 def column_frictional_family(o, tmp):
     summary = os.path.join(DATA, "column_collapse_frictional", "summary.csv")
-    out = tool("column_frictional_family.py", "--table", summary)
+    out = tool("column_frictional_family", "--table", summary)
     n = len(rows(summary))
     check(sum(1 for x in out.splitlines() if x.startswith("| ") and " deg |" in x) == n,
           f"one table row per run of {summary} ({n})")
@@ -278,7 +282,7 @@ def column_frictional_family(o, tmp):
 
 def column_resolution_figure(o, tmp):
     need("matplotlib", "pandas")
-    out = tool("column_resolution_figure.py", "--data", DATA, "--fig", tmp)
+    out = tool("column_resolution_figure", "--data", DATA, "--fig", tmp)
     check("missing" not in out, "every series found in docs/data")
     png(os.path.join(tmp, "column_a2_resolution.png"))
 
@@ -290,7 +294,7 @@ def plot_column_collapse(o, tmp):
     os.makedirs(data)
     for f in glob.glob(os.path.join(DATA, "column_collapse_yade", "a*_n1000_*.csv")):
         shutil.copy(f, data)
-    out = tool("plot_column_collapse.py", "--data", data, "--fig", os.path.join(tmp, "fig"))
+    out = tool("plot_column_collapse", "--data", data, "--fig", os.path.join(tmp, "fig"))
     check("fit runout_over_L0" in out, "the fitted exponents")
     check(len(rows(os.path.join(data, "summary.csv"))) == 3, "three summary rows")
     for f in ("column_profiles.png", "column_front.png", "column_runout_scaling.png"):
@@ -298,13 +302,13 @@ def plot_column_collapse(o, tmp):
 
 
 def render_column_collapse(o, tmp):
-    render_run(o, tmp, "render_column_collapse.py", "column_collapse_tiny", "--times", "0,0.1")
+    render_run(o, tmp, "render_column_collapse", "column_collapse_tiny", "--times", "0,0.1")
 
 
 def yade_column_collapse(o, tmp):
     need_yade()
     # 30 soft grains, a = 1, stopped at 0.2 t*.
-    yade("yade_column_collapse.py", "--a", 1, "--n", 30, "--young", "3e6", "--tmax", 0.2,
+    yade("yade_column_collapse", "--a", 1, "--n", 30, "--young", "3e6", "--tmax", 0.2,
          "--max-wall", 300, "--out", tmp, "--tag", "smoke")
     r = rows(os.path.join(tmp, "smoke_summary.csv"))
     check(len(r) == 1 and float(r[0]["H0_m"]) > 0, "the summary row")
@@ -314,7 +318,7 @@ def yade_column_collapse_partial(o, tmp):
     # A complete dense run's log and series: the partial summary agrees with the run's own.
     base = os.path.join(DATA, "column_collapse_yade", "dense_a1_n375_l0.05")
     out_csv = os.path.join(tmp, "partial.csv")
-    out = tool("yade_column_collapse_partial.py", base + ".log", base + "_timeseries.csv", out_csv)
+    out = tool("yade_column_collapse_partial", base + ".log", base + "_timeseries.csv", out_csv)
     check("dense_a1_n375_l0.05 to t/t* = 5.16" in out, "the printed line")
     got, want = rows(out_csv)[0], rows(base + "_summary.csv")[0]
     for key in ("N", "W_over_d50", "damping", "prep_steps", "collapse_steps"):
@@ -329,17 +333,17 @@ def yade_column_collapse_partial(o, tmp):
 def footing_sparing_map(o, tmp):
     need("h5py", "numpy", "matplotlib")
     run = os.path.join(run_dir(o, "footing_equilibrium/run"))
-    out = tool("footing_sparing_map.py", run, run, "--out", os.path.join(tmp, "map.png"))
+    out = tool("footing_sparing_map", run, run, "--out", os.path.join(tmp, "map.png"))
     check("128 RVEs;" in out and "spared share: median 0 %" in out, "the summary line (nothing spared)")
     png(os.path.join(tmp, "map.png"))
 
 
 def rve_low_pressure_strength(o, tmp):
     # The stored tables (standard library only).
-    out = tool("rve_low_pressure_strength.py", "--table")
+    out = tool("rve_low_pressure_strength", "--table")
     jobs = glob.glob(os.path.join(DATA, "column_collapse_rve_strength", "*.toml"))
     check(out.count("| seed ") == len(jobs), "one row per stored job")
-    out = tool("rve_low_pressure_strength.py", "--table", "--dilatancy",
+    out = tool("rve_low_pressure_strength", "--table", "--dilatancy",
                "--data", os.path.join(DATA, "footing_rve_strength"))
     check("dilatancy angle at the peak" in out and out.count("| seed ") == 5, "the footing's table")
     # --run on one of the column's jobs cut to 16 % axial strain (about 1 s), then its table.
@@ -350,10 +354,10 @@ def rve_low_pressure_strength(o, tmp):
     with open(os.path.join(data, "n100_seed3.toml"), "w") as f:
         f.write(text.replace("\naxial_strain = 0.30\n", "\naxial_strain = 0.16\n")
                 .replace("\nevery = 200\n", "\nevery = 50\n"))
-    out = tool("rve_low_pressure_strength.py", "--data", data, "--exe", o.exe,
+    out = tool("rve_low_pressure_strength", "--data", data, "--exe", o.exe,
                "--run", os.path.join(tmp, "runs"))
     check("ran n100_seed3" in out, "the run")
-    out = tool("rve_low_pressure_strength.py", "--data", data, "--table")
+    out = tool("rve_low_pressure_strength", "--data", data, "--table")
     row = [x for x in out.splitlines() if x.startswith("| seed 3 | 100 |")]
     check(len(row) == 1 and 20 < float(row[0].split("|")[3].split()[0]) < 90, "the run's peak angle")
 
@@ -362,10 +366,10 @@ def rve_low_pressure_strength(o, tmp):
 def dem_against_yade(o, tmp):
     ours = os.path.join(DATA, "yade_hertz_mindlin", "mpmxdem_dem_series.csv")
     theirs = os.path.join(ROOT, "tests", "data", "dem", "yade_triax_hertz_mindlin_N1000_I2.5e-4.csv")
-    out = tool("dem_against_yade.py", ours, theirs)
+    out = tool("dem_against_yade", ours, theirs)
     rms = [x for x in out.splitlines() if x.startswith("RMS of the relative q/p difference")]
     check(len(rms) == 1 and float(rms[0].split()[-2]) < 10, "the RMS line (a few %)")
-    out = tool("dem_against_yade.py", ours, theirs, "--markdown")
+    out = tool("dem_against_yade", ours, theirs, "--markdown")
     check(out.count("\n|") >= 5, "the markdown table")
 
 
@@ -373,7 +377,7 @@ def plot_triaxial(o, tmp):
     need("h5py", "numpy", "matplotlib")
     run = run_dir(o, "triaxial_mpmxdem_small")
     prefix = os.path.join(tmp, "tri")
-    out = tool("plot_triaxial.py", "--out", prefix, "--run", run + "=small",
+    out = tool("plot_triaxial", "--out", prefix, "--run", run + "=small",
                "--csv", os.path.join(DATA, "triaxial_dem_8k", "dem_series.csv") + "=8k",
                "--csv", os.path.join(ROOT, "tests", "data", "dem", "yade_triax_N1000_I2.5e-4.csv") + "=yade",
                "--summary")
@@ -383,13 +387,13 @@ def plot_triaxial(o, tmp):
 
 
 def render_points(o, tmp):
-    render_run(o, tmp, "render_points.py", "triaxial_mpmxdem_small", "--arrays", "q")
+    render_run(o, tmp, "render_points", "triaxial_mpmxdem_small", "--arrays", "q")
 
 
 def render_rve(o, tmp):
-    out = tool("render_rve.py", "a.vtm", os.path.join(tmp, "x.png"), "--panels", "grains,forces", rc=1)
+    out = tool("render_rve", "a.vtm", os.path.join(tmp, "x.png"), "--panels", "grains,forces", rc=1)
     check("unknown panel 'forces'" in out, "the unknown panel's message")
-    out = tool("render_rve.py", os.path.join(tmp, "none.vtm"), os.path.join(tmp, "x.png"), rc=1)
+    out = tool("render_rve", os.path.join(tmp, "none.vtm"), os.path.join(tmp, "x.png"), rc=1)
     check("none_spheres.vtp is missing" in out, "the missing view's message")
     prefix = need_paraview()
     run = run_dir(o, "triaxial_mpmxdem_small")
@@ -398,14 +402,14 @@ def render_rve(o, tmp):
     subprocess.run([o.exe, "inspect", ckpt, "--rve", "0", "--vtk", views], check=True, env=ENV)
     vtm = sorted(glob.glob(os.path.join(views, "*.vtm")))
     check(vtm, "inspect --vtk wrote a view")
-    tool("render_rve.py", vtm[0], os.path.join(tmp, "r.png"), "--size", "800x400", prefix=prefix)
+    tool("render_rve", vtm[0], os.path.join(tmp, "r.png"), "--size", "800x400", prefix=prefix)
     png(os.path.join(tmp, "r.png"))
 
 
 def triaxial_errors(o, tmp):
     need("h5py", "numpy")
     run = run_dir(o, "triaxial_mpmxdem_small")
-    out = tool("triaxial_errors.py", run + "=small", "--strain", 0.02)
+    out = tool("triaxial_errors", run + "=small", "--strain", 0.02)
     check("small (" in out and "reached eps_ax 2.0 %" in out, "the run reached 2 %")
     line = [x for x in out.splitlines() if "vs 30k DEM: q RMS" in x]
     check(len(line) == 1 and float(line[0].split("q RMS")[1].split()[0]) < 30, "the q error line")
@@ -413,7 +417,7 @@ def triaxial_errors(o, tmp):
 
 def yade_triax_hertz_mindlin(o, tmp):
     need_yade()
-    out = yade("yade_triax_hertz_mindlin.py", "--packing",
+    out = yade("yade_triax_hertz_mindlin", "--packing",
                os.path.join(ROOT, "jobs", "packings", "packing_N1000_hertz_mindlin.txt"), "--bench-steps", 20)
     check("us/particle-step" in out, "the timing line")
 
@@ -422,7 +426,7 @@ def yade_triax_hertz_mindlin(o, tmp):
 def yade_export_packing(o, tmp):
     need_yade()
     out_txt, raw = os.path.join(tmp, "p.txt"), os.path.join(tmp, "raw.txt")
-    yade("yade_export_packing.py", out_txt, 30, "--raw", raw)
+    yade("yade_export_packing", out_txt, 30, "--raw", raw)
     text = open(out_txt).read()
     check("# CELL" in text and "# CELL" not in open(raw).read(), "the cell added to the export only")
     spheres = [x for x in text.splitlines() if x.strip() and not x.startswith("#")]
@@ -431,14 +435,14 @@ def yade_export_packing(o, tmp):
 
 def yade_read_packing(o, tmp):
     need_yade()
-    out = yade("yade_read_packing.py", os.path.join(ROOT, "tests", "data", "dem", "yade_export_periodic.txt"))
+    out = yade("yade_read_packing", os.path.join(ROOT, "tests", "data", "dem", "yade_export_periodic.txt"))
     check("YADE read " in out, "the count line")
 
 
 def yade_hertz_mindlin_pair(o, tmp):
     need_yade()
     out_csv = os.path.join(tmp, "pair.csv")
-    yade("yade_hertz_mindlin_pair.py", out_csv)
+    yade("yade_hertz_mindlin_pair", out_csv)
     got, want = rows(out_csv), rows(os.path.join(ROOT, "tests", "data", "dem", "yade_hertz_mindlin_pair.csv"))
     check(len(got) == len(want), f"{len(got)} rows against the stored {len(want)}")
     for g, w in zip(got[::50], want[::50]):
@@ -447,7 +451,7 @@ def yade_hertz_mindlin_pair(o, tmp):
                   f"step {g['step']}: {k} {g[k]} against the stored {w[k]}")
 
 
-CASES = {f.__name__ + ".py": f for f in (
+CASES = {f.__name__: f for f in (
     bench_contact_laws, bench_coupling, bench_dem_pairs, bench_dem_speedup, bench_sparing,
     bench_speed_error, biaxial_analysis, biaxial_compare, biaxial_dem_seeds, biaxial_j_maps,
     biaxial_paraview, biaxial_seed_mean, column_frictional_family, column_resolution_figure,
@@ -465,13 +469,13 @@ def main():
     ap.add_argument("--runs", default=os.path.join(ROOT, "build", "tests", "jobs"),
                     help="the suite's job runs (BUILD/tests/jobs)")
     o = ap.parse_args()
-    with tempfile.TemporaryDirectory(prefix="smoke_" + o.script[:-3] + "_") as tmp:
+    with tempfile.TemporaryDirectory(prefix="smoke_" + o.script + "_") as tmp:
         try:
             CASES[o.script](o, tmp)
         except Skip as e:
-            print(f"SKIPPED: tools/{o.script}: {e}")
+            print(f"SKIPPED: {o.script}: {e}")
             return 77
-    print(f"tools/{o.script}: ok")
+    print(f"{o.script}: ok")
     return 0
 
 

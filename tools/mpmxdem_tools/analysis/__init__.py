@@ -1,0 +1,1 @@
+"""Analysis and figures: the manual's tables and figures from runs and stored data."""

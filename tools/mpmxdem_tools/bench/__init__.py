@@ -1,0 +1,1 @@
+"""Benchmarks: speed against error, printed as figures; never tests."""

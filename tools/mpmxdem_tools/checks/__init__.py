@@ -1,0 +1,1 @@
+"""Output checks: a run's outputs opened with the clients researchers use."""

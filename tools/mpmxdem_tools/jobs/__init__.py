@@ -1,0 +1,1 @@
+"""Job writers: the biaxial, footing and column-collapse jobs of jobs/ and docs/data."""
