@@ -5,6 +5,7 @@ import runpy
 import sys
 
 from . import index
+from .paths import ROOT
 
 USAGE = """usage: tools/mpmxdem-tools NAME [ARGS]    run a tool (NAME --help: its usage)
        tools/mpmxdem-tools --help             this list
@@ -14,8 +15,11 @@ USAGE = """usage: tools/mpmxdem-tools NAME [ARGS]    run a tool (NAME --help: it
 
 def main(argv):
     if not argv or argv[0] in ("-h", "--help", "help"):
-        print(USAGE)
-        print(index.text_index())
+        try:
+            print(USAGE)
+            print(index.text_index())
+        except BrokenPipeError:  # `--help | head`
+            sys.stdout = open(os.devnull, "w")
         return 0
     name = argv[0][:-3] if argv[0].endswith(".py") else argv[0]
     found = index.find(name)
@@ -25,9 +29,12 @@ def main(argv):
         return 2
     sub, path = found
     if index.runs_in_yade(path):
-        rel = os.path.relpath(path, os.getcwd())
+        here = os.path.realpath(os.getcwd()) == os.path.realpath(ROOT)
+        rel = os.path.relpath(path, ROOT) if here else path
         print(f"tools/mpmxdem-tools: {name} runs inside YADE: yade -j1 -n -x {rel} [ARGS]", file=sys.stderr)
         return 2
+    # argparse names the program after sys.argv[0]: "mpmxdem-tools NAME" in every usage line
+    # (alter_sys=False keeps it; runpy would put the module's file there).
     sys.argv = [f"mpmxdem-tools {name}"] + list(argv[1:])
-    runpy.run_module(f"mpmxdem_tools.{sub}.{name}", run_name="__main__", alter_sys=True)
+    runpy.run_module(f"mpmxdem_tools.{sub}.{name}", run_name="__main__", alter_sys=False)
     return 0

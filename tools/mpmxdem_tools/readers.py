@@ -47,3 +47,28 @@ def constraint_names(f):
     """The names of the rows of results.h5's constraints/ datasets, in order (the job's
     [[mpm.velocity]] / [[mpm.traction]] names)."""
     return text_attribute(f["constraints"].attrs["names"]).split(",")
+
+
+def bench_figures(text):
+    """The figures a DEM speed run prints, as a dict: bench_dem's lines ("spheres N threads T team
+    M steps S wall W s cpu C s", "ms/step .. us/particle-step .. ...", "... hash H") and the same
+    "us/particle-step" figure that tools/mpmxdem_tools/references/yade_triax_hertz_mindlin.py
+    --bench-steps prints for YADE. Keys: us_per_particle_step (always), and where printed spheres,
+    threads, steps, wall_s, cpu_s, hash. bench_dem's output is kept as text (not JSON) so that
+    builds of any age can be compared in pairs; this is its one parser."""
+    import re
+
+    out = {}
+    m = re.search(r"us/particle-step ([0-9.eE+-]+)", text)
+    if not m:
+        sys.exit("no 'us/particle-step' figure in the benchmark's output:\n" + text[-2000:])
+    out["us_per_particle_step"] = float(m.group(1))
+    m = re.search(r"^spheres (\d+) threads (\d+) team \d+ steps (\d+) wall ([0-9.eE+-]+) s "
+                  r"cpu ([0-9.eE+-]+) s", text, re.M)
+    if m:
+        out.update(spheres=int(m.group(1)), threads=int(m.group(2)), steps=int(m.group(3)),
+                   wall_s=float(m.group(4)), cpu_s=float(m.group(5)))
+    m = re.search(r"hash ([0-9a-f]+)", text)
+    if m:
+        out["hash"] = m.group(1)
+    return out

@@ -10,11 +10,12 @@ Usage (from the repository, after tools/dev build; YADE from the Debian package)
 """
 import argparse
 import os
-import re
 import statistics
 import subprocess
 
+from .. import readers
 from ..paths import ROOT
+
 BENCH = os.path.join(ROOT, "build", "src", "dem", "bench_dem")
 HM_PACKING = os.path.join(ROOT, "jobs", "packings", "packing_N1000_hertz_mindlin.txt")
 
@@ -22,7 +23,7 @@ HM_PACKING = os.path.join(ROOT, "jobs", "packings", "packing_N1000_hertz_mindlin
 def run(cmd):
     env = dict(os.environ, OMP_NUM_THREADS="1")
     out = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, check=True).stdout
-    return float(re.search(r"us/particle-step ([0-9.]+)", out).group(1))
+    return readers.bench_figures(out)["us_per_particle_step"]
 
 
 def main():

@@ -32,6 +32,7 @@ import statistics
 import subprocess
 import sys
 
+from .. import readers
 from . import bench_sparing as bs  # noqa: E402 (a tool beside this one: scenes, measures, errors)
 
 
@@ -94,9 +95,9 @@ def run(args, scene, variant, rep, perturbed):
     log = subprocess.run(cmd, env=env, cwd=bs.ROOT, capture_output=True, text=True)
     if log.returncode != 0:
         if getattr(args, "keep_going", False):  # tools/mpmxdem-tools coupling_bias --keep-going
-            err = re.findall(r"error: (.*)", log.stdout + log.stderr)
-            print("run failed (exit %d): %s: %s" % (log.returncode, " ".join(cmd),
-                                                    err[0] if err else ""), flush=True)
+            s = readers.summary(out, required=False)  # the error as the run reports it
+            err = s["error"].split("\n")[0] if s and s.get("error") else log.stderr.strip()[-300:]
+            print("run failed (exit %d): %s: %s" % (log.returncode, " ".join(cmd), err), flush=True)
             return None
         sys.exit("run failed (exit %d): %s\n%s" % (log.returncode, " ".join(cmd),
                                                    log.stderr[-3000:]))

@@ -9,19 +9,19 @@ of the per-pair ratios old/new. The machine is noisy (up to 30 % run to run): co
 """
 import argparse
 import os
-import re
 import statistics
 import subprocess
+
+from .. import readers
 
 
 def run(binary, tiles, threads, steps):
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     out = subprocess.run([binary, "", str(tiles), str(threads), str(steps)], env=env,
                          capture_output=True, text=True, check=True).stdout
-    n = int(re.search(r"^spheres (\d+)", out, re.M).group(1))
-    wall = float(re.search(r"us/particle-step ([0-9.eE+-]+)", out).group(1))
-    cpu = float(re.search(r"cpu ([0-9.eE+-]+) s", out).group(1)) / steps / n * 1e6
-    return n, wall, cpu
+    fig = readers.bench_figures(out)
+    n = fig["spheres"]
+    return n, fig["us_per_particle_step"], fig["cpu_s"] / steps / n * 1e6
 
 
 def main():

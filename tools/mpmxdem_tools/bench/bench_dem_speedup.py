@@ -15,9 +15,10 @@ bound in every round, reported as two entries.
 """
 import argparse
 import os
-import re
 import statistics
 import subprocess
+
+from .. import readers
 
 
 def run(binary, tiles, threads, steps, bind=False):
@@ -26,7 +27,7 @@ def run(binary, tiles, threads, steps, bind=False):
         env["OMP_PROC_BIND"] = "true"
     out = subprocess.run([binary, "", str(tiles), str(threads), str(steps)], env=env,
                          capture_output=True, text=True, check=True).stdout
-    return float(re.search(r"us/particle-step ([0-9.eE+-]+)", out).group(1))
+    return readers.bench_figures(out)["us_per_particle_step"]
 
 
 def main():
