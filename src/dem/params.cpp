@@ -9,16 +9,20 @@ namespace dem {
 
 void Material::validate() const {
   common::check_ranges(kMaterial, *this);
-  switch (law) {
-    case ContactLawKind::cohfrict:
-      common::check_ranges(kCohFrict, *this);
-      return;
-    case ContactLawKind::hertz_mindlin:
-      common::check_ranges(kHertzMindlin, hm);
-      return;
+  if (law == ContactLawKind::cohfrict) {
+    common::check_ranges(kCohFrict, *this);
+    return;
   }
-  throw common::InputError("dem.material.contact_law: unknown law " +
-                           std::to_string(static_cast<int>(law)));
+  bool known = false;
+  for_each_table_law([&](const auto& d) {
+    if (d.kind != law) return;
+    common::check_ranges(d.table, this->*d.params);
+    known = true;
+  });
+  if (!known) {
+    throw common::InputError("dem.material.contact_law: unknown law " +
+                             std::to_string(static_cast<int>(law)));
+  }
 }
 
 void Numerics::validate() const {

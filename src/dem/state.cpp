@@ -30,12 +30,6 @@ constexpr Member<Material> kMaterialFields[] = {
     {"alpha_r", &Material::alpha_r},       {"eta_r", &Material::eta_r},
     {"alpha_t", &Material::alpha_t},       {"eta_t", &Material::eta_t},
 };
-constexpr Member<HertzMindlinMaterial> kHertzMindlinFields[] = {
-    {"poisson", &HertzMindlinMaterial::poisson},
-    {"krot", &HertzMindlinMaterial::krot},
-    {"ktwist", &HertzMindlinMaterial::ktwist},
-    {"eta", &HertzMindlinMaterial::eta},
-};
 constexpr Member<Numerics> kNumericsFields[] = {
     {"damping", &Numerics::damping},
     {"dt_safety", &Numerics::dt_safety},
@@ -127,12 +121,13 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   common::write_scalar(w, pre + "dem/version", cohfrict ? kStateVersion : kStateVersionOtherLaw);
   for (const auto& f : kMaterialFields)
     common::write_scalar(w, pre + "params/material/" + f.name, mat.*f.member);
-  if (!cohfrict) {
+  for_each_table_law([&](const auto& d) {
+    if (d.kind != mat.law) return;
     common::write_scalar(w, pre + "params/material/contact_law",
                          static_cast<std::int64_t>(mat.law));
-    for (const auto& f : kHertzMindlinFields)
-      common::write_scalar(w, pre + "params/material/hertz_mindlin/" + f.name, mat.hm.*f.member);
-  }
+    const std::string dir = pre + "params/material/" + std::string(d.name()) + "/";
+    for (const auto& f : d.state) common::write_scalar(w, dir + f.name, (mat.*d.params).*f.member);
+  });
   for (const auto& f : kNumericsFields)
     common::write_scalar(w, pre + "params/numerics/" + f.name, num.*f.member);
   common::write_scalar(w, pre + "params/numerics/timestep_update_interval",
@@ -204,17 +199,24 @@ Material read_material(const common::StateReader& r, const Reader& rd, const std
   Material mat;
   for (const auto& f : kMaterialFields)
     mat.*f.member = rd.scalar(std::string("params/material/") + f.name);
-  if (version == kStateVersionOtherLaw) {
-    const std::string name = pre + "params/material/contact_law";
-    const std::int64_t law = common::read_scalar_i64(r, name);
-    if (law != static_cast<std::int64_t>(ContactLawKind::hertz_mindlin)) {
-      throw common::InputError("dem state: field '" + name + "' = " + std::to_string(law) +
-                               ": must be 1 (hertz_mindlin) in a version " +
-                               std::to_string(kStateVersionOtherLaw) + " state");
-    }
-    mat.law = ContactLawKind::hertz_mindlin;
-    for (const auto& f : kHertzMindlinFields)
-      mat.hm.*f.member = rd.scalar(std::string("params/material/hertz_mindlin/") + f.name);
+  if (version != kStateVersionOtherLaw) return mat;  // CohFrict
+  const std::string name = pre + "params/material/contact_law";
+  const std::int64_t law = common::read_scalar_i64(r, name);
+  bool known = false;
+  std::string laws;
+  for_each_table_law([&](const auto& d) {
+    laws += (laws.empty() ? "" : ", ") + std::to_string(static_cast<int>(d.kind)) + " (" +
+            std::string(d.name()) + ")";
+    if (law != static_cast<std::int64_t>(d.kind)) return;
+    known = true;
+    mat.law = d.kind;
+    const std::string dir = "params/material/" + std::string(d.name()) + "/";
+    for (const auto& f : d.state) (mat.*d.params).*f.member = rd.scalar(dir + f.name);
+  });
+  if (!known) {
+    throw common::InputError("dem state: field '" + name + "' = " + std::to_string(law) +
+                             ": must be one of " + laws + " in a version " +
+                             std::to_string(kStateVersionOtherLaw) + " state");
   }
   return mat;
 }

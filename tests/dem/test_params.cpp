@@ -37,6 +37,34 @@ TEST(Params, MaterialErrorsNameTheJobKeys) {
   EXPECT_EQ(error_of(m), "dem.material.twisting.stiffness = -1: must be >= 0");
 }
 
+// Every law but CohFrict is described once by dem::for_each_table_law (its table in
+// [dem.material.<name>], its checkpoint fields, one per parameter of its table, under distinct
+// names), so that the job's reading, rules, schema and checkpoint cannot miss it; validate()
+// checks the law's own table.
+TEST(Params, EveryLawButCohFrictHasOneTableLaw) {
+  for (const auto& named : dem::kContactLawNames) {
+    if (named.value == dem::ContactLawKind::cohfrict) continue;
+    int found = 0;
+    dem::for_each_table_law([&](const auto& d) {
+      if (d.kind != named.value) return;
+      ++found;
+      EXPECT_EQ(d.section(), "dem.material." + std::string(named.name));
+      EXPECT_EQ(std::size(d.state), d.table.rows.size()) << named.name;
+      for (std::size_t i = 0; i < std::size(d.state); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+          EXPECT_NE(std::string(d.state[i].name), d.state[j].name) << named.name;
+          EXPECT_NE(d.state[i].member, d.state[j].member) << named.name;
+        }
+      }
+    });
+    EXPECT_EQ(found, 1) << named.name;
+  }
+  dem::Material m = dem::hertz_mindlin_reference_material();
+  EXPECT_EQ(error_of(m), "");
+  m.hm.poisson = 0.5;
+  EXPECT_EQ(error_of(m), "dem.material.hertz_mindlin.poisson_ratio = 0.5: must be in [0, 0.5)");
+}
+
 TEST(Params, NumericsErrorsNameTheJobKeysOrTheMember) {
   dem::Numerics n;
   EXPECT_EQ(error_of(n), "");

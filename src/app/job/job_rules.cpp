@@ -112,7 +112,9 @@ void sample_rules(const Job& job, Rules& r) {
     r.fail("dem.sample.psd_passing", "must start at 0 and end at 1");
 }
 
-// The keys of one contact law are required with it and refused with another.
+// The keys of one contact law are required with it and refused with another: CohFrict's in
+// [dem.material] (and [dem.material.twisting]), every other law's in its own table
+// (dem::for_each_table_law).
 void material_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.material")) return;
   const std::string law = job.has("dem.material.contact_law")
@@ -125,18 +127,20 @@ void material_rules(const Job& job, Rules& r) {
       // The rows of the optional [dem.material.twisting] table are required by the schema.
       if (p.key.find('.') == std::string_view::npos) r.require(dem::kCohFrict.name(p), why);
     }
-    if (job.has_section("dem.material.hertz_mindlin")) {
-      r.fail_section("dem.material.hertz_mindlin", refuse);
-    }
-    return;
   }
-  if (!job.has_section("dem.material.hertz_mindlin")) {
-    std::string keys;
-    for (const auto& p : dem::kHertzMindlin)
-      keys += (keys.empty() ? "" : ", ") + std::string(p.key);
-    r.fail("dem.material.contact_law",
-           fmt::format("needs the table [dem.material.hertz_mindlin] ({})", keys));
-  }  // present: the schema requires its keys
+  dem::for_each_table_law([&](const auto& d) {
+    const std::string section(d.section());
+    if (law != d.name()) {
+      if (job.has_section(section)) r.fail_section(section, refuse);
+      return;
+    }
+    if (!job.has_section(section)) {
+      std::string keys;
+      for (const auto& p : d.table) keys += (keys.empty() ? "" : ", ") + std::string(p.key);
+      r.fail("dem.material.contact_law", fmt::format("needs the table [{}] ({})", section, keys));
+    }  // present: the schema requires its keys
+  });
+  if (law == dem::contact_law_name(dem::ContactLawKind::cohfrict)) return;
   for (const auto& p : dem::kCohFrict) {
     if (job.has(dem::kCohFrict.name(p))) r.fail(dem::kCohFrict.name(p), refuse);
   }

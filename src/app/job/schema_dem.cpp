@@ -29,10 +29,10 @@ void add_material(Schema& s) {
   s.add("dem.material.twisting", Type::Table,
         "cohfrict: twisting resistance; absent: no twisting moment.");
   add_params(s, dem::kCohFrict, "twisting");
-  s.add("dem.material.hertz_mindlin", Type::Table,
-        "Hertz-Mindlin parameters (YADE FrictMat and Ip2_FrictMat_FrictMat_MindlinPhys). Required "
-        "with contact_law = \"hertz_mindlin\", refused with another law.");
-  add_params(s, dem::kHertzMindlin);
+  dem::for_each_table_law([&s](const auto& d) {
+    s.add(std::string(d.section()), Type::Table, std::string(d.doc));
+    add_params(s, d.table);
+  });
 }
 
 // [dem.sample] (a packing file or a generated cloud) and [dem.preparation].

@@ -24,7 +24,9 @@ dem::Material dem_material(const Job& job) {
   fill_from_job(job, dem::kMaterial, m);
   fill_from_job(job, dem::kCohFrict, m);
   fill_choices_from_job(job, dem::kMaterialChoices, m);
-  if (m.law == dem::ContactLawKind::hertz_mindlin) fill_from_job(job, dem::kHertzMindlin, m.hm);
+  dem::for_each_table_law([&](const auto& d) {
+    if (m.law == d.kind) fill_from_job(job, d.table, m.*d.params);
+  });
   m.validate();
   return m;
 }
