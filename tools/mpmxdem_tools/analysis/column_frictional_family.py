@@ -143,8 +143,8 @@ def main():
                "wall_s": round(wall, 1)}
         if rc == 0:
             data = os.path.join(work, "data")
-            subprocess.run(tool_command("mpm_column_collapse") + [
-                            os.path.join(work, "run"), "--data", data, "--fig", data],
+            subprocess.run(tool_command("mpm_column_collapse")
+                           + [os.path.join(work, "run"), "--data", data, "--fig", data],
                            stdout=subprocess.DEVNULL, check=True)
             summary = next(csv.DictReader(open(os.path.join(data, "summary.csv"))))
             for k in ("Hf_over_H0", "runout_over_L0", "runout_connected_over_L0",

@@ -67,8 +67,8 @@ LARGE = {1: ("column_collapse_mpm_2x2", "a1"), 2: ("column_collapse_mpm_2x2", "a
 
 def analyse(run, stem, data):
     with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run(tool_command("mpm_column_collapse") + [ run,
-                        "--data", tmp, "--fig", tmp], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(tool_command("mpm_column_collapse") + [run, "--data", tmp, "--fig", tmp],
+                       check=True, stdout=subprocess.DEVNULL)
         tags = [f[: -len("_summary.csv")] for f in os.listdir(tmp)
                 if f.endswith("_summary.csv") and f != "summary.csv"]
         if len(tags) != 1:

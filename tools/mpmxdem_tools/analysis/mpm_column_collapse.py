@@ -46,6 +46,13 @@ RHO_S = 2650.0
 P_LOW = 100.0  # [Pa] "near-zero pressure"
 
 
+def run_dem_steps(run):
+    """The run's DEM steps, all of them (run_summary.json); "" for a run that wrote none. (The
+    sum of results.h5's rve/dem_steps counts only the written rows, every output.every-th MPM
+    step: a small fraction of the work.)"""
+    s = readers.summary(run, required=False)
+    return s["dem_steps"] if s else ""
+
 
 def analyse(run):
     f = readers.results(run)
@@ -134,7 +141,7 @@ def analyse(run):
                 volume_ratio_max=float((f["points/volume"][:] / vol0[None, :]).max()),
                 I_max=np.nanmax(inert), I_p95_max=np.nanmax(np.nanpercentile(inert[1:], 95, axis=1)),
                 flight_max=int(flight.max()), lowp_max=int(lowp.max()), mpm_steps=int(steps[-1]),
-                dem_steps=int(f["rve/dem_steps"][:].sum()))
+                dem_steps=run_dem_steps(run))
     job = os.path.join(run, "job.toml")
     release = gate_release(job) / tstar if os.path.exists(job) else 0.0
     return dict(t=t, tstar=tstar, release=release, L0=L0, H0=H0, a=a, front=front, front_c=front_c,
