@@ -6,7 +6,9 @@
 // member's name with the same row, so a name is written once.
 //
 // The default of a row is the struct's default member initializer (read from S{}), as for the
-// numeric tables.
+// numeric tables; an initializer without a name (plane_strain_axis = -1: 3D) makes the key
+// optional, absent keeping it. A two-way switch the job writes as a TOML boolean (true, false)
+// is a row built with flag<&S::member>(key, doc).
 #pragma once
 
 #include <array>
@@ -14,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace common {
 
@@ -67,6 +70,8 @@ struct Choice {
   std::size_t (*index_of)(const S&) = nullptr;  ///< index of the member's value (count: none)
   void (*assign)(S&, std::size_t) = nullptr;    ///< sets the member to the value of names[i]
   std::string_view doc;
+  /// A TOML boolean in the job (names "false", "true"; flag()), not a string.
+  bool boolean = false;
 
   /// The index of name among the names; nullopt where absent.
   [[nodiscard]] std::optional<std::size_t> find(std::string_view name) const {
@@ -80,10 +85,16 @@ struct Choice {
     const std::size_t i = index_of(s);
     return i < count ? names[i] : std::string_view("?");
   }
-  /// The default: the name of the member initializer of S.
+  /// The default: the name of the member initializer of S ("?" where it has none).
   [[nodiscard]] std::string_view default_name() const {
     static const S defaults{};
     return name_in(defaults);
+  }
+  /// Whether the member initializer has a name; false: the job key is optional, and absent it
+  /// leaves the initializer ("not set").
+  [[nodiscard]] bool has_default() const {
+    static const S defaults{};
+    return index_of(defaults) < count;
   }
 };
 
@@ -116,6 +127,20 @@ constexpr Choice<typename detail::MemberOf<decltype(Member)>::Struct> choice(std
     return Names.size();
   };
   c.assign = [](S& s, std::size_t i) { s.*Member = Names[i].value; };
+  return c;
+}
+
+/// The names of a two-way switch written as a TOML boolean.
+inline constexpr std::array<Named<bool>, 2> kBoolNames{{{"false", false}, {"true", true}}};
+
+/// The row of a bool member Member (bool S::*) that the job writes as a TOML boolean: its names
+/// are "false" and "true", its default the member initializer.
+template <auto Member>
+constexpr Choice<typename detail::MemberOf<decltype(Member)>::Struct> flag(std::string_view key,
+                                                                           std::string_view doc) {
+  static_assert(std::is_same_v<typename detail::MemberOf<decltype(Member)>::Value, bool>);
+  auto c = choice<Member, kBoolNames>(key, doc);
+  c.boolean = true;
   return c;
 }
 

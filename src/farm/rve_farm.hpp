@@ -41,8 +41,9 @@ struct FarmOptions {
   PartitionStyle partition = PartitionStyle::spread;
 };
 
-/// [farm]: the settings of FarmOptions that are a name out of a list (common/choice_table.hpp).
-inline constexpr common::ChoiceTable<FarmOptions, 2> kFarmChoices{
+/// [farm]: the settings of FarmOptions that are a name out of a list or a switch
+/// (common/choice_table.hpp).
+inline constexpr common::ChoiceTable<FarmOptions, 3> kFarmChoices{
     "farm",
     {common::choice<&FarmOptions::wait, kWaitModeNames>(
          "wait",
@@ -53,7 +54,13 @@ inline constexpr common::ChoiceTable<FarmOptions, 2> kFarmChoices{
          "How the RVEs are grouped on ranks: spread (neighbouring points on different ranks: their "
          "step costs rise and fall together, so a rank of neighbours swings; balance 0.85-0.99 "
          "where cells gives 0.68-0.93 on 2-16 ranks, docs/design/farm.md) or cells (METIS's "
-         "contiguous parts of the grid's cell graph). Results are the same bits either way.")}};
+         "contiguous parts of the grid's cell graph). Results are the same bits either way."),
+     common::flag<&FarmOptions::rank0_rves>(
+         "rank0_rves",
+         "Rank 0 steps RVEs besides the MPM (true), or, with more than one rank, runs only the MPM "
+         "and the exchange while ranks 1.. step the RVEs (false: for many ranks, where rank 0's "
+         "MPM is on every step's critical path; give rank 0 the node's threads, "
+         "docs/design/farm.md). Results are the same bits either way.")}};
 
 class RveFarm final : public mpm::MaterialModel {
  public:

@@ -42,6 +42,9 @@ inline constexpr std::array<common::Named<bool>, 2> kPositionUpdateNames{
 /// The job's names of SolverConfig::wall_impulse_on_points (mpm.wall_impulse).
 inline constexpr std::array<common::Named<bool>, 2> kWallImpulseNames{
     {{"grid", false}, {"points", true}}};
+/// The job's names of SolverConfig::plane_strain_axis (mpm.plane_strain); -1 (3D) has none.
+inline constexpr std::array<common::Named<int>, 3> kPlaneStrainAxisNames{
+    {{"x", 0}, {"y", 1}, {"z", 2}}};
 
 /// Plain run configuration (the app maps the job file onto it). Units in each comment. The member
 /// initializers of the numeric knobs are the defaults of their job keys too (kSolverConfig).

@@ -1,7 +1,8 @@
 // [mpm]: the settings of SolverConfig that are a name out of a list (the shape function, the
-// stress update, the transfer, ...), one row each: the job key, the names and the values they
-// stand for, the meaning (common/choice_table.hpp). The app derives the schema, the defaults (the
-// member initializers of SolverConfig) and the job-to-config mapping from it.
+// stress update, the transfer, the plane-strain axis, ...) or a switch (move_points), one row
+// each: the job key, the names and the values they stand for, the meaning
+// (common/choice_table.hpp). The app derives the schema, the defaults (the member initializers of
+// SolverConfig) and the job-to-config mapping from it.
 #pragma once
 
 #include "common/choice_table.hpp"
@@ -9,7 +10,7 @@
 
 namespace mpm {
 
-inline constexpr common::ChoiceTable<SolverConfig, 10> kSolverChoices{
+inline constexpr common::ChoiceTable<SolverConfig, 12> kSolverChoices{
     "mpm",
     {common::choice<&SolverConfig::shape, kShapeKindNames>(
          "shape_function", "Shape functions: linear (the paper's), uGIMP or quadratic B-spline."),
@@ -60,6 +61,16 @@ inline constexpr common::ChoiceTable<SolverConfig, 10> kSolverChoices{
          "flip: the FLIP/PIC velocity blend of mpm.flip (the paper's); apic: affine PIC (Jiang et "
          "al. 2015), each point also carries the grid's velocity gradient, so a homogeneous "
          "deformation survives with one point per cell (docs/design/mpm.md, Transfers)."),
+     common::flag<&SolverConfig::move_points>(
+         "move_points",
+         "false: points keep their initial positions (eq. 10 skipped): only for element tests "
+         "whose cell is the sample, e.g. the paper's single-cell triaxial (see docs/design/mpm.md, "
+         "Fixed points)."),
+     common::choice<&SolverConfig::plane_strain_axis, kPlaneStrainAxisNames>(
+         "plane_strain",
+         "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
+         "held at zero and the material sees no strain rate through it, docs/design/mpm.md). "
+         "Absent: 3D."),
      common::choice<&SolverConfig::regularisation_average, kAverageKindNames>(
          "regularisation.average",
          "How the regularisation's Gaussian average over l is computed. pairs: summed over every "

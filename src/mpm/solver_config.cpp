@@ -20,11 +20,10 @@ void SolverConfig::validate() const {
         ": must be -1 (3D) or the thickness axis 0, 1 or 2");
   }
   if (plane_strain_axis >= 0 && grid.cells[plane_strain_axis] != 1) {
-    const char axis = static_cast<char>('x' + plane_strain_axis);
-    throw common::InputError(std::string("mpm.plane_strain = \"") + axis +
-                             "\": the grid must have exactly 1 cell along " + axis +
-                             " (mpm.grid.cells), not " +
-                             std::to_string(grid.cells[plane_strain_axis]));
+    const std::string axis(common::name_of(kPlaneStrainAxisNames, plane_strain_axis));
+    throw common::InputError(
+        "mpm.plane_strain = \"" + axis + "\": the grid must have exactly 1 cell along " + axis +
+        " (mpm.grid.cells), not " + std::to_string(grid.cells[plane_strain_axis]));
   }
   if (plane_strain_axis >= 0 && shape == ShapeKind::bspline2) {
     // uGIMP runs linear through the thickness (its grid basis is the linear hat); the quadratic

@@ -76,6 +76,7 @@ progress_interval = "2 s"
 rebalance_threshold = 1.5
 rebalance_check_every = 11
 wait = "sleep"
+rank0_rves = false
 )";
 
 TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
@@ -93,6 +94,7 @@ TEST(CoupledSetup, MapsKnobsAndPointsOfTheJob) {
   EXPECT_DOUBLE_EQ(c.balance.threshold, 1.5);
   EXPECT_EQ(c.balance.check_every, 11);
   EXPECT_EQ(c.farm.wait, farm::WaitMode::sleep);
+  EXPECT_FALSE(c.farm.rank0_rves);  // a TOML boolean, a flag row of kFarmChoices
   EXPECT_EQ(c.job_text, std::string(kJob));
   // Keys the job leaves out take the C++ defaults (one home: the parameter tables).
   EXPECT_EQ(c.checkpoint.every_wall_s, farm::CheckpointOptions{}.every_wall_s);

@@ -82,6 +82,19 @@ name = "lid"
   EXPECT_FALSE(setup.constraints[0].has_window());
 }
 
+// The choice rows of [mpm] that were written by hand before (mpm/solver_choices.hpp): the thickness
+// axis by its name, absent = 3D; move_points a TOML boolean, absent = the member initializer.
+TEST(MpmSetup, PlaneStrainAndMovePointsFromTheirRows) {
+  std::string job = kJob;
+  job.replace(job.find("damping"), 0, "move_points = false\nplane_strain = \"y\"\n");
+  const auto setup = app::mpm_setup(app::Job::parse(job, "job.toml"));
+  EXPECT_EQ(setup.config.plane_strain_axis, 1);
+  EXPECT_FALSE(setup.config.move_points);
+  const auto plain = app::mpm_setup(app::Job::parse(kJob, "job.toml"));
+  EXPECT_EQ(plain.config.plane_strain_axis, -1);
+  EXPECT_EQ(plain.config.move_points, mpm::SolverConfig{}.move_points);
+}
+
 }  // namespace
 
 TEST(MpmSetup, PaperSingleCellSetUp) {

@@ -16,15 +16,21 @@ inline constexpr std::array<common::Named<Colour>, 3> kColourNames{
     {{"red", Colour::red}, {"green", Colour::green}, {"blue", Colour::blue}}};
 inline constexpr std::array<common::Named<bool>, 2> kSideNames{{{"left", false}, {"right", true}}};
 
+inline constexpr std::array<common::Named<int>, 2> kCoatNames{{{"one", 1}, {"two", 2}}};
+
 struct Paint {
   Colour colour = Colour::green;  // job default "green"
   bool right = false;             // job default "left"
+  bool glossy = true;             // a TOML boolean, job default true
+  int coats = -1;                 // no name: an optional key, absent leaves -1
 };
 
-inline constexpr common::ChoiceTable<Paint, 2> kPaint{
+inline constexpr common::ChoiceTable<Paint, 4> kPaint{
     "sec.paint",
     {common::choice<&Paint::colour, kColourNames>("colour", "c"),
-     common::choice<&Paint::right, kSideNames>("side", "s")}};
+     common::choice<&Paint::right, kSideNames>("side", "s"),
+     common::flag<&Paint::glossy>("glossy", "g"),
+     common::choice<&Paint::coats, kCoatNames>("coats", "n")}};
 
 TEST(ChoiceTable, NamesAndValuesBothWays) {
   EXPECT_EQ(common::name_of(kColourNames, Colour::blue), "blue");
@@ -66,6 +72,35 @@ TEST(ChoiceTable, EveryNameSetsItsValueAndReadsBack) {
   EXPECT_FALSE(p.right);  // the other member untouched
   kPaint.row("side")->assign(p, 1);
   EXPECT_TRUE(p.right);
+}
+
+// A flag row is a bool member the job writes as a TOML boolean: names "false" and "true".
+TEST(ChoiceTable, AFlagRowIsABooleanNamedFalseAndTrue) {
+  const auto* glossy = kPaint.row("glossy");
+  ASSERT_NE(glossy, nullptr);
+  EXPECT_TRUE(glossy->boolean);
+  EXPECT_FALSE(kPaint.row("side")->boolean);  // a bool with names of its own is a string key
+  ASSERT_EQ(glossy->count, 2u);
+  EXPECT_EQ(glossy->names[0], "false");
+  EXPECT_EQ(glossy->names[1], "true");
+  EXPECT_EQ(glossy->default_name(), "true");
+  EXPECT_TRUE(glossy->has_default());
+  Paint p;
+  glossy->assign(p, *glossy->find("false"));
+  EXPECT_FALSE(p.glossy);
+  EXPECT_EQ(glossy->name_in(p), "false");
+}
+
+// A member initializer without a name (-1: not set) has no default: the key is optional.
+TEST(ChoiceTable, AnInitializerWithoutANameMakesTheKeyOptional) {
+  const auto* coats = kPaint.row("coats");
+  ASSERT_NE(coats, nullptr);
+  EXPECT_FALSE(coats->has_default());
+  EXPECT_EQ(coats->default_name(), "?");
+  EXPECT_TRUE(kPaint.row("colour")->has_default());
+  Paint p;
+  coats->assign(p, *coats->find("two"));
+  EXPECT_EQ(p.coats, 2);
 }
 
 TEST(ChoiceTable, AValueWithoutANameReadsAsAQuestionMark) {

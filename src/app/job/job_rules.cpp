@@ -10,10 +10,12 @@
 #include "app/job/job.hpp"
 #include "app/job/memory_check.hpp"
 #include "app/setup/insitu.hpp"
+#include "common/choice_table.hpp"
 #include "common/errors.hpp"
 #include "dem/params.hpp"
 #include "mpm/formulation.hpp"
 #include "mpm/shape_function.hpp"
+#include "mpm/solver.hpp"
 
 namespace app {
 
@@ -240,6 +242,13 @@ void continuum_rules(const Job& job, Rules& r) {
   }
 }
 
+// The thickness axis of plane strain (mpm.plane_strain; its names are kPlaneStrainAxisNames'),
+// -1 in 3D.
+int plane_strain_axis(const Job& job) {
+  if (!job.has("mpm.plane_strain")) return -1;
+  return common::value_of(mpm::kPlaneStrainAxisNames, job.text("mpm.plane_strain")).value_or(-1);
+}
+
 struct BodyMaterials {
   bool dem = false;
   bool elastic = false;
@@ -269,8 +278,7 @@ BodyMaterials body_rules(const Job& job, Rules& r) {
       }
       // uGIMP (in the plane of plane strain): the points' domains fill the box, and a domain on
       // the grid's boundary has a stencil node beyond it as soon as its point moves outward.
-      const bool thickness =
-          job.has("mpm.plane_strain") && job.text("mpm.plane_strain")[0] - 'x' == a;
+      const bool thickness = plane_strain_axis(job) == a;
       const double tol = 1e-9 * h[a];
       if (job.text("mpm.shape_function") == mpm::to_string(mpm::ShapeKind::ugimp) && !thickness &&
           (lo[a] <= origin[a] + tol || hi[a] >= top - tol)) {
@@ -331,9 +339,8 @@ void scheme_rules(const Job& job, Rules& r) {
            "needs mpm.move_points = false (the grid is the reference configuration only while "
            "the points keep their initial positions: an element test whose cell is the sample)");
   }
-  if (job.has("mpm.plane_strain")) {
+  if (const int a = plane_strain_axis(job); a >= 0) {
     // Plane strain holds the velocity along the thickness on every node: one cell through it.
-    const int a = job.text("mpm.plane_strain")[0] - 'x';
     if (n[static_cast<std::size_t>(a)] != 1) {
       r.fail("mpm.plane_strain",
              fmt::format("the grid must have exactly 1 cell along the thickness axis {} "

@@ -14,22 +14,8 @@ namespace {
 void add_scheme(Schema& s) {
   using Q = Quantity;
   s.add("mpm", Type::Table, "The material point method at the scale of the structure (`run`).");
-  add_choices(s, mpm::kSolverChoices);  // shape_function, update, transfer, ...
-  s.add("mpm.move_points", Type::Bool,
-        "false: points keep their initial positions (eq. 10 skipped): only for element tests whose "
-        "cell is the "
-        "sample, e.g. the paper's single-cell triaxial (see docs/design/mpm.md, Fixed points).")
-      .or_default(mpm::SolverConfig{}.move_points);
-  add_params(s, mpm::kSolverConfig);  // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
-  s.add("mpm.regularisation", Type::Table,
-        "Nonlocal strain-gradient regularisation of a softening material: length and modulus "
-        "together; absent: none (docs/design/mpm.md, Regularisation).");
-  add_params(s, mpm::kSolverConfig, "regularisation");
-  s.add("mpm.plane_strain", Type::String,
-        "Plane strain: the thickness axis (the grid has 1 cell along it; the velocity along it is "
-        "held at zero and the material sees no strain rate through it, docs/design/mpm.md). "
-        "Absent: 3D.")
-      .one_of({"x", "y", "z"});
+  add_choices(s, mpm::kSolverChoices);  // shape_function, update, ..., move_points, plane_strain
+  add_params(s, mpm::kSolverConfig);    // flip, damping, dt, cfl, mass_threshold, mass_scaling, ...
   s.add("mpm.end_time", Type::Float, "Simulated time at which the run ends.")
       .unit(Q::Time)
       .in(0, std::nullopt, true)
@@ -37,6 +23,11 @@ void add_scheme(Schema& s) {
   s.add("mpm.gravity", Type::FloatList, "Gravity vector; absent: no gravity.")
       .unit(Q::Acceleration)
       .len(3, 3);
+  s.add("mpm.regularisation", Type::Table,
+        "Nonlocal strain-gradient regularisation of a softening material: length and modulus "
+        "together; absent: none (docs/design/mpm.md, Regularisation).");
+  add_params(s, mpm::kSolverConfig, "regularisation");
+  add_choices(s, mpm::kSolverChoices, "regularisation");  // average
 }
 
 // [mpm.grid] and the [[mpm.body]] boxes of material points.

@@ -17,6 +17,13 @@
 
 namespace app {
 
+/// The sub-table of a row's key within its table's section: "twisting" for "twisting.stiffness",
+/// "" for "stiffness".
+[[nodiscard]] inline std::string_view sub_table_of(std::string_view key) {
+  const auto dot = key.rfind('.');
+  return dot == std::string_view::npos ? std::string_view() : key.substr(0, dot);
+}
+
 /// Adds the job rows of `table` whose key lies in sub-table `sub` of the table's section ("" for
 /// the section itself, "twisting" for "twisting.stiffness") as schema keys, in table order. The
 /// caller adds the section (and sub-table) keys themselves, with their documentation. With
@@ -27,10 +34,7 @@ template <class S, std::size_t N>
 void add_params(Schema& s, const common::ParamTable<S, N>& table, std::string_view sub = {},
                 std::string_view required_when = {}) {
   for (const auto& p : table) {
-    if (!p.in_job()) continue;
-    const auto dot = p.key.rfind('.');
-    const std::string_view parent = dot == std::string_view::npos ? "" : p.key.substr(0, dot);
-    if (parent != sub) continue;
+    if (!p.in_job() || sub_table_of(p.key) != sub) continue;
     Key& k = s.add(table.name(p), p.is_integer() ? Type::Int : Type::Float, std::string(p.doc))
                  .unit(p.unit)
                  .in(p.range.lo, p.range.hi, p.range.lo_open, p.range.hi_open);
@@ -66,27 +70,37 @@ void fill_from_job(const Job& job, const common::ParamTable<S, N>& table, S& s) 
   }
 }
 
-/// Adds every row of a choice table as a string key of the schema, in table order: its names are
-/// the allowed values, the struct's member initializer names the default.
+/// Adds the rows of a choice table whose key lies in sub-table `sub` of the table's section (as
+/// add_params) as schema keys, in table order: a string key whose names are the allowed values,
+/// or a boolean (common::flag rows); the struct's member initializer names the default, and a
+/// member initializer without a name makes the key optional.
 template <class S, std::size_t N>
-void add_choices(Schema& s, const common::ChoiceTable<S, N>& table) {
+void add_choices(Schema& s, const common::ChoiceTable<S, N>& table, std::string_view sub = {}) {
   for (const auto& c : table) {
-    s.add(table.name(c), Type::String, std::string(c.doc))
-        .one_of(std::vector<std::string>(c.names.begin(),
-                                         c.names.begin() + static_cast<std::ptrdiff_t>(c.count)))
-        .or_default(std::string(c.default_name()));
+    if (sub_table_of(c.key) != sub) continue;
+    if (c.boolean) {
+      s.add(table.name(c), Type::Bool, std::string(c.doc)).or_default(c.default_name() == "true");
+      continue;
+    }
+    Key& k = s.add(table.name(c), Type::String, std::string(c.doc))
+                 .one_of(std::vector<std::string>(
+                     c.names.begin(), c.names.begin() + static_cast<std::ptrdiff_t>(c.count)));
+    if (c.has_default()) k.or_default(std::string(c.default_name()));
   }
 }
 
 /// Sets every member of `s` that a row of the choice table names, from the job (a defaulted key
-/// holds the default's name). The schema has checked the names; a name the row lacks (a schema
-/// and table out of step) throws common::InputError naming the key.
+/// holds the default's name; an absent optional key leaves the member). The schema has checked
+/// the names; a name the row lacks (a schema and table out of step) throws common::InputError
+/// naming the key.
 template <class S, std::size_t N>
 void fill_choices_from_job(const Job& job, const common::ChoiceTable<S, N>& table, S& s) {
   for (const auto& c : table) {
     const std::string key = table.name(c);
     if (!job.has(key)) continue;
-    const auto i = c.find(job.text(key));
+    const std::string name =
+        c.boolean ? std::string(job.flag(key) ? "true" : "false") : job.text(key);
+    const auto i = c.find(name);
     if (!i) throw common::InputError(job.message(key, "is not one of the names of this setting"));
     c.assign(s, *i);
   }

@@ -28,14 +28,7 @@ void add_run_sections(Schema& s) {
 
   s.add("farm", Type::Table, "Distribution of the RVEs over MPI ranks.");
   add_params(s, farm::kBalanceOptions);  // rebalance_threshold, rebalance_check_every
-  add_choices(s, farm::kFarmChoices);    // wait, partition
-  s.add("farm.rank0_rves", Type::Bool,
-        "Rank 0 steps RVEs besides the MPM (true), or, with more than one rank, runs only the MPM "
-        "and the exchange while ranks 1.. step the RVEs (false: for many ranks, where rank 0's "
-        "MPM is on every step's critical path; give rank 0 the node's threads, "
-        "docs/design/farm.md). "
-        "Results are the same bits either way.")
-      .or_default(farm::FarmOptions{}.rank0_rves);
+  add_choices(s, farm::kFarmChoices);    // wait, partition, rank0_rves
 }
 
 }  // namespace app

@@ -187,8 +187,7 @@ farm::CoupledConfig coupled_setup(const Job& job, MpmSetup setup, const RunLimit
   }
   fill_from_job(job, farm::kCheckpointOptions, c.checkpoint);
   fill_from_job(job, farm::kBalanceOptions, c.balance);
-  fill_choices_from_job(job, farm::kFarmChoices, c.farm);  // wait, partition
-  c.farm.rank0_rves = job.flag("farm.rank0_rves");
+  fill_choices_from_job(job, farm::kFarmChoices, c.farm);  // wait, partition, rank0_rves
   c.validate();
   return c;
 }

@@ -224,12 +224,10 @@ MpmSetup mpm_setup(const Job& job) {
   const auto& cells = job.integers("mpm.grid.cells");
   cfg.grid.cells = common::Vec3i(static_cast<int>(cells[0]), static_cast<int>(cells[1]),
                                  static_cast<int>(cells[2]));
-  fill_choices_from_job(job, mpm::kSolverChoices, cfg);  // shape, update, transfer, ...
+  fill_choices_from_job(job, mpm::kSolverChoices, cfg);  // shape, ..., move_points, plane_strain
   transfer_rules(job, cfg);
   if (job.has("mpm.gravity")) cfg.gravity = vec3(job.numbers("mpm.gravity"));
   fill_from_job(job, mpm::kSolverConfig, cfg);  // flip, damping, dt, cfl, mass_threshold, ...
-  if (job.has("mpm.plane_strain")) cfg.plane_strain_axis = job.text("mpm.plane_strain")[0] - 'x';
-  cfg.move_points = job.flag("mpm.move_points");
   setup.end_time = job.number("mpm.end_time");
 
   add_bodies(job, setup);
