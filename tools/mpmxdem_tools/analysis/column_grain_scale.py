@@ -364,9 +364,9 @@ def table(data, yade):
 
 
 # Damping (a = 1): the YADE family at 7.2 d50 (same column, collapse damping 0 / 0.05 / 0.2) and the
-# MPM x DEM column at 14.4 d50 with the RVEs' damping 0.05 / 0.2
+# MPM x DEM column at 14.4 d50 with the RVEs' damping 0 / 0.05 / 0.2
 YADE_DAMPING = [("0", "dense_a1_n375_l0"), ("0.05", "dense_a1_n375_l0.05"), ("0.2", "dense_a1_n375_l0.2")]
-MPM_DAMPING = [("0.05", "a1_1ppc"), ("0.2", "a1_1ppc_damping0.2")]
+MPM_DAMPING = [("0", "a1_1ppc_damping0"), ("0.05", "a1_1ppc"), ("0.2", "a1_1ppc_damping0.2")]
 
 
 def damping_table(data, yade):
@@ -382,7 +382,7 @@ def damping_table(data, yade):
                      f"{float(s['runout_over_L0']):.3f} | {float(s['runout_cont_over_L0']):.3f} | "
                      + " / ".join(f"{float(s[f'front{k}_cont_over_L0']):.2f}" for k in (1, 2, 3))
                      + " |")
-    r = rows(data, yade)
+    r = rows(data, yade, runs=[(1, stem, "") for _, stem in MPM_DAMPING])
     for damping, stem in MPM_DAMPING:
         if (1, stem) not in r:
             continue
