@@ -39,6 +39,7 @@ import subprocess
 import sys
 
 from ..paths import tool_command
+from ..readers import text_attribute as text
 
 SKIP = 77
 POINT_ARRAYS = sorted(["id", "p", "q", "stress", "void_ratio", "z", "volume", "velocity",
@@ -71,10 +72,6 @@ def expect(cond, what):
 
 def log(msg):
     print("check_outputs: " + msg, flush=True)
-
-
-def text(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
 
 
 def check_results(path, h5py, np):
