@@ -7,8 +7,9 @@
 //
 // The default of a row is the struct's default member initializer (read from S{}), as for the
 // numeric tables; an initializer without a name (plane_strain_axis = -1: 3D) makes the key
-// optional, absent keeping it. A two-way switch the job writes as a TOML boolean (true, false)
-// is a row built with flag<&S::member>(key, doc).
+// optional, absent keeping it; a row made with required() is a key the job must give. A two-way
+// switch the job writes as a TOML boolean (true, false) is a row built with
+// flag<&S::member>(key, doc).
 #pragma once
 
 #include <array>
@@ -72,6 +73,9 @@ struct Choice {
   std::string_view doc;
   /// A TOML boolean in the job (names "false", "true"; flag()), not a string.
   bool boolean = false;
+  /// A job key that must be given (required()): the member initializer is only a placeholder for
+  /// C++ users, not a default.
+  bool required = false;
 
   /// The index of name among the names; nullopt where absent.
   [[nodiscard]] std::optional<std::size_t> find(std::string_view name) const {
@@ -141,6 +145,14 @@ constexpr Choice<typename detail::MemberOf<decltype(Member)>::Struct> flag(std::
   static_assert(std::is_same_v<typename detail::MemberOf<decltype(Member)>::Value, bool>);
   auto c = choice<Member, kBoolNames>(key, doc);
   c.boolean = true;
+  return c;
+}
+
+/// Row c as a job key that must be given, without a default (a setting that has none, such as the
+/// loading programme of a DEM test); the member initializer is a placeholder for C++ users.
+template <class S>
+constexpr Choice<S> required(Choice<S> c) {
+  c.required = true;
   return c;
 }
 

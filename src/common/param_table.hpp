@@ -1,7 +1,7 @@
 // Parameter tables: one row per member of a plain parameter struct (key, member, unit, range,
 // default, meaning), the one home of a setting. Modules declare their tables as plain data; the
-// app derives its job schema, the job-to-struct mapping and docs/reference/jobs.md from them, and the
-// struct's validate() checks the same ranges and names the same keys.
+// app derives its job schema, the job-to-struct mapping and docs/reference/jobs.md from them, and
+// the struct's validate() checks the same ranges and names the same keys.
 //
 // The default of a row is the struct's default member initializer (read from S{}), so the C++ API
 // and the job file cannot disagree on it. A `required` row is a job key without a default (a
@@ -25,14 +25,14 @@ namespace common {
 /// in the unit that unit_symbol() names.
 enum class Unit {
   Dimensionless,
-  Length,        ///< m
-  Pressure,      ///< Pa
-  Angle,         ///< deg
-  Time,          ///< s
-  Density,       ///< kg/m^3
-  Velocity,      ///< m/s
-  Acceleration,  ///< m/s^2
-  Rate,          ///< 1/s
+  Length,               ///< m
+  Pressure,             ///< Pa
+  Angle,                ///< deg
+  Time,                 ///< s
+  Density,              ///< kg/m^3
+  Velocity,             ///< m/s
+  Acceleration,         ///< m/s^2
+  Rate,                 ///< 1/s
   RotationalStiffness,  ///< N m/rad (a moment per radian of relative rotation)
 };
 
@@ -53,8 +53,8 @@ struct Range {
     if (hi && (hi_open ? !(v < *hi) : !(v <= *hi))) return false;
     return true;
   }
-  /// The rule in words, as job errors and docs/reference/jobs.md write it: "must be in [0, 90) deg",
-  /// "must be > 0 Pa"; "must be a finite number" for an unbounded range.
+  /// The rule in words, as job errors and docs/reference/jobs.md write it: "must be in [0, 90)
+  /// deg", "must be > 0 Pa"; "must be a finite number" for an unbounded range.
   [[nodiscard]] std::string rule(Unit u) const;
 };
 
@@ -94,6 +94,13 @@ struct Param {
     if (const auto* i = std::get_if<1>(&member)) return static_cast<double>(s.**i);
     if (const auto* i = std::get_if<2>(&member)) return static_cast<double>(s.**i);
     return s.*std::get<0>(member);
+  }
+  /// An integer member's value, exactly (get() goes through a double: 2^53 + 1 would not survive);
+  /// 0 for a double member (use get()).
+  [[nodiscard]] std::int64_t get_integer(const S& s) const {
+    if (const auto* i = std::get_if<1>(&member)) return s.**i;
+    if (const auto* i = std::get_if<2>(&member)) return s.**i;
+    return 0;
   }
   /// Sets the member; an integer member takes v truncated and clamped to its type's range (a
   /// double at or beyond 2^63 has no int64 value: its conversion would be undefined), an int

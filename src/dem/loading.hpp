@@ -6,14 +6,49 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string_view>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/types.hpp"
 #include "dem/measures.hpp"
 #include "dem/packing_io.hpp"
 #include "dem/simulation.hpp"
 
 namespace dem {
+
+/// The loading programme of a pure DEM test (`mpmxdem dem`; job key dem.loading.type).
+enum class LoadingType : std::uint8_t {
+  triaxial,     ///< drained: z compressed, x and y at the confining pressure
+  biaxial,      ///< plane strain: z compressed, x at the confining pressure, zero strain on y
+  isotropic,    ///< isotropic compression to the confining pressure
+  strain_path,  ///< an imposed velocity gradient over a duration
+};
+/// The job's names of the programmes.
+inline constexpr std::array<common::Named<LoadingType>, 4> kLoadingTypeNames{
+    {{"triaxial", LoadingType::triaxial},
+     {"biaxial", LoadingType::biaxial},
+     {"isotropic", LoadingType::isotropic},
+     {"strain_path", LoadingType::strain_path}}};
+
+/// [dem.loading]: the settings of the loading programme that are a name out of a list.
+struct LoadingProgramme {
+  LoadingType type = LoadingType::triaxial;  ///< a placeholder: the job must give the key
+};
+
+/// [dem.loading]: the choice rows of LoadingProgramme (common/choice_table.hpp).
+inline constexpr common::ChoiceTable<LoadingProgramme, 1> kLoadingChoices{
+    "dem.loading",
+    {common::required(common::choice<&LoadingProgramme::type, kLoadingTypeNames>(
+        "type",
+        "What to do after preparation: triaxial (z compressed, x and y at the confining "
+        "pressure), biaxial (plane strain: z compressed, x at the confining pressure, zero strain "
+        "on y), isotropic, strain_path."))}};
+
+/// "triaxial", "biaxial", ...: the job's name of a programme (kLoadingTypeNames).
+[[nodiscard]] constexpr std::string_view loading_type_name(LoadingType t) {
+  return common::name_of(kLoadingTypeNames, t);
+}
 
 /// Mixed control: diagonal components in `stress_axis` follow a target stress, every other
 /// component of L follows `l_imposed`.
@@ -55,8 +90,8 @@ class MixedController {
   std::int64_t last_modulus_step_ = -1;
 };
 
-/// Run n steps: forces, servo (if any), integration; refresh dt every numerics().timestep_update_interval steps.
-/// `observer` (optional) is called after each step.
+/// Run n steps: forces, servo (if any), integration; refresh dt every
+/// numerics().timestep_update_interval steps. `observer` (optional) is called after each step.
 void advance(Simulation& sim, MixedController* ctl, std::int64_t n,
              const std::function<void(const Simulation&)>& observer = {});
 

@@ -136,33 +136,17 @@ inline constexpr auto kHertzMindlin = common::make_table<HertzMindlinMaterial>(
       Source::job_required,
       "kt, the same for every pair (YADE's ktwist); the twisting moment has no cap. 0: none."}});
 
-/// A state (checkpoint) field of a law's parameters: its name under
-/// params/material/<law name>/ and the member it holds (docs/reference/checkpoint.md).
-template <class P>
-struct StateField {
-  const char* name;
-  double P::*member;
-};
-
-/// Hertz-Mindlin's checkpoint fields, in the order they are written.
-inline constexpr StateField<HertzMindlinMaterial> kHertzMindlinState[] = {
-    {"poisson", &HertzMindlinMaterial::poisson},
-    {"krot", &HertzMindlinMaterial::krot},
-    {"ktwist", &HertzMindlinMaterial::ktwist},
-    {"eta", &HertzMindlinMaterial::eta},
-};
-
 /// A contact law whose parameters are a table of their own, [dem.material.<name>] (every law
 /// but CohFrict, whose keys sit in [dem.material] itself): all that the job's reading, its
-/// rules, the schema, validation and the checkpoint need to know of it. A new law is its
-/// ContactLawKind and name, its parameter struct (a member of Material) with its table and
-/// state fields, and one entry of for_each_table_law; docs/design/dem.md "Contact laws".
-template <class P, std::size_t N, std::size_t M>
+/// rules, the schema, validation and the checkpoint (its rows, under
+/// params/material/<name>/, common/state_params.hpp) need to know of it. A new law is its
+/// ContactLawKind and name, its parameter struct (a member of Material) with its table, and one
+/// entry of for_each_table_law; docs/design/dem.md "Contact laws".
+template <class P, std::size_t N>
 struct TableLaw {
   ContactLawKind kind;
   P Material::*params;                    ///< where Material keeps the law's parameters
   const common::ParamTable<P, N>& table;  ///< its [dem.material.<name>] rows
-  const StateField<P> (&state)[M];        ///< its checkpoint fields
   std::string_view doc;                   ///< the schema's text of the section
 
   [[nodiscard]] std::string_view name() const { return contact_law_name(kind); }
@@ -173,7 +157,7 @@ struct TableLaw {
 /// Calls f(law) for every TableLaw, in the order of ContactLawKind.
 template <class F>
 constexpr void for_each_table_law(F&& f) {
-  f(TableLaw{ContactLawKind::hertz_mindlin, &Material::hm, kHertzMindlin, kHertzMindlinState,
+  f(TableLaw{ContactLawKind::hertz_mindlin, &Material::hm, kHertzMindlin,
              "Hertz-Mindlin parameters (YADE FrictMat and Ip2_FrictMat_FrictMat_MindlinPhys). "
              "Required with contact_law = \"hertz_mindlin\", refused with another law."});
 }

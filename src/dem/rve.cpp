@@ -7,8 +7,10 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include "common/errors.hpp"
+#include "common/state_params.hpp"
 #include "dem/element_test.hpp"
 #include "dem/free_flight.hpp"
 #include "dem/loading.hpp"
@@ -268,27 +270,56 @@ StepReport Rve::measure() const {
   return rep;
 }
 
+namespace {
+
+// The RVE's parameters: the rows of kRveParams and kRveChoices under rve/params/, named by their
+// keys (common/state_params.hpp).
+constexpr std::string_view kRveParamsDir = "rve/params/";
+
+// DEM states of versions 2 to 4 wrote them under rve/, pressure_floor as p_floor, and older ones
+// lacked the fields of later keys (absent: the member initializer, the step of then).
+constexpr common::FormerField kFormerRveParams[] = {
+    {"pressure_floor", "p_floor"},
+    {"dt_refresh", "dt_refresh", true},
+    {"disconnect_fraction", "disconnect_fraction", true},
+    {"min_dem_steps", "min_dem_steps", true},
+};
+
+// A flag field (0 or 1); absent: 0 (a state of before it was written).
+bool flag_field(const common::StateReader& r, const char* name) {
+  if (!r.has(name)) return false;
+  const std::int64_t v = common::read_scalar_i64(r, name);
+  if (v != 0 && v != 1) {
+    throw common::InputError("dem state: field '" + std::string(name) + "' = " + std::to_string(v) +
+                             ": must be 0 or 1");
+  }
+  return v == 1;
+}
+
+// The choices of a state of before version 5, each a flag of its own name and encoding.
+void read_former_choices(const common::StateReader& r, RveParams& params) {
+  params.carry_end_forces = flag_field(r, "rve/carry_end_forces");
+  // Written since dem.coupling.rate and contact_loss exist (1: material, disconnected): a state
+  // without them ran with the coupling rate and a strained cell, and continues so.
+  params.rate = flag_field(r, "rve/rate") ? RveRate::material : RveRate::coupling;
+  params.contact_loss =
+      flag_field(r, "rve/contact_loss") ? ContactLoss::disconnected : ContactLoss::strained;
+  // Written since dem.coupling.free_flight exists: a state without it stepped every RVE step.
+  params.free_flight = flag_field(r, "rve/free_flight");
+}
+
+}  // namespace
+
 void Rve::save(common::StateWriter& w) const {
   save_simulation(sim_, w, "");
-  common::write_scalar(w, "rve/inertial_number", params_.inertial_number);
-  common::write_scalar(w, "rve/d50", params_.d50);
-  common::write_scalar(w, "rve/p_floor", params_.p_floor);
-  common::write_scalar(w, "rve/max_strain_per_step", params_.max_strain_per_step);
-  common::write_scalar(w, "rve/max_steps_per_call", params_.max_steps_per_call);
-  common::write_scalar(w, "rve/initial_pressure", params_.initial_pressure);
+  common::write_params(w, kRveParamsDir, kRveParams, params_);
+  common::write_choices(w, kRveParamsDir, kRveChoices, params_);
   common::write_scalar(w, "rve/d50_used", d50_);
-  common::write_scalar(w, "rve/dt_refresh", params_.dt_refresh);
   common::write_scalar(w, "rve/dt_cache/critical_dt", dt_cache_.critical_dt);
   common::write_scalar(w, "rve/dt_cache/dem_steps", dt_cache_.dem_steps);
   common::write_scalar(w, "rve/dt_cache/contacts", dt_cache_.contacts);
-  common::write_scalar(w, "rve/carry_end_forces", std::int64_t{params_.carry_end_forces ? 1 : 0});
   common::write_scalar(w, "rve/forces_carried", std::int64_t{forces_carried_ ? 1 : 0});
-  common::write_scalar(w, "rve/rate", static_cast<std::int64_t>(params_.rate));
-  common::write_scalar(w, "rve/contact_loss", static_cast<std::int64_t>(params_.contact_loss));
   common::write_scalar(w, "rve/free_volume", free_volume_);
-  common::write_scalar(w, "rve/disconnect_fraction", params_.disconnect_fraction);
-  common::write_scalar(w, "rve/min_dem_steps", params_.min_dem_steps);
-  common::write_scalar(w, "rve/free_flight", std::int64_t{params_.free_flight ? 1 : 0});
 }
 
 Rve Rve::load(const common::StateReader& r) {
@@ -296,45 +327,20 @@ Rve Rve::load(const common::StateReader& r) {
   RveParams params;
   params.material = sim.law().material();
   params.numerics = sim.numerics();
-  params.inertial_number = common::read_scalar_f64(r, "rve/inertial_number");
-  params.d50 = common::read_scalar_f64(r, "rve/d50");
-  params.p_floor = common::read_scalar_f64(r, "rve/p_floor");
-  params.max_strain_per_step = common::read_scalar_f64(r, "rve/max_strain_per_step");
-  params.max_steps_per_call = common::read_scalar_i64(r, "rve/max_steps_per_call");
-  params.initial_pressure = common::read_scalar_f64(r, "rve/initial_pressure");
-  // Written since 2026-11-26 (the same DEM state version): a state without them ran with a
-  // critical time step computed at every RVE step, and continues so.
-  if (r.has("rve/dt_refresh")) params.dt_refresh = common::read_scalar_i64(r, "rve/dt_refresh");
-  const auto flag = [&r](const char* name) {
-    if (!r.has(name)) return false;
-    const std::int64_t v = common::read_scalar_i64(r, name);
-    if (v != 0 && v != 1) {
-      throw common::InputError("dem state: field '" + std::string(name) +
-                               "' = " + std::to_string(v) + ": must be 0 or 1");
-    }
-    return v == 1;
-  };
-  params.carry_end_forces = flag("rve/carry_end_forces");
-  // Written since dem.coupling.rate and contact_loss exist: a state without them ran with the
-  // coupling rate and a strained cell, and continues so.
-  params.rate = flag("rve/rate") ? RveRate::material : RveRate::coupling;
-  params.contact_loss =
-      flag("rve/contact_loss") ? ContactLoss::disconnected : ContactLoss::strained;
-  if (r.has("rve/disconnect_fraction")) {
-    params.disconnect_fraction = common::read_scalar_f64(r, "rve/disconnect_fraction");
+  if (check_state_version(r) < kStateVersion) {
+    common::read_params(r, "rve/", kRveParams, params, "dem state", kFormerRveParams);
+    read_former_choices(r, params);
+  } else {
+    common::read_params(r, kRveParamsDir, kRveParams, params, "dem state");
+    common::read_choices(r, kRveParamsDir, kRveChoices, params, "dem state");
   }
-  // Written since dem.coupling.min_dem_steps exists: a state without it ran with no minimum.
-  if (r.has("rve/min_dem_steps"))
-    params.min_dem_steps = common::read_scalar_i64(r, "rve/min_dem_steps");
-  // Written since dem.coupling.free_flight exists: a state without it stepped every RVE step.
-  params.free_flight = flag("rve/free_flight");
   params.validate();
   Rve rve(std::move(sim), params, common::read_scalar_f64(r, "rve/d50_used"));
-  rve.forces_carried_ = flag("rve/forces_carried");
+  rve.forces_carried_ = flag_field(r, "rve/forces_carried");
   if (rve.forces_carried_ && !params.carry_end_forces) {
     throw common::InputError(
-        "dem state: field 'rve/forces_carried' = 1 with 'rve/carry_end_forces' = 0: carried "
-        "forces belong to a state that carries them");
+        "dem state: field 'rve/forces_carried' = 1 with dem.coupling.end_forces = \"separate\": "
+        "carried forces belong to a state that carries them");
   }
   if (r.has("rve/free_volume")) {
     rve.free_volume_ = common::read_scalar_f64(r, "rve/free_volume");
@@ -342,7 +348,7 @@ Rve Rve::load(const common::StateReader& r) {
         (rve.free_volume_ > 0.0 && params.contact_loss != ContactLoss::disconnected)) {
       throw common::InputError(
           "dem state: field 'rve/free_volume' = " + std::to_string(rve.free_volume_) +
-          ": must be finite and >= 0, and 0 unless 'rve/contact_loss' = 1");
+          ": must be finite and >= 0, and 0 unless dem.coupling.contact_loss = \"disconnected\"");
     }
   }
   if (r.has("rve/dt_cache/critical_dt")) {

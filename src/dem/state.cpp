@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/state_params.hpp"
 #include "common/tensor.hpp"
 
 namespace dem {
@@ -17,24 +20,32 @@ using common::Vec3;
 
 namespace {
 
-/// Parameters and contact properties as named fields, one per member
-/// (docs/reference/checkpoint.md).
-template <class S>
-struct Member {
-  const char* name;
-  double S::*member;
+// The parameters are the rows of the parameter and choice tables (params.hpp), each a field
+// named by its job key under params/material/ or params/numerics/ (common/state_params.hpp).
+constexpr std::string_view kWhat = "dem state";
+
+// Versions 2 to 4 wrote some parameters under their C++ member's name: the rows they are read
+// into (docs/reference/checkpoint.md, version history).
+constexpr common::FormerField kFormerMaterial[] = {
+    {"young_modulus", "young"},        {"friction_angle", "friction_deg"},
+    {"stiffness_ratio", "ks_over_kn"}, {"rolling_stiffness", "alpha_r"},
+    {"rolling_strength", "eta_r"},     {"twisting.stiffness", "alpha_t"},
+    {"twisting.strength", "eta_t"},
 };
-constexpr Member<Material> kMaterialFields[] = {
-    {"density", &Material::density},       {"young", &Material::young},
-    {"ks_over_kn", &Material::ks_over_kn}, {"friction_deg", &Material::friction_deg},
-    {"alpha_r", &Material::alpha_r},       {"eta_r", &Material::eta_r},
-    {"alpha_t", &Material::alpha_t},       {"eta_t", &Material::eta_t},
+constexpr common::FormerField kFormerHertzMindlin[] = {
+    {"poisson_ratio", "poisson"},
+    {"rolling_stiffness", "krot"},
+    {"rolling_strength", "eta"},
+    {"twisting_stiffness", "ktwist"},
 };
-constexpr Member<Numerics> kNumericsFields[] = {
-    {"damping", &Numerics::damping},
-    {"dt_safety", &Numerics::dt_safety},
-    {"skin_factor", &Numerics::skin_factor},
-    {"max_skew", &Numerics::max_skew},
+// dt_refresh: the standalone sample's interval before the RVEs' own dt_refresh took that name
+// alone; skin_min_factor: absent before the adaptive skin (2026-11-26), a fixed skin.
+constexpr common::FormerField kFormerNumerics[] = {
+    {"timestep_safety", "dt_safety"},
+    {"verlet_skin", "skin_factor"},
+    {"verlet_skin_min", "skin_min_factor", true},
+    {"timestep_update_interval", "timestep_update_interval"},
+    {"timestep_update_interval", "dt_refresh"},
 };
 std::vector<double> flat(const std::vector<Vec3>& v) {
   std::vector<double> out(3 * v.size());
@@ -100,12 +111,13 @@ struct Reader {
 std::int64_t check_state_version(const common::StateReader& r, const std::string& pre) {
   const std::string name = pre + "dem/version";
   const std::int64_t version = common::read_scalar_i64(r, name);
-  if (version == kStateVersion || version == 2 || version == kStateVersionOtherLaw) return version;
-  std::string why = "this build reads versions 2, " + std::to_string(kStateVersion) + " and " +
-                    std::to_string(kStateVersionOtherLaw) + " only";
+  if (version >= kStateVersionOldest && version <= kStateVersion) return version;
+  std::string why = "this build reads versions " + std::to_string(kStateVersionOldest) + " to " +
+                    std::to_string(kStateVersion) + " only";
   if (version == 1) {
     why += " (version 1 stored the parameters as positional arrays such as 'params/material'; " +
-           std::to_string(kStateVersion) + " stores named fields such as 'params/material/young')";
+           std::to_string(kStateVersion) +
+           " stores named fields such as 'params/material/young_modulus')";
   }
   throw common::InputError("dem state: field '" + name + "' = " + std::to_string(version) + ": " +
                            why + "; restart from a state written by this version");
@@ -117,22 +129,16 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
   const VerletState& vs = sim.verlet();
   const Material& mat = sim.law().material();
   const Numerics& num = sim.numerics();
-  const bool cohfrict = mat.law == ContactLawKind::cohfrict;
-  common::write_scalar(w, pre + "dem/version", cohfrict ? kStateVersion : kStateVersionOtherLaw);
-  for (const auto& f : kMaterialFields)
-    common::write_scalar(w, pre + "params/material/" + f.name, mat.*f.member);
+  common::write_scalar(w, pre + "dem/version", kStateVersion);
+  const std::string material = pre + "params/material/";
+  common::write_params(w, material, kMaterial, mat);
+  common::write_params(w, material, kCohFrict, mat);
+  common::write_choices(w, material, kMaterialChoices, mat);
   for_each_table_law([&](const auto& d) {
     if (d.kind != mat.law) return;
-    common::write_scalar(w, pre + "params/material/contact_law",
-                         static_cast<std::int64_t>(mat.law));
-    const std::string dir = pre + "params/material/" + std::string(d.name()) + "/";
-    for (const auto& f : d.state) common::write_scalar(w, dir + f.name, (mat.*d.params).*f.member);
+    common::write_params(w, material + std::string(d.name()) + "/", d.table, mat.*d.params);
   });
-  for (const auto& f : kNumericsFields)
-    common::write_scalar(w, pre + "params/numerics/" + f.name, num.*f.member);
-  common::write_scalar(w, pre + "params/numerics/timestep_update_interval",
-                       num.timestep_update_interval);
-  common::write_scalar(w, pre + "params/numerics/skin_min_factor", num.skin_min_factor);
+  common::write_params(w, pre + "params/numerics/", kNumerics, num);
   w.write(pre + "cell/h", flat(sim.cell().h));
   w.write(pre + "cell/l", flat(sim.cell().l));
   w.write(pre + "spheres/x", flat(s.x));
@@ -194,48 +200,55 @@ void save_simulation(const Simulation& sim, common::StateWriter& w, const std::s
 namespace {
 
 // The material (contact law and its parameters) of a state of `version`.
-Material read_material(const common::StateReader& r, const Reader& rd, const std::string& pre,
-                       std::int64_t version) {
+Material read_material(const common::StateReader& r, const std::string& pre, std::int64_t version) {
   Material mat;
-  for (const auto& f : kMaterialFields)
-    mat.*f.member = rd.scalar(std::string("params/material/") + f.name);
-  if (version != kStateVersionOtherLaw) return mat;  // CohFrict
-  const std::string name = pre + "params/material/contact_law";
-  const std::int64_t law = common::read_scalar_i64(r, name);
-  bool known = false;
-  std::string laws;
+  const std::string dir = pre + "params/material/";
+  const bool former = version < kStateVersion;
+  const std::span<const common::FormerField> renamed =
+      former ? std::span<const common::FormerField>(kFormerMaterial)
+             : std::span<const common::FormerField>();
+  common::read_params(r, dir, kMaterial, mat, kWhat, renamed);
+  common::read_params(r, dir, kCohFrict, mat, kWhat, renamed);
+  if (!former) {
+    common::read_choices(r, dir, kMaterialChoices, mat, kWhat);
+  } else if (version == kStateVersionOtherLaw) {
+    // Version 4 stored the law's enumerator: a law of its own table (every law but CohFrict).
+    const std::string name = dir + "contact_law";
+    const std::int64_t law = common::read_scalar_i64(r, name);
+    bool known = false;
+    std::string laws;
+    for_each_table_law([&](const auto& d) {
+      laws += (laws.empty() ? "" : ", ") + std::to_string(static_cast<int>(d.kind)) + " (" +
+              std::string(d.name()) + ")";
+      if (law != static_cast<std::int64_t>(d.kind)) return;
+      known = true;
+      mat.law = d.kind;
+    });
+    if (!known) {
+      throw common::InputError("dem state: field '" + name + "' = " + std::to_string(law) +
+                               ": must be one of " + laws + " in a version " +
+                               std::to_string(kStateVersionOtherLaw) + " state");
+    }
+  }  // versions 2 and 3: CohFrict
   for_each_table_law([&](const auto& d) {
-    laws += (laws.empty() ? "" : ", ") + std::to_string(static_cast<int>(d.kind)) + " (" +
-            std::string(d.name()) + ")";
-    if (law != static_cast<std::int64_t>(d.kind)) return;
-    known = true;
-    mat.law = d.kind;
-    const std::string dir = "params/material/" + std::string(d.name()) + "/";
-    for (const auto& f : d.state) (mat.*d.params).*f.member = rd.scalar(dir + f.name);
+    if (d.kind != mat.law) return;
+    // Version 4 knew Hertz-Mindlin only, under its C++ members' names.
+    const bool hm = former && d.kind == ContactLawKind::hertz_mindlin;
+    common::read_params(r, dir + std::string(d.name()) + "/", d.table, mat.*d.params, kWhat,
+                        hm ? std::span<const common::FormerField>(kFormerHertzMindlin)
+                           : std::span<const common::FormerField>());
   });
-  if (!known) {
-    throw common::InputError("dem state: field '" + name + "' = " + std::to_string(law) +
-                             ": must be one of " + laws + " in a version " +
-                             std::to_string(kStateVersionOtherLaw) + " state");
-  }
   return mat;
 }
 
-Numerics read_numerics(const common::StateReader& r, const Reader& rd, const std::string& pre) {
+Numerics read_numerics(const common::StateReader& r, const std::string& pre, std::int64_t version) {
   Numerics num;
-  for (const auto& f : kNumericsFields)
-    num.*f.member = rd.scalar(std::string("params/numerics/") + f.name);
-  // Written as dt_refresh before the RVEs' own dt_refresh took that name alone (same state
-  // version): read under either name.
-  const std::string interval = r.has(pre + "params/numerics/timestep_update_interval")
-                                   ? "params/numerics/timestep_update_interval"
-                                   : "params/numerics/dt_refresh";
-  num.timestep_update_interval = common::read_scalar_i64(r, pre + interval);
-  // Written since the adaptive skin (2026-11-26, the same state version): absent, a fixed skin.
-  if (r.has(pre + "params/numerics/skin_min_factor")) {
-    num.skin_min_factor = rd.scalar("params/numerics/skin_min_factor");
+  if (version < kStateVersion) {
+    num.skin_min_factor = 0.0;  // a state of before the adaptive skin: a fixed skin
+    common::read_params(r, pre + "params/numerics/", kNumerics, num, kWhat, kFormerNumerics);
+  } else {
+    common::read_params(r, pre + "params/numerics/", kNumerics, num, kWhat);
   }
-
   return num;
 }
 
@@ -357,8 +370,8 @@ void read_verlet_and_counters(const common::StateReader& r, const Reader& rd,
 Simulation load_simulation(const common::StateReader& r, const std::string& pre) {
   const Reader rd{r, pre};
   const std::int64_t version = check_state_version(r, pre);
-  const Material mat = read_material(r, rd, pre, version);
-  const Numerics num = read_numerics(r, rd, pre);
+  const Material mat = read_material(r, pre, version);
+  const Numerics num = read_numerics(r, pre, version);
   Spheres s = read_spheres(r, rd, pre, mat.density);
   PeriodicCell cell;
   cell.h = rd.mat3("cell/h");

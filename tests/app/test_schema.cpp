@@ -168,8 +168,9 @@ void expect_choice_keys(const common::ChoiceTable<S, N>& table) {
     EXPECT_EQ(k->type, app::Type::String) << key;
     ASSERT_EQ(k->choices.size(), row.count) << key;
     for (std::size_t i = 0; i < row.count; ++i) EXPECT_EQ(k->choices[i], row.names[i]) << key;
-    ASSERT_EQ(k->fallback.has_value(), row.has_default()) << key;
-    if (row.has_default()) {
+    EXPECT_EQ(k->required, row.required) << key;
+    ASSERT_EQ(k->fallback.has_value(), row.has_default() && !row.required) << key;
+    if (row.has_default() && !row.required) {
       EXPECT_EQ(std::get<std::string>(*k->fallback), row.name_in(defaults)) << key;
     }
   }
@@ -253,6 +254,26 @@ std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return {};
+}
+
+// dem.loading.type is a required choice row (no default): the schema requires the key, its names
+// are the row's and each sets its value; absent, the job names the key.
+TEST(Schema, TheLoadingTypeIsARequiredChoiceRow) {
+  expect_choice_keys(dem::kLoadingChoices);
+  const app::Schema only = choice_schema(dem::kLoadingChoices);
+  for (const auto& named : dem::kLoadingTypeNames) {
+    dem::LoadingProgramme l;
+    l.type = named.value == dem::LoadingType::triaxial ? dem::LoadingType::isotropic
+                                                       : dem::LoadingType::triaxial;
+    app::fill_choices_from_job(
+        app::Job::parse("[dem]\n[dem.loading]\ntype = \"" + std::string(named.name) + "\"\n",
+                        "loading.toml", only, false),
+        dem::kLoadingChoices, l);
+    EXPECT_EQ(l.type, named.value) << named.name;
+  }
+  const std::string missing = error_of(
+      [&] { (void)app::Job::parse("[dem]\n[dem.loading]\n", "loading.toml", only, false); });
+  EXPECT_NE(missing.find("dem.loading.type"), std::string::npos) << missing;
 }
 
 // The structs' validate() name the job keys, with the rule the job errors state.

@@ -16,6 +16,7 @@
 #include "dem/loading.hpp"
 #include "dem/rve.hpp"
 #include "dem_test_util.hpp"
+#include "former_state.hpp"
 
 namespace {
 
@@ -177,8 +178,9 @@ TEST(FreeFlight, TheOptionIsKeptInTheStateAndAbsentMeansStepped) {
   common::StateStore store;
   rve.save(store);
   EXPECT_TRUE(dem::Rve::load(store).params().free_flight);
-  common::StateStore old;
-  for (const auto& [name, field] : store.fields()) {
+  common::StateStore old;  // DEM state version 3, without rve/free_flight
+  const common::StateStore v3 = dem_test::as_former_version(store, 3);
+  for (const auto& [name, field] : v3.fields()) {
     if (name == "rve/free_flight") continue;
     std::visit([&old, &name](const auto& v) { old.write(name, std::span(v)); }, field);
   }

@@ -15,6 +15,7 @@
 #include "dem/measures.hpp"
 #include "dem/rve.hpp"
 #include "dem_test_util.hpp"
+#include "former_state.hpp"
 
 namespace {
 
@@ -290,7 +291,8 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
   const auto& xb = b.simulation().spheres().x;
   EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
 
-  const dem::Rve c = dem::Rve::load(copy_without(store, "rve/dt_"));  // a state of before
+  // A state of before (DEM state version 3, without rve/dt_refresh and rve/dt_cache/*).
+  const dem::Rve c = dem::Rve::load(copy_without(dem_test::as_former_version(store, 3), "rve/dt_"));
   EXPECT_EQ(c.params().dt_refresh, 1);
   EXPECT_EQ(c.dt_cache().critical_dt, 0.0);
 
@@ -362,17 +364,18 @@ TEST(Rve, CarriedEndForcesContinueBitForBitAfterSaveLoad) {
   }
   expect_same_stress_and_positions(a, b);
   // Carried forces in a state that does not carry them cannot be: refused, naming the fields.
-  common::StateStore bad = copy_without(store, "rve/carry_end_forces");
-  bad.write("rve/carry_end_forces", std::span<const std::int64_t>(std::vector<std::int64_t>{0}));
+  common::StateStore bad = copy_without(store, "rve/params/end_forces");
+  bad.write("rve/params/end_forces", std::span<const std::int64_t>(std::vector<std::int64_t>{0}));
   try {
     (void)dem::Rve::load(bad);
     ADD_FAILURE() << "carried forces without carry_end_forces were accepted";
   } catch (const common::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("rve/forces_carried"), std::string::npos) << e.what();
   }
-  // A state of before the key loads as "separate".
-  const dem::Rve old =
-      dem::Rve::load(copy_without(copy_without(store, "rve/carry_end_forces"), "rve/forces_"));
+  // A state of before the key (DEM state version 3, without rve/carry_end_forces) loads as
+  // "separate".
+  const dem::Rve old = dem::Rve::load(copy_without(
+      copy_without(dem_test::as_former_version(store, 3), "rve/carry_end_forces"), "rve/forces_"));
   EXPECT_FALSE(old.params().carry_end_forces);
 }
 

@@ -16,6 +16,7 @@
 #include "dem/element_test.hpp"
 #include "dem/rve.hpp"
 #include "dem_test_util.hpp"
+#include "former_state.hpp"
 
 namespace {
 
@@ -37,7 +38,9 @@ Mat3 simple_shear(double gdot) {
   return l;
 }
 
-bool same_bits(const Mat3& a, const Mat3& b) { return std::memcmp(a.data(), b.data(), sizeof(Mat3)) == 0; }
+bool same_bits(const Mat3& a, const Mat3& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(Mat3)) == 0;
+}
 
 // Slower than the coupling inertial number, both rates run the same quasi-static step, bit for bit.
 // Faster, `material` runs the increment over the MPM step itself (the RVE's I is the material's),
@@ -97,7 +100,7 @@ dem::Rve without_contacts(dem::ContactLoss loss) {
   dem::Rve rve(dem_test::reference_packing(), params(dem::RveRate::material, loss));
   dem::StepReport r;
   for (int k = 0; k < 80 && ((r.guards & dem::kGuardNoContacts) == 0 ||
-                              !(solid_fraction(rve) < rve.params().disconnect_fraction));
+                             !(solid_fraction(rve) < rve.params().disconnect_fraction));
        ++k) {
     r = rve.step(Mat3::Identity() * 1e3, 2e-6);  // a few DEM steps each
     EXPECT_EQ(r.guards & dem::kGuardDisconnected, 0u) << "held above the fraction, step " << k;
@@ -140,7 +143,7 @@ TEST(ContactLoss, DisconnectedRveHoldsItsCellAndReconnectsWhenCompressedBack) {
   // Steps of 1e-6 s: the compression that reconnects the RVE runs a few DEM steps each.
   constexpr double kDt = 1e-6;
   const Mat3 l = Mat3::Identity() * 1e4;  // + 3 % volume per step
-  for (int k = 0; k < 40; ++k) {  // the material's volume grows 3.3 times
+  for (int k = 0; k < 40; ++k) {          // the material's volume grows 3.3 times
     const dem::StepReport r = rve.step(l, kDt);
     ASSERT_NE(r.guards & dem::kGuardDisconnected, 0u) << "step " << k;
     EXPECT_EQ(r.dem_steps, 0);
@@ -199,8 +202,7 @@ TEST(ContactLoss, StrainedRveStretchesItsCell) {
   EXPECT_EQ(r.guards & dem::kGuardDisconnected, 0u);
   EXPECT_GT(r.dem_steps, 0);
   // The cell's product of (I + L dt_DEM) over its DEM steps: exp(0.03) to O(0.03^2 / n).
-  EXPECT_NEAR(std::log(rve.simulation().cell().h.determinant() / h_lost.determinant()), 0.03,
-              1e-4);
+  EXPECT_NEAR(std::log(rve.simulation().cell().h.determinant() / h_lost.determinant()), 0.03, 1e-4);
   EXPECT_EQ(rve.free_volume(), 0.0);
 }
 
@@ -210,8 +212,9 @@ TEST(ContactLoss, StateWithoutTheKeysContinuesAsBefore) {
                params(dem::RveRate::material, dem::ContactLoss::disconnected));
   common::StateStore store;
   rve.save(store);
-  common::StateStore old;
-  for (const auto& [name, field] : store.fields()) {
+  common::StateStore old;  // DEM state version 3, without the keys' fields
+  const common::StateStore v3 = dem_test::as_former_version(store, 3);
+  for (const auto& [name, field] : v3.fields()) {
     if (name == "rve/rate" || name == "rve/contact_loss" || name == "rve/free_volume") continue;
     std::visit([&old, &name](const auto& v) { old.write(name, std::span(v)); }, field);
   }
@@ -258,9 +261,9 @@ TEST(RveRate, MinDemStepsRelaxesASmallIncrement) {
   // Saved and read back.
   common::StateStore s;
   ten.save(s);
-  EXPECT_EQ(s.read_i64("rve/min_dem_steps"), std::vector<std::int64_t>{10});
+  EXPECT_EQ(s.read_i64("rve/params/min_dem_steps"), std::vector<std::int64_t>{10});
   const dem::Rve back = dem::Rve::load(s);
   common::StateStore again;
   back.save(again);
-  EXPECT_EQ(again.read_i64("rve/min_dem_steps"), std::vector<std::int64_t>{10});
+  EXPECT_EQ(again.read_i64("rve/params/min_dem_steps"), std::vector<std::int64_t>{10});
 }

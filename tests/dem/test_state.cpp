@@ -19,6 +19,7 @@
 #include "dem/loading.hpp"
 #include "dem/rve.hpp"
 #include "dem_test_util.hpp"
+#include "former_state.hpp"
 
 namespace {
 
@@ -88,7 +89,8 @@ common::StateStore continue_both(dem::Simulation& a, dem::Simulation& b, int ste
 
 }  // namespace
 
-// Each name holds the member it names (written out here, not taken from the code's own table).
+// Each parameter is a field named by its job key (a C++-only one by its member), holding the
+// member: the names written out here, not taken from the code's own tables.
 TEST(State, ParametersAreNamedScalarFields) {
   const dem::Rve rve = distinct_rve();
   common::StateStore s;
@@ -96,23 +98,24 @@ TEST(State, ParametersAreNamedScalarFields) {
   const dem::RveParams& p = rve.params();
   const std::vector<std::pair<const char*, double>> expected{
       {"params/material/density", p.material.density},
-      {"params/material/young", p.material.young},
-      {"params/material/ks_over_kn", p.material.ks_over_kn},
-      {"params/material/friction_deg", p.material.friction_deg},
-      {"params/material/alpha_r", p.material.alpha_r},
-      {"params/material/eta_r", p.material.eta_r},
-      {"params/material/alpha_t", p.material.alpha_t},
-      {"params/material/eta_t", p.material.eta_t},
+      {"params/material/young_modulus", p.material.young},
+      {"params/material/stiffness_ratio", p.material.ks_over_kn},
+      {"params/material/friction_angle", p.material.friction_deg},
+      {"params/material/rolling_stiffness", p.material.alpha_r},
+      {"params/material/rolling_strength", p.material.eta_r},
+      {"params/material/twisting/stiffness", p.material.alpha_t},
+      {"params/material/twisting/strength", p.material.eta_t},
       {"params/numerics/damping", p.numerics.damping},
-      {"params/numerics/dt_safety", p.numerics.dt_safety},
-      {"params/numerics/skin_factor", p.numerics.skin_factor},
-      {"params/numerics/skin_min_factor", p.numerics.skin_min_factor},
+      {"params/numerics/timestep_safety", p.numerics.dt_safety},
+      {"params/numerics/verlet_skin", p.numerics.skin_factor},
+      {"params/numerics/verlet_skin_min", p.numerics.skin_min_factor},
       {"params/numerics/max_skew", p.numerics.max_skew},
-      {"rve/inertial_number", p.inertial_number},
-      {"rve/d50", p.d50},
-      {"rve/p_floor", p.p_floor},
-      {"rve/max_strain_per_step", p.max_strain_per_step},
-      {"rve/initial_pressure", p.initial_pressure},
+      {"rve/params/inertial_number", p.inertial_number},
+      {"rve/params/d50", p.d50},
+      {"rve/params/pressure_floor", p.p_floor},
+      {"rve/params/max_strain_per_step", p.max_strain_per_step},
+      {"rve/params/disconnect_fraction", p.disconnect_fraction},
+      {"rve/params/initial_pressure", p.initial_pressure},
       {"rve/d50_used", rve.d50()},
       {"verlet/skin", rve.simulation().verlet().skin},
       {"counters/dt", rve.simulation().dt()},
@@ -120,16 +123,32 @@ TEST(State, ParametersAreNamedScalarFields) {
   for (const auto& [name, value] : expected) {
     EXPECT_EQ(s.read_f64(name), std::vector<double>{value}) << name;
   }
-  EXPECT_EQ(s.read_i64("params/numerics/timestep_update_interval"), std::vector<std::int64_t>{77});
-  EXPECT_EQ(s.read_i64("verlet/built_at_step"),
-            std::vector<std::int64_t>{rve.simulation().verlet().built_at_step});
-  EXPECT_EQ(s.read_i64("verlet/shell_pairs"),
-            std::vector<std::int64_t>{rve.simulation().verlet().shell_pairs});
+  // Integers, and the choices as the index of their name (cohfrict; carried, material,
+  // disconnected, stepped: the order of the names in docs/reference/jobs.md).
+  const std::vector<std::pair<const char*, std::int64_t>> integers{
+      {"params/numerics/timestep_update_interval", 77},
+      {"rve/params/max_steps_per_call", 5000},
+      {"rve/params/dt_refresh", p.dt_refresh},
+      {"rve/params/min_dem_steps", p.min_dem_steps},
+      {"params/material/contact_law", 0},
+      {"rve/params/end_forces", 1},
+      {"rve/params/rate", 0},
+      {"rve/params/contact_loss", 0},
+      {"rve/params/free_flight", 0},
+      {"verlet/built_at_step", rve.simulation().verlet().built_at_step},
+      {"verlet/shell_pairs", rve.simulation().verlet().shell_pairs},
+      {"dem/version", 5},
+  };
+  for (const auto& [name, value] : integers) {
+    EXPECT_EQ(s.read_i64(name), std::vector<std::int64_t>{value}) << name;
+  }
+  EXPECT_EQ(dem::kStateVersion, 5);
   EXPECT_GT(rve.simulation().verlet().shell_pairs, 0);
-  EXPECT_EQ(s.read_i64("rve/max_steps_per_call"), std::vector<std::int64_t>{5000});
-  EXPECT_EQ(s.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
-  for (const char* old : {"params/material", "params/numerics", "rve/params", "contacts/props",
-                          "verlet/skin_rmax", "counters/time_dt"}) {
+  for (const char* old :
+       {"params/material", "params/numerics", "rve/params", "contacts/props", "verlet/skin_rmax",
+        "counters/time_dt", "params/material/young", "params/material/alpha_t",
+        "params/numerics/dt_safety", "params/numerics/skin_factor", "rve/p_floor", "rve/rate",
+        "rve/carry_end_forces", "rve/inertial_number"}) {
     EXPECT_FALSE(s.has(old)) << old;
   }
   // Loading gives back the same parameters, member by member.
@@ -139,6 +158,54 @@ TEST(State, ParametersAreNamedScalarFields) {
   EXPECT_TRUE(again.fields() == s.fields());
 }
 
+// Versions 2 to 4 wrote the parameters under the C++ members' names (params/material/young,
+// rve/p_floor) and the choices as flags (rve/rate 1: material): such a state reads back the same
+// parameters and continues bit for bit, written again as version 5.
+TEST(State, Version3IsReadUnderTheFormerNames) {
+  dem::RveParams p = distinct_rve().params();
+  p.dt_refresh = 3;
+  p.min_dem_steps = 2;
+  p.disconnect_fraction = 0.45;
+  p.rate = dem::RveRate::coupling;
+  p.contact_loss = dem::ContactLoss::disconnected;
+  p.carry_end_forces = false;
+  p.free_flight = true;
+  dem::Rve a(dem_test::reference_packing(), p);
+  common::StateStore v5;
+  a.save(v5);
+  const common::StateStore v3 = dem_test::as_former_version(v5, 3);
+  ASSERT_TRUE(v3.has("params/material/young"));
+  ASSERT_TRUE(v3.has("rve/p_floor"));
+  ASSERT_FALSE(v3.has("params/material/young_modulus"));
+  EXPECT_EQ(v3.read_i64("rve/rate"), std::vector<std::int64_t>{0});  // then: 0 was coupling
+  dem::Rve b = dem::Rve::load(v3);
+  common::StateStore again;
+  b.save(again);
+  EXPECT_TRUE(again.fields() == v5.fields());
+  common::Mat3 l = common::Mat3::Zero();
+  l(2, 2) = -1.0;
+  l(0, 1) = 0.5;
+  for (int k = 0; k < 3; ++k) ASSERT_EQ(a.step(l, 1e-6).dem_steps, b.step(l, 1e-6).dem_steps);
+  common::StateStore sa;
+  common::StateStore sb;
+  a.save(sa);
+  b.save(sb);
+  EXPECT_TRUE(sa.fields() == sb.fields());
+  // A field of then missing is named by its name of then.
+  common::StateStore missing;
+  for (const auto& [n, f] : v3.fields()) {
+    if (n == "params/material/friction_deg") continue;
+    std::visit([&](const auto& v) { missing.write(n, std::span(v.data(), v.size())); }, f);
+  }
+  try {
+    (void)dem::Rve::load(missing);
+    ADD_FAILURE() << "a state without its friction angle was read";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("params/material/friction_deg"), std::string::npos)
+        << e.what();
+  }
+}
+
 // The standalone sample's time-step interval was written as params/numerics/dt_refresh before the
 // RVEs' own dt_refresh took that name alone: a state of then is read with its value.
 TEST(State, TheTimestepIntervalIsReadUnderItsFormerName) {
@@ -146,7 +213,8 @@ TEST(State, TheTimestepIntervalIsReadUnderItsFormerName) {
   common::StateStore s;
   rve.save(s);
   common::StateStore before;
-  for (const auto& [n, f] : s.fields()) {
+  const common::StateStore v3 = dem_test::as_former_version(s, 3);
+  for (const auto& [n, f] : v3.fields()) {
     const std::string name = n == "params/numerics/timestep_update_interval"
                                  ? std::string("params/numerics/dt_refresh")
                                  : n;
@@ -185,12 +253,20 @@ TEST(State, OtherVersionIsRefusedNamingFieldAndVersions) {
     } catch (const common::InputError& e) {
       const std::string m = e.what();
       for (const char* needle :
-           {"'dem/version' = 1", "reads versions 2, 3 and 4 only", "params/material"}) {
+           {"'dem/version' = 1", "reads versions 2 to 5 only", "params/material"}) {
         EXPECT_NE(m.find(needle), std::string::npos) << m;
       }
     }
   }
-  EXPECT_THROW((void)dem::Rve::load(with_field(s, "dem/version", {4})), common::InputError);
+  // A version this build does not know is refused by it, never read as another.
+  try {
+    (void)dem::Rve::load(with_field(s, "dem/version", {6}));
+    ADD_FAILURE() << "a version-6 state was loaded";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'dem/version' = 6: this build reads versions 2 to 5"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // Version 2 stored every contact property and the normal force per pair; version 3 only tan_phi
@@ -199,8 +275,9 @@ TEST(State, OtherVersionIsRefusedNamingFieldAndVersions) {
 // continues with the same bits as the version-3 one.
 TEST(State, Version2IsReadAndContinuesAsVersion3) {
   const dem::Rve rve = distinct_rve();
-  common::StateStore v3;
-  rve.save(v3);
+  common::StateStore v5;
+  rve.save(v5);
+  const common::StateStore v3 = dem_test::as_former_version(v5, 3);
   const std::size_t np = rve.simulation().contacts().size();
   ASSERT_GT(np, 0u);
   common::StateStore v2 = with_field(v3, "dem/version", {2});
@@ -216,10 +293,10 @@ TEST(State, Version2IsReadAndContinuesAsVersion3) {
   EXPECT_EQ(sb.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersion});
 }
 
-// A Hertz-Mindlin state is version 4 (a build that knows only the CohFrict law refuses it by its
-// version), carries the law and its parameters by name, and continues bit for bit after a load;
-// a version-4 state naming another law is refused, naming the field.
-TEST(State, HertzMindlinStateIsVersion4AndContinuesBitForBit) {
+// A Hertz-Mindlin state carries the law (the index of its name) and its parameters under their
+// job keys, and continues bit for bit after a load; a state naming another law is refused, naming
+// the field. A version-4 state (the law's enumerator, its C++ members' names) reads the same.
+TEST(State, HertzMindlinStateContinuesBitForBitAndVersion4IsRead) {
   dem::Material m = dem::hertz_mindlin_reference_material();
   m.hm.ktwist = 2e-5;
   dem::Simulation a = dem::make_simulation(dem_test::hertz_mindlin_packing(), m, dem::Numerics{});
@@ -228,19 +305,42 @@ TEST(State, HertzMindlinStateIsVersion4AndContinuesBitForBit) {
   for (int k = 0; k < 100; ++k) a.step();
   common::StateStore s;
   dem::save_simulation(a, s);
-  EXPECT_EQ(s.read_i64("dem/version"), std::vector<std::int64_t>{dem::kStateVersionOtherLaw});
+  EXPECT_EQ(s.read_i64("dem/version"), std::vector<std::int64_t>{5});
   EXPECT_EQ(s.read_i64("params/material/contact_law"), std::vector<std::int64_t>{1});
-  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/krot"), std::vector<double>{1e-4});
-  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/ktwist"), std::vector<double>{2e-5});
+  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/poisson_ratio"),
+            std::vector<double>{m.hm.poisson});
+  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/rolling_stiffness"),
+            std::vector<double>{1e-4});
+  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/twisting_stiffness"),
+            std::vector<double>{2e-5});
+  EXPECT_EQ(s.read_f64("params/material/hertz_mindlin/rolling_strength"),
+            std::vector<double>{m.hm.eta});
+  EXPECT_FALSE(s.has("params/material/hertz_mindlin/krot"));
   dem::Simulation b = dem::load_simulation(s);
   EXPECT_EQ(b.law().kind(), dem::ContactLawKind::hertz_mindlin);
+  const common::StateStore v4 = dem_test::as_former_version(s, 4);
+  ASSERT_TRUE(v4.has("params/material/hertz_mindlin/krot"));
+  dem::Simulation c = dem::load_simulation(v4);
+  EXPECT_EQ(c.law().kind(), dem::ContactLawKind::hertz_mindlin);
+  common::StateStore sc;
+  dem::save_simulation(c, sc);
+  EXPECT_TRUE(sc.fields() == s.fields());
   (void)continue_both(a, b, 200);
-  try {
-    (void)dem::load_simulation(with_field(s, "params/material/contact_law", {7}));
-    ADD_FAILURE() << "a version-4 state of an unknown law was read";
-  } catch (const common::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("'params/material/contact_law' = 7"), std::string::npos)
-        << e.what();
+  dem::Simulation d = dem::load_simulation(s);
+  (void)continue_both(c, d, 50);
+  for (const auto& [state, name] :
+       {std::pair{s,
+                  "'params/material/contact_law' = 7: must be one of 0 (cohfrict), 1 "
+                  "(hertz_mindlin)"},
+        std::pair{v4,
+                  "'params/material/contact_law' = 7: must be one of 1 (hertz_mindlin) in "
+                  "a version 4 state"}}) {
+    try {
+      (void)dem::load_simulation(with_field(state, "params/material/contact_law", {7}));
+      ADD_FAILURE() << "a state of an unknown law was read";
+    } catch (const common::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -271,6 +371,10 @@ TEST(State, ValuesThatWouldMisleadTheRunAreRefusedNamingTheField) {
                    "'verlet/h_ref_inv' value 8", "finite numbers only"});
   cases.push_back({with_field(s, "params/numerics/damping", std::vector<double>{nan}),
                    "'params/numerics/damping' value 0", "finite numbers only"});
+  cases.push_back({with_field(s, "rve/params/pressure_floor", std::vector<double>{inf}),
+                   "'rve/params/pressure_floor' value 0", "finite numbers only"});
+  cases.push_back({with_field(s, "rve/params/rate", {2}), "'rve/params/rate' = 2",
+                   "must be one of 0 (material), 1 (coupling)"});
   cases.push_back(
       {with_field(s, "verlet/skin", std::vector<double>{0.0}), "verlet/*", "the skin must be > 0"});
   cases.push_back({with_field(s, "verlet/skin", std::vector<double>{nan}), "'verlet/skin'",

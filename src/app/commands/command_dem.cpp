@@ -103,6 +103,7 @@ void check_lateral_control(const common::Mat3& stress, double confining, double 
 struct Loading {
   const Job& job;
   const Options& o;
+  dem::LoadingType type;  ///< dem.loading.type
   SeriesWriter& series;
   Reference ref;
   std::int64_t every = 0;
@@ -123,8 +124,8 @@ LoadingEnd triaxial(dem::Simulation& sim, const Loading& ld) {
   const Reference& ref = ld.ref;
   struct Stopped {};  // thrown by the observer, caught below
   LoadingEnd end;
-  const std::string& type = job.text("dem.loading.type");
-  const bool plane = type == "biaxial";
+  const std::string type(dem::loading_type_name(ld.type));
+  const bool plane = ld.type == dem::LoadingType::biaxial;
   bool generated = false;
   const double rho = job.number("dem.material.density");
   dem::DrainedTriaxial test;
@@ -240,7 +241,7 @@ int command_dem(const Options& o, const Comm& comm) {
   dem::write_packing((out / "prepared_packing.txt").string(), prepared,
                      "prepared by mpmxdem dem " + o.job);
 
-  const std::string type = job.text("dem.loading.type");
+  const dem::LoadingType type = dem_loading(job).type;
   const std::int64_t every = job.integer("output.every");
   const std::int64_t max_steps =
       o.max_steps >= 0 ? o.max_steps : std::numeric_limits<std::int64_t>::max();
@@ -254,11 +255,21 @@ int command_dem(const Options& o, const Comm& comm) {
   // packing written (docs/reference/errors.md, "Stopping a run"); a pure DEM test has no
   // checkpoint. (Not during an isotropic equilibration: it has no rows to stop at.)
   std::optional<StopSignals> signals;
-  if (type != "isotropic") signals.emplace();
-  const Loading ld{job, o, series, ref, every, max_steps};
-  const LoadingEnd end = type == "triaxial" || type == "biaxial" ? triaxial(sim, ld)
-                         : type == "isotropic"                   ? isotropic(sim, ld)
-                                                                 : strain_path(sim, ld);
+  if (type != dem::LoadingType::isotropic) signals.emplace();
+  const Loading ld{job, o, type, series, ref, every, max_steps};
+  LoadingEnd end;
+  switch (type) {
+    case dem::LoadingType::triaxial:
+    case dem::LoadingType::biaxial:
+      end = triaxial(sim, ld);
+      break;
+    case dem::LoadingType::isotropic:
+      end = isotropic(sim, ld);
+      break;
+    case dem::LoadingType::strain_path:
+      end = strain_path(sim, ld);
+      break;
+  }
   const std::int64_t done = end.done;
   const bool cut = end.cut;
   if (done >= max_steps) spdlog::warn("stopped after --max-steps {} DEM steps", max_steps);

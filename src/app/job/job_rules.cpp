@@ -9,6 +9,7 @@
 
 #include "app/job/job.hpp"
 #include "app/job/memory_check.hpp"
+#include "app/setup/dem_setup.hpp"
 #include "app/setup/insitu.hpp"
 #include "common/choice_table.hpp"
 #include "common/errors.hpp"
@@ -151,13 +152,14 @@ void material_rules(const Job& job, Rules& r) {
 
 void loading_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.loading")) return;
-  const std::string& type = job.text("dem.loading.type");
-  const std::string why = fmt::format("for dem.loading.type = \"{}\"", type);
-  if (type == "triaxial" || type == "biaxial") {
+  const dem::LoadingType type = dem_loading(job).type;
+  const std::string why =
+      fmt::format("for dem.loading.type = \"{}\"", dem::loading_type_name(type));
+  if (type == dem::LoadingType::triaxial || type == dem::LoadingType::biaxial) {
     for (const char* k : {"dem.loading.inertial_number", "dem.loading.axial_strain",
                           "dem.loading.confining_pressure"})
       r.require(k, why);
-  } else if (type == "isotropic") {
+  } else if (type == dem::LoadingType::isotropic) {
     for (const char* k : {"dem.loading.inertial_number", "dem.loading.confining_pressure"})
       r.require(k, why);
   } else {

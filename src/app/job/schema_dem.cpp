@@ -96,12 +96,7 @@ void add_rve_numerics(Schema& s) {
 void add_loading(Schema& s) {
   using Q = Quantity;
   s.add("dem.loading", Type::Table, "The loading programme of a pure DEM job (`mpmxdem dem`).");
-  s.add("dem.loading.type", Type::String,
-        "What to do after preparation: triaxial (z compressed, x and y at the confining "
-        "pressure), biaxial (plane strain: z compressed, x at the confining pressure, zero strain "
-        "on y), isotropic, strain_path.")
-      .one_of({"triaxial", "biaxial", "isotropic", "strain_path"})
-      .need();
+  add_choices(s, dem::kLoadingChoices);  // type
   s.add("dem.loading.inertial_number", Type::Float,
         "Inertial number of the imposed strain rate (at least 1e-6: the DEM steps grow as 1 / I, "
         "and below I ~ 1e-3 the response is already quasi-static).")

@@ -72,8 +72,9 @@ void fill_from_job(const Job& job, const common::ParamTable<S, N>& table, S& s) 
 
 /// Adds the rows of a choice table whose key lies in sub-table `sub` of the table's section (as
 /// add_params) as schema keys, in table order: a string key whose names are the allowed values,
-/// or a boolean (common::flag rows); the struct's member initializer names the default, and a
-/// member initializer without a name makes the key optional.
+/// or a boolean (common::flag rows); the struct's member initializer names the default, a
+/// member initializer without a name makes the key optional, and a common::required row is a key
+/// the job must give.
 template <class S, std::size_t N>
 void add_choices(Schema& s, const common::ChoiceTable<S, N>& table, std::string_view sub = {}) {
   for (const auto& c : table) {
@@ -85,7 +86,11 @@ void add_choices(Schema& s, const common::ChoiceTable<S, N>& table, std::string_
     Key& k = s.add(table.name(c), Type::String, std::string(c.doc))
                  .one_of(std::vector<std::string>(
                      c.names.begin(), c.names.begin() + static_cast<std::ptrdiff_t>(c.count)));
-    if (c.has_default()) k.or_default(std::string(c.default_name()));
+    if (c.required) {
+      k.need();
+    } else if (c.has_default()) {
+      k.or_default(std::string(c.default_name()));
+    }
   }
 }
 

@@ -45,6 +45,12 @@ dem::Preparation dem_preparation(const Job& job) {
   return p;
 }
 
+dem::LoadingProgramme dem_loading(const Job& job) {
+  dem::LoadingProgramme l;
+  fill_choices_from_job(job, dem::kLoadingChoices, l);
+  return l;
+}
+
 dem::Packing dem_packing(const Job& job, bool& generated, std::int64_t sample) {
   if (job.has("dem.sample.packing")) {
     MPMXDEM_CHECK(sample == 0, "a pool of samples is generated, not read");

@@ -15,6 +15,9 @@ namespace app {
 [[nodiscard]] dem::Material dem_material(const Job& job);
 [[nodiscard]] dem::Numerics dem_numerics(const Job& job);
 [[nodiscard]] dem::Preparation dem_preparation(const Job& job);
+/// The loading programme of [dem.loading] (its choice rows, dem::kLoadingChoices); the job has
+/// the section (the schema requires its type).
+[[nodiscard]] dem::LoadingProgramme dem_loading(const Job& job);
 /// The packing of [dem.sample]: read (path relative to the job file) or generated as a cloud.
 /// `generated` tells which. `sample` k > 0 (the pool of dem.initial_state.samples, generated
 /// clouds only) uses the seed dem.sample.seed + k.

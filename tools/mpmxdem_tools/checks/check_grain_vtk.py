@@ -244,7 +244,10 @@ def check_view(view, ck, where, np):
     # harmonic kn = 2 E r1 E r2 / (E r1 + E r2) of the checkpoint's radii and material, computed
     # here independently; 1e-12 relative: numpy's sum and norm may round differently from Eigen.
     r = ck["spheres/r"]
-    young = float(np.asarray(ck["params/material/young"]).reshape(-1)[0])
+    # params/material/young_modulus since DEM state version 5, params/material/young before.
+    young_name = "params/material/young_modulus"
+    young = float(np.asarray(ck[young_name if young_name in ck else "params/material/young"])
+                  .reshape(-1)[0])
     r1, r2 = r[pair[:, 0]], r[pair[:, 1]]
     kn = 2.0 * (young * r1) * (young * r2) / (young * r1 + young * r2)
     fn_ref = kn * (r1 + r2 - np.linalg.norm(ck["contacts/branch"].reshape(-1, 3)[active], axis=1))
