@@ -15,6 +15,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            the column's back-lower quarter: do they stay at rest, and dense?)
   --table                  prints the Markdown table of the page from DATA and the YADE summaries
   --damping-table          prints the page's table of the a = 1 columns against their damping
+  --damping-aspect-table   the shipped grain-scale configuration at each aspect ratio and damping
+                           against the grains' columns of the same size and damping
   --stiffness-table        prints the page's table of the columns against the grains' contact
                            modulus (300 MPa, 3 MPa) and their size (14.4, 28.8 d50)
   --figure                 writes FIG/column_grain_scale.png: final deposits and fronts against time,
@@ -391,6 +393,42 @@ def damping_table(data, yade):
                      f"{damping} | {m['front']:.3f} | {m['cont']:.3f} | "
                      + " / ".join(f"{v:.2f}" for v in m["f123"]) + " |")
     return "\n".join(lines)
+
+
+
+# Damping of the shipped grain-scale configuration (cells of 1.8 d50, 2 x 2 points per cell, RVEs
+# without contacts strained) against the grains' columns of the same size, each family starting
+# from one prepared column (YADE) and one job (MPM x DEM) that differ only in the Cundall damping:
+# (a, damping, YADE tag, MPM x DEM stem)
+DAMPING_ASPECTS = [
+    (0.5, "0", "dense_a0.5_l28.8_E3e6_l0", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
+    (0.5, "0.05", "dense_a0.5_l28.8_E3e6", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
+    (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
+    (1, "0.05", "dense_a1_l14.4_E3e6", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
+    (2, "0", "dense_a2_l14.4_E3e6_l0", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0"),
+    (2, "0.05", "dense_a2_l14.4_E3e6", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight"),
+    (2, "0.2", "dense_a2_l14.4_E3e6_l0.2", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0.2")]
+
+
+def damping_aspect_table(data, yade):
+    """Markdown table: the grain-scale configuration at each aspect ratio and Cundall damping, each
+    MPM x DEM figure with its gap to the grains' column of the same size and damping (stdlib
+    only)."""
+    lines = [RESOLUTION_HEADER[0].replace("| a | column |", "| a | damping | column |"),
+             RESOLUTION_HEADER[1] + "---|"]
+    for a, damping, tag, stem in DAMPING_ASPECTS:
+        if not os.path.exists(os.path.join(yade, f"{tag}_summary.csv")):
+            continue
+        row, ref = grains_row(yade, a, tag)
+        lines.append(row.replace(f"| {a:g} | pure DEM", f"| {a:g} | {damping} | pure DEM", 1))
+        label = ASPECT_LABELS[a]
+        row = run_row(data, yade, a, stem, label, ref, tag)
+        if row is not None:
+            lines.append(row.replace(f"| {a:g} | MPM x DEM", f"| {a:g} | {damping} | MPM x DEM", 1))
+    return "\n".join(lines)
+
+
+ASPECT_LABELS = {0.5: "16 x 8 cells", 1: "8 x 8 cells", 2: "8 x 16 cells"}
 
 
 # Stiffness number and size: (a, label, E, "yade" tag or "mpm" stem); L0 = 14.4 d50 unless named
@@ -930,6 +968,7 @@ def main():
     ap.add_argument("--analyse", nargs=2, metavar=("RUN_DIR", "STEM"))
     ap.add_argument("--table", action="store_true")
     ap.add_argument("--damping-table", action="store_true")
+    ap.add_argument("--damping-aspect-table", action="store_true")
     ap.add_argument("--stiffness-table", action="store_true")
     ap.add_argument("--figure", action="store_true")
     ap.add_argument("--size-figure", action="store_true")
@@ -955,6 +994,8 @@ def main():
         print(table(args.data, args.yade))
     if args.damping_table:
         print(damping_table(args.data, args.yade))
+    if args.damping_aspect_table:
+        print(damping_aspect_table(args.data, args.yade))
     if args.stiffness_table:
         print(stiffness_table(args.data, args.yade))
     if args.figure:
@@ -983,7 +1024,7 @@ def main():
         print(decay_table(args.data, args.yade))
     if args.resolution_figure:
         resolution_figure(args.data, args.yade, args.fig)
-    if not (args.analyse or args.table or args.damping_table or args.stiffness_table or args.figure
+    if not (args.analyse or args.table or args.damping_table or args.damping_aspect_table or args.stiffness_table or args.figure
             or args.size_figure or args.deposit_table or args.mobilised_table or args.core_table
             or args.transfer_table or args.onset_table or args.resolution_table or args.aspect_table
             or args.aspect_figure or args.variants_table
