@@ -399,13 +399,15 @@ def damping_table(data, yade):
 # Damping of the shipped grain-scale configuration (cells of 1.8 d50, 2 x 2 points per cell, RVEs
 # without contacts strained) against the grains' columns of the same size, each family starting
 # from one prepared column (YADE) and one job (MPM x DEM) that differ only in the Cundall damping:
-# (a, damping, YADE tag, MPM x DEM stem)
+# (a, damping, YADE tag, MPM x DEM stem[, what else differs: a member of a family])
 DAMPING_ASPECTS = [
     (0.5, "0", "dense_a0.5_l28.8_E3e6_l0", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (0.5, "0.05", "dense_a0.5_l28.8_E3e6", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (1, "0.05", "dense_a1_l14.4_E3e6", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (2, "0", "dense_a2_l14.4_E3e6_l0", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0"),
+    (2, "0", "dense_a2_l14.4_E3e6_l0",
+     "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0_g1e-6", "gravity x (1 + 1e-6)"),
     (2, "0.05", "dense_a2_l14.4_E3e6", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight"),
     (2, "0.2", "dense_a2_l14.4_E3e6_l0.2", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0.2")]
 
@@ -416,12 +418,15 @@ def damping_aspect_table(data, yade):
     only)."""
     lines = [RESOLUTION_HEADER[0].replace("| a | column |", "| a | damping | column |"),
              RESOLUTION_HEADER[1] + "---|"]
-    for a, damping, tag, stem in DAMPING_ASPECTS:
+    last_tag = None
+    for a, damping, tag, stem, *variant in DAMPING_ASPECTS:
         if not os.path.exists(os.path.join(yade, f"{tag}_summary.csv")):
             continue
         row, ref = grains_row(yade, a, tag)
-        lines.append(row.replace(f"| {a:g} | pure DEM", f"| {a:g} | {damping} | pure DEM", 1))
-        label = ASPECT_LABELS[a]
+        if tag != last_tag:  # a variant of the same damping sits under the first run's grains
+            lines.append(row.replace(f"| {a:g} | pure DEM", f"| {a:g} | {damping} | pure DEM", 1))
+        last_tag = tag
+        label = ASPECT_LABELS[a] + "".join(f", {v}" for v in variant)
         row = run_row(data, yade, a, stem, label, ref, tag)
         if row is not None:
             lines.append(row.replace(f"| {a:g} | MPM x DEM", f"| {a:g} | {damping} | MPM x DEM", 1))
