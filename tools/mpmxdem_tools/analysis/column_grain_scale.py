@@ -399,7 +399,8 @@ def damping_table(data, yade):
 # Damping of the shipped grain-scale configuration (cells of 1.8 d50, 2 x 2 points per cell, RVEs
 # without contacts strained) against the grains' columns of the same size, each family starting
 # from one prepared column (YADE) and one job (MPM x DEM) that differ only in the Cundall damping:
-# (a, damping, YADE tag, MPM x DEM stem[, what else differs: a member of a family])
+# (a, damping, YADE tag, MPM x DEM stem[, what else differs: a member of a family]); a stem None
+# is a member of the grains' family, its figures without gaps
 DAMPING_ASPECTS = [
     (0.5, "0", "dense_a0.5_l28.8_E3e6_l0", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (0.5, "0.05", "dense_a0.5_l28.8_E3e6", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
@@ -408,6 +409,9 @@ DAMPING_ASPECTS = [
     (2, "0", "dense_a2_l14.4_E3e6_l0", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0"),
     (2, "0", "dense_a2_l14.4_E3e6_l0",
      "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0_g1e-6", "gravity x (1 + 1e-6)"),
+    (2, "0", "dense_a2_l14.4_E3e6_l0",
+     "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0_g-1e-6", "gravity x (1 - 1e-6)"),
+    (2, "0", "dense_a2_l14.4_E3e6_l0_seed2", None, "another packing (--seed 2)"),
     (2, "0.05", "dense_a2_l14.4_E3e6", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight"),
     (2, "0.2", "dense_a2_l14.4_E3e6_l0.2", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0.2")]
 
@@ -423,6 +427,10 @@ def damping_aspect_table(data, yade):
         if not os.path.exists(os.path.join(yade, f"{tag}_summary.csv")):
             continue
         row, ref = grains_row(yade, a, tag)
+        if stem is None:  # another member of the grains' family
+            lines.append(row.replace(f"| {a:g} | pure DEM (YADE), L0 = ", f"| {a:g} | {damping} | pure DEM (YADE), "
+                                     + "".join(f"{v}, " for v in variant) + "L0 = ", 1))
+            continue
         if tag != last_tag:  # a variant of the same damping sits under the first run's grains
             lines.append(row.replace(f"| {a:g} | pure DEM", f"| {a:g} | {damping} | pure DEM", 1))
         last_tag = tag
