@@ -403,8 +403,12 @@ def damping_table(data, yade):
 # is a member of the grains' family, its figures without gaps
 DAMPING_ASPECTS = [
     (0.5, "0", "dense_a0.5_l28.8_E3e6_l0", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
+    (0.5, "0", "dense_a0.5_l28.8_E3e6_l0",
+     "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0_g1e-6", "gravity x (1 + 1e-6)"),
     (0.5, "0.05", "dense_a0.5_l28.8_E3e6", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
+    (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0_g1e-6",
+     "gravity x (1 + 1e-6)"),
     (1, "0.05", "dense_a1_l14.4_E3e6", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (2, "0", "dense_a2_l14.4_E3e6_l0", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0"),
     (2, "0", "dense_a2_l14.4_E3e6_l0",
