@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/state_params.hpp"
 #include "common/tensor.hpp"
 #include "mpm/drucker_prager.hpp"
 #include "mpm/friction_softening.hpp"
@@ -21,6 +24,42 @@ void bad(const char* key, double value, const char* rule) {
                            std::to_string(value) + ": " + rule);
 }
 
+// The material's rows under their job keys (common/state_params.hpp), from version 6.
+constexpr std::string_view kParamsDir = "elastic/params/";
+constexpr std::string_view kWhat = "elastic micro state";
+
+// The material of a state of versions 2 to 5: under the C++ members' names then
+// (elastic/params/young, poisson), the angles in radians; a field the version lacks as the model
+// of that version had it (no friction, no dilatancy, no softening). The degrees are for the
+// parameters' report and later states (degrees_of_radians); the model keeps the radians.
+struct FormerMaterial {
+  ElasticMaterial material;
+  ElasticAngles radians;
+};
+
+FormerMaterial read_former_material(const common::StateReader& r, std::int64_t version) {
+  auto f64 = [&r](std::string_view name) {
+    return common::read_scalar_f64(r, std::string(kParamsDir) + std::string(name));
+  };
+  FormerMaterial f;
+  ElasticMaterial& m = f.material;
+  ElasticAngles& a = f.radians;
+  m.young_modulus = f64("young");
+  m.poisson_ratio = f64("poisson");
+  a.friction = version >= 3 ? f64("friction_angle") : 0.0;
+  a.dilatancy = version >= 4 ? f64("dilatancy_angle") : 0.0;
+  if (version >= 5) {
+    m.softening_strain = f64("softening_strain");
+    a.residual_friction = f64("residual_friction_angle");
+  } else {
+    a.residual_friction = a.friction;
+  }
+  m.friction_deg = degrees_of_radians(a.friction);
+  m.dilatancy_deg = degrees_of_radians(a.dilatancy);
+  m.residual_friction_deg = degrees_of_radians(a.residual_friction);
+  return f;
+}
+
 /// A 3x3 as the 9 doubles of a state field (row-major).
 std::vector<double> nine(const common::Mat3& m) {
   std::vector<double> v(9);
@@ -31,30 +70,18 @@ std::vector<double> nine(const common::Mat3& m) {
 }  // namespace
 
 void ElasticMicroParams::validate() const {
-  if (!(young > 0.0)) bad("young", young, "must be > 0 Pa");
-  if (!(poisson > -1.0 && poisson < 0.5)) bad("poisson", poisson, "must be in (-1, 0.5)");
+  material.validate();
   if (!(density > 0.0)) bad("density", density, "must be > 0 kg/m^3");
   if (!(void_ratio0 >= 0.0)) bad("void_ratio0", void_ratio0, "must be >= 0");
   if (substeps < 1) bad("substeps", static_cast<double>(substeps), "must be >= 1");
   if (!initial_stress.allFinite()) bad("initial_stress", initial_stress.trace(), "must be finite");
-  if (!(friction_angle >= 0.0 && friction_angle < 0.5 * M_PI))
-    bad("friction_angle", friction_angle, "must be in [0, pi/2) rad");
-  if (!(dilatancy_angle >= 0.0 && dilatancy_angle <= friction_angle))
-    bad("dilatancy_angle", dilatancy_angle, "must be in [0, friction_angle] rad");
-  if (!(softening_strain >= 0.0 && std::isfinite(softening_strain)))
-    bad("softening_strain", softening_strain, "must be finite and >= 0");
-  if (softening_strain > 0.0) {
-    if (!(friction_angle > 0.0))
-      bad("softening_strain", softening_strain, "needs a friction angle > 0");
-    if (dilatancy_angle != 0.0)
-      bad("softening_strain", softening_strain, "needs dilatancy_angle = 0 (a deviatoric flow)");
-    if (!(residual_friction_angle >= 0.0 && residual_friction_angle <= friction_angle))
-      bad("residual_friction_angle", residual_friction_angle, "must be in [0, friction_angle] rad");
-  }
 }
 
 ElasticMicro::ElasticMicro(std::int64_t id, const ElasticMicroParams& params)
-    : id_(id), params_(params), stress_(params.initial_stress) {
+    : id_(id),
+      params_(params),
+      angles_(to_radians(params.material)),
+      stress_(params.initial_stress) {
   params_.validate();
 }
 
@@ -74,11 +101,12 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
         ", fail_step = " + std::to_string(params_.fail_step) + ")");
   }
   const double h = dt / static_cast<double>(params_.substeps);
-  const common::Lame c = common::lame(params_.young, params_.poisson);
+  const common::Lame c =
+      common::lame(params_.material.young_modulus, params_.material.poisson_ratio);
   const common::HughesWinget update(L, h, c);
   const double dj = (common::Mat3::Identity() + h * L).determinant();
   for (std::int64_t k = 0; k < params_.substeps; ++k) {
-    if (params_.friction_angle > 0.0) {
+    if (angles_.friction > 0.0) {
       frictional_substep(update, L, h, std::log(dj));
     } else {
       stress_ = update.apply(stress_);
@@ -99,15 +127,14 @@ MicroReport ElasticMicro::step(const common::Mat3& L, double dt) {
 
 void ElasticMicro::frictional_substep(const common::HughesWinget& update, const common::Mat3& L,
                                       double h, double volumetric) {
-  const common::Lame c = common::lame(params_.young, params_.poisson);
+  const ElasticMaterial& m = params_.material;
+  const common::Lame c = common::lame(m.young_modulus, m.poisson_ratio);
   const double bulk = c.lambda + 2.0 * c.mu / 3.0;
-  const mpm::DruckerPragerCone cone =
-      mpm::plane_strain_cone(params_.friction_angle, params_.dilatancy_angle);
+  const mpm::DruckerPragerCone cone = mpm::plane_strain_cone(angles_.friction, angles_.dilatancy);
   auto ret = [&](const common::Mat3& trial) {
-    if (params_.softening_strain > 0.0) {
-      const mpm::FrictionSoftening softening{std::sin(params_.friction_angle),
-                                             std::sin(params_.residual_friction_angle),
-                                             params_.softening_strain};
+    if (m.softening_strain > 0.0) {
+      const mpm::FrictionSoftening softening{
+          std::sin(angles_.friction), std::sin(angles_.residual_friction), m.softening_strain};
       const mpm::SofteningResult r = mpm::softening_return(trial, softening, plastic_shear_, c.mu);
       plastic_shear_ = r.gamma;
       return r.result;
@@ -143,23 +170,18 @@ MicroReport ElasticMicro::report() const {
 }
 
 double ElasticMicro::wave_speed() const {
-  const common::Lame c = common::lame(params_.young, params_.poisson);
+  const common::Lame c =
+      common::lame(params_.material.young_modulus, params_.material.poisson_ratio);
   return std::sqrt((c.lambda + 2.0 * c.mu) / params_.density);
 }
 
 void ElasticMicro::save(common::StateWriter& w) const {
   common::write_scalar(w, "elastic/version", kElasticStateVersion);
   common::write_scalar(w, "elastic/id", id_);
-  common::write_scalar(w, "elastic/params/young", params_.young);
-  common::write_scalar(w, "elastic/params/poisson", params_.poisson);
+  common::write_params(w, kParamsDir, kElasticMaterial, params_.material);
   common::write_scalar(w, "elastic/params/density", params_.density);
   common::write_scalar(w, "elastic/params/void_ratio0", params_.void_ratio0);
   w.write("elastic/params/initial_stress", nine(params_.initial_stress));
-  common::write_scalar(w, "elastic/params/friction_angle", params_.friction_angle);
-  common::write_scalar(w, "elastic/params/dilatancy_angle", params_.dilatancy_angle);
-  common::write_scalar(w, "elastic/params/softening_strain", params_.softening_strain);
-  common::write_scalar(w, "elastic/params/residual_friction_angle",
-                       params_.residual_friction_angle);
   common::write_scalar(w, "elastic/params/substeps", params_.substeps);
   common::write_scalar(w, "elastic/params/fail_id", params_.fail_id);
   common::write_scalar(w, "elastic/params/fail_step", params_.fail_step);
@@ -181,8 +203,9 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
         (r.has("elastic/version") ? "" : " (absent)") + ": this build reads versions 2 to " +
         std::to_string(kElasticStateVersion) +
         " only (version 1 stored the parameters as the positional array "
-        "'elastic/params'; versions 2 to 4 store named fields such as 'elastic/params/young'); "
-        "restart from a state written by this version");
+        "'elastic/params'; versions 2 to 5 named fields such as 'elastic/params/young', 6 the "
+        "job keys such as 'elastic/params/young_modulus'); restart from a state written by this "
+        "version");
   }
   auto matrix = [&r](const char* name) {
     const std::vector<double> v = r.read_f64(name);
@@ -194,26 +217,24 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
     return common::Mat3(common::row_major(v.data()));
   };
   ElasticMicroParams params;
-  params.young = common::read_scalar_f64(r, "elastic/params/young");
-  params.poisson = common::read_scalar_f64(r, "elastic/params/poisson");
+  std::optional<ElasticAngles> stored_radians;
+  if (version >= 6) {
+    common::read_params(r, kParamsDir, kElasticMaterial, params.material, kWhat);
+  } else {
+    const FormerMaterial former = read_former_material(r, version);
+    params.material = former.material;
+    stored_radians = former.radians;
+  }
   params.density = common::read_scalar_f64(r, "elastic/params/density");
   params.void_ratio0 = common::read_scalar_f64(r, "elastic/params/void_ratio0");
   params.initial_stress = matrix("elastic/params/initial_stress");
-  params.friction_angle =
-      version >= 3 ? common::read_scalar_f64(r, "elastic/params/friction_angle") : 0.0;
-  params.dilatancy_angle =
-      version >= 4 ? common::read_scalar_f64(r, "elastic/params/dilatancy_angle") : 0.0;
-  if (version >= 5) {
-    params.softening_strain = common::read_scalar_f64(r, "elastic/params/softening_strain");
-    params.residual_friction_angle =
-        common::read_scalar_f64(r, "elastic/params/residual_friction_angle");
-  } else {
-    params.residual_friction_angle = params.friction_angle;
-  }
   params.substeps = common::read_scalar_i64(r, "elastic/params/substeps");
   params.fail_id = common::read_scalar_i64(r, "elastic/params/fail_id");
   params.fail_step = common::read_scalar_i64(r, "elastic/params/fail_step");
   auto m = std::make_unique<ElasticMicro>(common::read_scalar_i64(r, "elastic/id"), params);
+  // An older state's radians are the model's as they were, not its degrees converted back: the
+  // run continues bit for bit.
+  if (stored_radians) m->angles_ = *stored_radians;
   m->stress_ = matrix("elastic/stress");
   m->j_ = common::read_scalar_f64(r, "elastic/j");
   if (!std::isfinite(m->j_)) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "common/tensor.hpp"
+#include "farm/elastic_material.hpp"
 #include "farm/micro_model.hpp"
 
 namespace farm {
@@ -17,30 +18,17 @@ namespace farm {
 /// read as friction_angle = 0, free volume 0); 4: adds elastic/params/dilatancy_angle (a version-2
 /// or 3 state is read as dilatancy_angle = 0); 5: adds elastic/params/residual_friction_angle,
 /// elastic/params/softening_strain and elastic/plastic_shear_strain (an older state is read
-/// without softening: softening_strain = 0, residual_friction_angle = friction_angle).
-inline constexpr std::int64_t kElasticStateVersion = 5;
+/// without softening: softening_strain = 0, residual_friction_angle = friction_angle); 6: the
+/// material's parameters under their job keys (kElasticMaterial: elastic/params/young_modulus,
+/// the angles in degrees), where 2 to 5 named them after C++ members (elastic/params/young) and
+/// stored the angles in radians (read as the model's radians, unconverted).
+inline constexpr std::int64_t kElasticStateVersion = 6;
 
 struct ElasticMicroParams {
-  double young = 0.0;        ///< E [Pa], > 0
-  double poisson = 0.0;      ///< nu [-], in (-1, 0.5)
+  ElasticMaterial material;  ///< [mpm.elastic]: moduli, angles [deg], softening
   double density = 0.0;      ///< rho [kg/m^3], > 0 (wave speed only)
   double void_ratio0 = 0.6;  ///< initial void ratio, carried by the volume change [-]
   common::Mat3 initial_stress = common::Mat3::Zero();  ///< tension positive [Pa]
-  /// Friction angle of the Drucker-Prager cone matched to plane-strain Mohr-Coulomb [rad], in
-  /// [0, pi/2). 0: linear elastic (no yield surface).
-  double friction_angle = 0.0;
-  /// Dilatancy angle of the plastic flow, matched to plane-strain Mohr-Coulomb with the friction
-  /// angle (mpm::plane_strain_cone) [rad], in [0, friction_angle]. 0: deviatoric flow; equal to
-  /// friction_angle: associated flow, for which Prandtl's bearing capacity is exact.
-  double dilatancy_angle = 0.0;
-  /// Friction softening (mpm/friction_softening.hpp): sin(phi) falls linearly with the
-  /// accumulated plastic shear strain from sin(friction_angle) to sin(residual_friction_angle),
-  /// reached at softening_strain [-]. 0: no softening (perfectly plastic). > 0 needs a friction
-  /// angle and no dilatancy.
-  double softening_strain = 0.0;
-  /// Residual friction angle of the softening [rad], in [0, friction_angle]; read only when
-  /// softening_strain > 0.
-  double residual_friction_angle = 0.0;
   /// Cost knob: every step is split into this many equal sub-increments (>= 1). Gives RVEs of
   /// different cost for balancing tests; the stress depends on it (it is part of the model).
   std::int64_t substeps = 1;
@@ -48,7 +36,7 @@ struct ElasticMicroParams {
   /// its step number fail_step (1-based). -1: never.
   std::int64_t fail_id = -1;
   std::int64_t fail_step = -1;
-  /// Throws common::InputError naming the first invalid entry.
+  /// Throws common::InputError naming the first invalid entry (the material's: its job key).
   void validate() const;
 };
 
@@ -66,8 +54,9 @@ class ElasticMicro final : public MicroModel {
   /// kinetic energy are not defined for a continuum).
   [[nodiscard]] MicroMeasures measures() const override { return MicroMeasures::none(); }
   /// Named fields (docs/reference/checkpoint.md): elastic/version, elastic/id,
-  /// elastic/params/<name> (one per ElasticMicroParams member), elastic/stress, elastic/j,
-  /// elastic/free_volume, elastic/steps.
+  /// elastic/params/<key> (the rows of kElasticMaterial under their job keys, common/
+  /// state_params.hpp), elastic/params/<name> (the other members of ElasticMicroParams),
+  /// elastic/stress, elastic/j, elastic/free_volume, elastic/plastic_shear_strain, elastic/steps.
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override {
     return static_cast<double>(params_.substeps);
@@ -75,8 +64,9 @@ class ElasticMicro final : public MicroModel {
   /// P-wave speed sqrt((lambda + 2 mu) / rho) [m/s].
   [[nodiscard]] double wave_speed() const override;
 
-  /// Rebuilds from save(); throws common::InputError naming a missing or malformed field, or the
-  /// version found and the one this build reads.
+  /// Rebuilds from save(), or from a state of versions 2 to 5 with the radians it stored (the
+  /// degrees of the parameters from degrees_of_radians); throws common::InputError naming a
+  /// missing or malformed field, or the version found and the ones this build reads.
   static std::unique_ptr<MicroModel> load(const common::StateReader& reader);
   /// A MicroKind creating ElasticMicro(id, params) for every id.
   static MicroKind kind(const ElasticMicroParams& params);
@@ -84,6 +74,9 @@ class ElasticMicro final : public MicroModel {
  private:
   std::int64_t id_;
   ElasticMicroParams params_;
+  /// The angles the model uses [rad]: to_radians(params_.material), or those an older state
+  /// stored.
+  ElasticAngles angles_;
   common::Mat3 stress_;
   /// One sub-step of the frictional model: elastic predictor, return onto the Drucker-Prager
   /// cone; a tensile trial returns to zero stress and the dilation beyond the elastic unloading
@@ -95,8 +88,8 @@ class ElasticMicro final : public MicroModel {
   void frictional_substep(const common::HughesWinget& update, const common::Mat3& L, double h,
                           double volumetric);
 
-  double j_ = 1.0;            ///< volume ratio V / V0 [-]
-  double free_volume_ = 0.0;  ///< ln(V / V_connected) >= 0 of a disconnected material [-]
+  double j_ = 1.0;              ///< volume ratio V / V0 [-]
+  double free_volume_ = 0.0;    ///< ln(V / V_connected) >= 0 of a disconnected material [-]
   double plastic_shear_ = 0.0;  ///< accumulated plastic shear strain of the softening [-]
   std::int64_t steps_ = 0;
 };

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "common/state_store.hpp"
@@ -157,3 +158,63 @@ TEST(CoupledSetup, CreatesAndRestoresTheModelOfEachPoint) {
 }
 
 }  // namespace
+
+namespace {
+
+const char* kFrictionalJob = R"([mpm]
+end_time = 1.0
+[mpm.elastic]
+young_modulus = "10 MPa"
+poisson_ratio = 0.3
+friction_angle = "38.3 deg"
+residual_friction_angle = "0.48 rad"
+softening_strain = 0.05
+[mpm.grid]
+origin = [0.0, 0.0, 0.0]
+spacing = [1.0, 1.0, 1.0]
+cells = [1, 1, 1]
+[[mpm.body]]
+min = [0.0, 0.0, 0.0]
+max = [1.0, 1.0, 1.0]
+points_per_cell = 1
+density = 1000.0
+material = "elastic"
+initial_stress = ["-10 kPa", "-10 kPa", "-10 kPa", 0.0, 0.0, 0.0]
+)";
+
+}  // namespace
+
+// [mpm.elastic] fills farm::ElasticMaterial through its table: the angles in degrees as the job
+// gives them (a value in radians converted by the job's units), the absent dilatancy 0; the model
+// is the one of those parameters, stress for stress.
+TEST(CoupledSetup, ElasticMaterialComesFromItsTable) {
+  const farm::CoupledConfig c =
+      app::coupled_setup(app::Job::parse(kFrictionalJob, "frictional.toml"), {"out", 4});
+  ASSERT_EQ(c.points.size(), 1U);
+  auto m = c.micro.create(c.points.id[0]);
+  common::StateStore s;
+  m->save(s);
+  const double residual = s.read_f64("elastic/params/residual_friction_angle").at(0);
+  EXPECT_EQ(s.read_f64("elastic/params/young_modulus"), std::vector<double>{10e6});
+  EXPECT_EQ(s.read_f64("elastic/params/poisson_ratio"), std::vector<double>{0.3});
+  EXPECT_EQ(s.read_f64("elastic/params/friction_angle"), std::vector<double>{38.3});
+  EXPECT_EQ(s.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{0.0});
+  EXPECT_NEAR(residual, 0.48 * 180.0 / M_PI, 1e-12);
+  EXPECT_EQ(s.read_f64("elastic/params/softening_strain"), std::vector<double>{0.05});
+
+  farm::ElasticMicroParams p;
+  p.material.young_modulus = 10e6;
+  p.material.poisson_ratio = 0.3;
+  p.material.friction_deg = 38.3;
+  p.material.residual_friction_deg = residual;
+  p.material.softening_strain = 0.05;
+  p.density = 1000.0;
+  farm::ElasticMicro direct(c.points.id[0], p, -1e4 * common::Mat3::Identity());
+  common::Mat3 L = common::Mat3::Zero();
+  L(0, 2) = 1.0;
+  for (int k = 0; k < 200; ++k) {
+    (void)m->step(L, 1e-4);
+    (void)direct.step(L, 1e-4);
+  }
+  EXPECT_TRUE(m->stress() == direct.stress());
+}

@@ -18,6 +18,7 @@
 #include "dem/loading.hpp"
 #include "dem/params.hpp"
 #include "dem/rve.hpp"
+#include "farm/elastic_material.hpp"
 #include "farm/mpi_util.hpp"
 #include "farm/run_options.hpp"
 #include "farm/rve_farm.hpp"
@@ -144,6 +145,29 @@ TEST(Schema, MpmAndFarmTablesAreTheSchemaOfTheirKeys) {
   expect_rows_in_schema(farm::kOutputOptions);
   expect_rows_in_schema(farm::kCheckpointOptions);
   expect_rows_in_schema(farm::kBalanceOptions);
+}
+
+// [mpm.elastic] is farm::kElasticMaterial: every row is a key of the section with the row's unit,
+// range and meaning, and every key of the section is a row.
+TEST(Schema, ElasticMaterialTableIsTheSchemaOfItsSection) {
+  expect_rows_in_schema(farm::kElasticMaterial);
+  const std::string section(farm::kElasticMaterial.section);
+  for (const auto& k : app::job_schema().keys) {
+    if (app::parent_path(k.path) != section) continue;
+    bool row = false;
+    for (const auto& r : farm::kElasticMaterial)
+      row = row || farm::kElasticMaterial.name(r) == k.path;
+    EXPECT_TRUE(row) << k.path << " is no row of farm::kElasticMaterial";
+  }
+  const app::Key* young = app::job_schema().find("mpm.elastic.young_modulus");
+  ASSERT_NE(young, nullptr);
+  EXPECT_TRUE(young->required);
+  EXPECT_EQ(app::range_rule(*young), "must be > 0 Pa");
+  const app::Key* phi = app::job_schema().find("mpm.elastic.friction_angle");
+  ASSERT_NE(phi, nullptr);
+  EXPECT_FALSE(phi->required);
+  EXPECT_FALSE(phi->fallback.has_value());  // absent: linear elastic, no default filled
+  EXPECT_EQ(app::range_rule(*phi), "must be in [0, 90) deg");
 }
 
 // A choice table's rows are schema keys whose names are the row's and whose default is the

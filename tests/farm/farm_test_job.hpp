@@ -19,8 +19,8 @@ namespace farm::testing {
 
 inline ElasticMicroParams elastic_params() {
   ElasticMicroParams p;
-  p.young = 50e6;
-  p.poisson = 0.25;
+  p.material.young_modulus = 50e6;
+  p.material.poisson_ratio = 0.25;
   p.density = 1600.0;
   p.void_ratio0 = 0.6;
   p.initial_stress = -100e3 * common::Mat3::Identity();

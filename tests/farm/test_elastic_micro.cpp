@@ -18,28 +18,44 @@ namespace {
 
 farm::ElasticMicroParams params() {
   farm::ElasticMicroParams p;
-  p.young = 10e6;
-  p.poisson = 0.2;
+  p.material.young_modulus = 10e6;
+  p.material.poisson_ratio = 0.2;
   p.density = 2000.0;
   p.initial_stress = -1e5 * common::Mat3::Identity();
   p.initial_stress(0, 1) = p.initial_stress(1, 0) = 2e4;
   return p;
 }
 
-// The state s as an older version of ElasticMicro wrote it: without the fields added since (the
-// version history of farm/elastic_micro.hpp), with that version's number.
+// The state s (this version's) as an older version of ElasticMicro wrote it (the version history
+// of farm/elastic_micro.hpp): versions 2 to 5 named the moduli after the C++ members and stored
+// the angles in radians, those the app derived from the job's degrees (farm::to_radians); without
+// the fields added since, with that version's number.
 common::StateStore as_version(const common::StateStore& s, std::int64_t version) {
   const std::vector<std::pair<std::int64_t, std::string>> added = {
       {3, "elastic/params/friction_angle"},          {3, "elastic/free_volume"},
       {4, "elastic/params/dilatancy_angle"},         {5, "elastic/params/softening_strain"},
       {5, "elastic/params/residual_friction_angle"}, {5, "elastic/plastic_shear_strain"}};
+  const std::vector<std::pair<std::string, std::string>> renamed = {
+      {"elastic/params/young_modulus", "elastic/params/young"},
+      {"elastic/params/poisson_ratio", "elastic/params/poisson"}};
+  const std::vector<std::string> angles = {"elastic/params/friction_angle",
+                                           "elastic/params/dilatancy_angle",
+                                           "elastic/params/residual_friction_angle"};
   common::StateStore old;
   for (const auto& [name, field] : s.fields()) {
     const bool later = std::any_of(added.begin(), added.end(), [&](const auto& a) {
       return a.first > version && a.second == name;
     });
     if (later || name == "elastic/version") continue;
-    std::visit([&old, &name](const auto& values) { old.write(name, values); }, field);
+    std::string old_name = name;
+    for (const auto& [now, then] : renamed) {
+      if (name == now) old_name = then;
+    }
+    if (std::find(angles.begin(), angles.end(), name) != angles.end()) {
+      old.write(name, std::vector<double>{farm::to_radians(s.read_f64(name).at(0))});
+      continue;
+    }
+    std::visit([&old, &old_name](const auto& values) { old.write(old_name, values); }, field);
   }
   old.write("elastic/version", std::vector<std::int64_t>{version});
   return old;
@@ -94,8 +110,10 @@ TEST(ElasticMicro, UniaxialStrainFollowsHooke) {
   common::Mat3 L = common::Mat3::Zero();
   L(2, 2) = -1.0;
   m.step(L, 1e-4);
-  const double lambda = p.young * p.poisson / ((1 + p.poisson) * (1 - 2 * p.poisson));
-  const double mu = p.young / (2 * (1 + p.poisson));
+  const double E = p.material.young_modulus;
+  const double nu = p.material.poisson_ratio;
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+  const double mu = E / (2 * (1 + nu));
   EXPECT_NEAR(m.stress()(2, 2), -(lambda + 2 * mu) * 1e-4, 1e-9 * (lambda + 2 * mu));
   EXPECT_NEAR(m.stress()(0, 0), -lambda * 1e-4, 1e-9 * lambda);
 }
@@ -121,46 +139,150 @@ TEST(ElasticMicro, InjectedFailureAndBadParams) {
   farm::ElasticMicro m(3, p);
   m.step(common::Mat3::Zero(), 1e-3);
   EXPECT_THROW(m.step(common::Mat3::Zero(), 1e-3), common::NumericalError);
-  p.young = -1;
+  p.material.young_modulus = -1;
   EXPECT_THROW(farm::ElasticMicro(1, p), common::InputError);
 }
 
-// Every parameter is a named field holding the member it names; the state carries its version.
+// Every parameter is a named field: the material's under its job key (kElasticMaterial, the angles
+// in degrees), the others under the member they name; the state carries its version.
 TEST(ElasticMicro, ParametersAreNamedFields) {
   farm::ElasticMicroParams p = params();
   p.substeps = 3;
   p.fail_id = 9;
   p.fail_step = 11;
   p.void_ratio0 = 0.55;
-  p.friction_angle = 0.5;
-  p.dilatancy_angle = 0.25;
-  p.residual_friction_angle = 0.4;  // read only with softening_strain > 0, saved always
+  p.material.friction_deg = 30.0;
+  p.material.dilatancy_deg = 12.5;
+  p.material.residual_friction_deg = 25.0;  // read only with softening_strain > 0, saved always
   const farm::ElasticMicro m(4, p);
   common::StateStore s;
   m.save(s);
-  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{5});
+  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{6});
   EXPECT_EQ(s.read_i64("elastic/id"), std::vector<std::int64_t>{4});
-  EXPECT_EQ(s.read_f64("elastic/params/young"), std::vector<double>{p.young});
-  EXPECT_EQ(s.read_f64("elastic/params/poisson"), std::vector<double>{p.poisson});
+  for (const auto& row : farm::kElasticMaterial) {
+    EXPECT_EQ(s.read_f64("elastic/params/" + std::string(row.key)),
+              std::vector<double>{row.get(p.material)})
+        << row.key;
+  }
+  EXPECT_EQ(s.read_f64("elastic/params/young_modulus"), std::vector<double>{10e6});
+  EXPECT_EQ(s.read_f64("elastic/params/poisson_ratio"), std::vector<double>{0.2});
+  EXPECT_EQ(s.read_f64("elastic/params/friction_angle"), std::vector<double>{30.0});
+  EXPECT_EQ(s.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{12.5});
+  EXPECT_EQ(s.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{25.0});
+  EXPECT_EQ(s.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
   EXPECT_EQ(s.read_f64("elastic/params/density"), std::vector<double>{p.density});
   EXPECT_EQ(s.read_f64("elastic/params/void_ratio0"), std::vector<double>{0.55});
   const auto s0 = s.read_f64("elastic/params/initial_stress");
   ASSERT_EQ(s0.size(), 9u);
   EXPECT_EQ(s0[1], p.initial_stress(0, 1));  // row-major
   EXPECT_EQ(s0[8], p.initial_stress(2, 2));
-  EXPECT_EQ(s.read_f64("elastic/params/friction_angle"), std::vector<double>{0.5});
-  EXPECT_EQ(s.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{0.25});
-  EXPECT_EQ(s.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{0.4});
-  EXPECT_EQ(s.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
   EXPECT_EQ(s.read_f64("elastic/plastic_shear_strain"), std::vector<double>{0.0});
   EXPECT_EQ(s.read_i64("elastic/params/substeps"), std::vector<std::int64_t>{3});
   EXPECT_EQ(s.read_i64("elastic/params/fail_id"), std::vector<std::int64_t>{9});
   EXPECT_EQ(s.read_i64("elastic/params/fail_step"), std::vector<std::int64_t>{11});
-  EXPECT_FALSE(s.has("elastic/params"));
-  EXPECT_FALSE(s.has("elastic/int_params"));
+  for (const char* former :
+       {"elastic/params", "elastic/int_params", "elastic/params/young", "elastic/params/poisson"}) {
+    EXPECT_FALSE(s.has(former)) << former;
+  }
   common::StateStore again;
   farm::ElasticMicro::load(s)->save(again);
   EXPECT_TRUE(again.fields() == s.fields());
+}
+
+// A version-6 state of a dilatant frictional model, saved mid-shear, comes back with the same
+// fields and continues bit for bit.
+TEST(ElasticMicro, Version6RoundTripsAndContinuesBitForBit) {
+  farm::ElasticMicroParams p = params();
+  p.material.friction_deg = 37.3;
+  p.material.dilatancy_deg = 8.1;
+  p.substeps = 2;
+  farm::ElasticMicro m = sheared(p);
+  common::StateStore s;
+  m.save(s);
+  ASSERT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{6});
+  const auto loaded = farm::ElasticMicro::load(common::StateStore::deserialize(s.serialize()));
+  common::StateStore again;
+  loaded->save(again);
+  EXPECT_TRUE(again.fields() == s.fields());
+  expect_same_continuation(m, *loaded, kShear);
+}
+
+// A version-5 state, written here field by field with that version's names and radians (those the
+// app derived from the job's degrees), is read with those radians and continues bit for bit as
+// the model of the same radians; saved again (version 6, degrees) and read, it still does.
+TEST(ElasticMicro, Version5StateIsReadWithItsRadiansAndContinuesBitForBit) {
+  farm::ElasticMicroParams p = params();
+  p.material.friction_deg = 41.7;
+  p.material.residual_friction_deg = 33.3;
+  p.material.softening_strain = 0.05;
+  p.substeps = 2;
+  farm::ElasticMicro m(7, p, -1e4 * common::Mat3::Identity());
+  for (int k = 0; k < 300; ++k) (void)m.step(kShear, 1e-4);  // onto the softening branch
+  common::StateStore now;
+  m.save(now);
+  ASSERT_GT(now.read_f64("elastic/plastic_shear_strain").at(0), 0.0);
+  common::StateStore v5;
+  v5.write("elastic/version", std::vector<std::int64_t>{5});
+  v5.write("elastic/id", std::vector<std::int64_t>{7});
+  v5.write("elastic/params/young", std::vector<double>{10e6});
+  v5.write("elastic/params/poisson", std::vector<double>{0.2});
+  v5.write("elastic/params/density", std::vector<double>{2000.0});
+  v5.write("elastic/params/void_ratio0", std::vector<double>{0.6});
+  v5.write("elastic/params/friction_angle", std::vector<double>{41.7 * M_PI / 180.0});
+  v5.write("elastic/params/dilatancy_angle", std::vector<double>{0.0});
+  v5.write("elastic/params/softening_strain", std::vector<double>{0.05});
+  v5.write("elastic/params/residual_friction_angle", std::vector<double>{33.3 * M_PI / 180.0});
+  v5.write("elastic/params/substeps", std::vector<std::int64_t>{2});
+  v5.write("elastic/params/fail_id", std::vector<std::int64_t>{-1});
+  v5.write("elastic/params/fail_step", std::vector<std::int64_t>{-1});
+  for (const char* name : {"elastic/params/initial_stress", "elastic/stress", "elastic/j",
+                           "elastic/free_volume", "elastic/plastic_shear_strain"}) {
+    v5.write(name, now.read_f64(name));
+  }
+  v5.write("elastic/steps", now.read_i64("elastic/steps"));
+  const auto loaded = farm::ElasticMicro::load(v5);
+  common::StateStore as_v6;
+  loaded->save(as_v6);
+  EXPECT_EQ(as_v6.read_i64("elastic/version"), std::vector<std::int64_t>{6});
+  // The degrees are the job's, whose radians the state held (farm::degrees_of_radians).
+  EXPECT_EQ(as_v6.read_f64("elastic/params/friction_angle"), std::vector<double>{41.7});
+  EXPECT_EQ(as_v6.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{33.3});
+  EXPECT_EQ(as_v6.read_f64("elastic/params/young_modulus"), std::vector<double>{10e6});
+  EXPECT_EQ(as_v6.read_f64("elastic/params/softening_strain"), std::vector<double>{0.05});
+  const auto reloaded = farm::ElasticMicro::load(as_v6);
+  for (int k = 0; k < 300; ++k) {
+    (void)m.step(kShear, 1e-4);
+    (void)loaded->step(kShear, 1e-4);
+    (void)reloaded->step(kShear, 1e-4);
+  }
+  EXPECT_EQ(std::memcmp(m.stress().data(), loaded->stress().data(), 9 * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(m.stress().data(), reloaded->stress().data(), 9 * sizeof(double)), 0);
+  common::StateStore a;
+  common::StateStore b;
+  m.save(a);
+  loaded->save(b);
+  EXPECT_EQ(b.read_f64("elastic/plastic_shear_strain"), a.read_f64("elastic/plastic_shear_strain"));
+}
+
+// A version-5 state's radians that no job's degrees give (the C++ API of then took radians) are the
+// model's as they were: a friction angle of 0.6 rad bounds the shear stress by p0 sin(0.6).
+TEST(ElasticMicro, Version5RadiansAreTheModelsUnconverted) {
+  farm::ElasticMicroParams p = params();
+  p.material.friction_deg = 30.0;
+  common::StateStore s;
+  farm::ElasticMicro(4, p, -1e4 * common::Mat3::Identity()).save(s);
+  common::StateStore v5 = as_version(s, 5);
+  // 0.6 rad against the 0.5236 of 30 deg: the loaded model must use 0.6 rad, its cone sin(0.6).
+  common::StateStore edited;
+  for (const auto& [name, field] : v5.fields()) {
+    if (name != "elastic/params/friction_angle") {
+      std::visit([&](const auto& v) { edited.write(name, v); }, field);
+    }
+  }
+  edited.write("elastic/params/friction_angle", std::vector<double>{0.6});
+  const auto m = farm::ElasticMicro::load(edited);
+  for (int k = 0; k < 400; ++k) (void)m->step(kShear, 1e-4);  // gamma = 0.04, on the cone
+  EXPECT_NEAR(std::abs(m->stress()(0, 2)), 1e4 * std::sin(0.6), 0.01 * 1e4);
 }
 
 // A state of version 1 (positional arrays, no elastic/version) is refused with a message naming
@@ -175,10 +297,31 @@ TEST(ElasticMicro, OldVersionRefused) {
     ADD_FAILURE() << "a version-1 state was loaded";
   } catch (const common::InputError& e) {
     const std::string m = e.what();
-    for (const char* needle :
-         {"'elastic/version' = 1 (absent)", "reads versions 2 to 5 only", "elastic/params/young"}) {
+    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2 to 6 only",
+                               "elastic/params/young", "elastic/params/young_modulus"}) {
       EXPECT_NE(m.find(needle), std::string::npos) << m;
     }
+  }
+}
+
+// A state of a version this build does not know (a later one) is refused naming the field, the
+// version and the versions it reads.
+TEST(ElasticMicro, LaterVersionRefused) {
+  common::StateStore s;
+  farm::ElasticMicro(1, params()).save(s);
+  common::StateStore later;
+  for (const auto& [name, field] : s.fields()) {
+    if (name != "elastic/version") std::visit([&](const auto& v) { later.write(name, v); }, field);
+  }
+  later.write("elastic/version", std::vector<std::int64_t>{7});
+  try {
+    (void)farm::ElasticMicro::load(later);
+    ADD_FAILURE() << "a version-7 state was loaded";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "field 'elastic/version' = 7: this build reads versions 2 to 6 only"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -193,6 +336,7 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
   loaded->save(again);
   EXPECT_EQ(again.read_f64("elastic/params/friction_angle"), std::vector<double>{0.0});
   EXPECT_EQ(again.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{0.0});
+  EXPECT_EQ(again.read_f64("elastic/params/young_modulus"), std::vector<double>{10e6});
   EXPECT_EQ(again.read_f64("elastic/stress"), s.read_f64("elastic/stress"));
 }
 
@@ -200,7 +344,7 @@ TEST(ElasticMicro, Version2IsReadAsElastic) {
 // the same state saved by this version would.
 TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
   farm::ElasticMicroParams p = params();
-  p.friction_angle = 0.6;
+  p.material.friction_deg = 34.0;
   farm::ElasticMicro m = sheared(p);
   common::StateStore s;
   m.save(s);
@@ -213,8 +357,8 @@ TEST(ElasticMicro, Version3IsReadWithoutDilatancy) {
 // state saved by this version would.
 TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
   farm::ElasticMicroParams p = params();
-  p.friction_angle = 0.6;
-  p.dilatancy_angle = 0.2;
+  p.material.friction_deg = 34.0;
+  p.material.dilatancy_deg = 11.0;
   farm::ElasticMicro m = sheared(p);
   common::StateStore s;
   m.save(s);
@@ -223,7 +367,8 @@ TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
   common::StateStore again;
   loaded->save(again);
   EXPECT_EQ(again.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
-  EXPECT_EQ(again.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{0.6});
+  EXPECT_EQ(farm::to_radians(again.read_f64("elastic/params/residual_friction_angle").at(0)),
+            farm::to_radians(34.0));
   expect_same_continuation(m, *loaded, kShear);
 }
 
@@ -232,9 +377,9 @@ TEST(ElasticMicro, Version4IsReadWithoutSoftening) {
 // bit, carrying its plastic shear strain.
 TEST(ElasticMicro, SofteningFallsFromPeakToResidualFriction) {
   farm::ElasticMicroParams p = params();
-  p.friction_angle = 40.0 * M_PI / 180.0;
-  p.residual_friction_angle = 30.0 * M_PI / 180.0;
-  p.softening_strain = 0.05;
+  p.material.friction_deg = 40.0;
+  p.material.residual_friction_deg = 30.0;
+  p.material.softening_strain = 0.05;
   const double p0 = 1e5;
   farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
   common::Mat3 L = common::Mat3::Zero();
@@ -250,29 +395,29 @@ TEST(ElasticMicro, SofteningFallsFromPeakToResidualFriction) {
       m.save(s);
       const double gamma_p = s.read_f64("elastic/plastic_shear_strain")[0];
       EXPECT_GT(gamma_p, 0.0);
-      EXPECT_LT(gamma_p, p.softening_strain);  // on the softening branch
+      EXPECT_LT(gamma_p, p.material.softening_strain);  // on the softening branch
       copy = farm::ElasticMicro::load(s);
     }
   }
-  EXPECT_NEAR(peak, p0 * std::sin(p.friction_angle), 0.01 * p0);
-  EXPECT_NEAR(std::abs(m.stress()(0, 2)), p0 * std::sin(p.residual_friction_angle), 0.01 * p0);
+  EXPECT_NEAR(peak, p0 * std::sin(40.0 * M_PI / 180.0), 0.01 * p0);
+  EXPECT_NEAR(std::abs(m.stress()(0, 2)), p0 * std::sin(30.0 * M_PI / 180.0), 0.01 * p0);
   EXPECT_TRUE(copy->stress() == m.stress());
 }
 
 // Softening needs a friction angle and a deviatoric flow, and a residual angle not above the peak.
 TEST(ElasticMicro, SofteningParametersAreChecked) {
   farm::ElasticMicroParams p = params();
-  p.softening_strain = 0.05;
+  p.material.softening_strain = 0.05;
   EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);  // no friction angle
-  p.friction_angle = 0.6;
-  p.residual_friction_angle = 0.7;
+  p.material.friction_deg = 34.0;
+  p.material.residual_friction_deg = 40.0;
   EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);  // residual above the peak
-  p.residual_friction_angle = 0.5;
-  p.dilatancy_angle = 0.1;
+  p.material.residual_friction_deg = 28.0;
+  p.material.dilatancy_deg = 6.0;
   EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);  // dilatant
-  p.dilatancy_angle = 0.0;
+  p.material.dilatancy_deg = 0.0;
   EXPECT_NO_THROW(farm::ElasticMicro(0, p));
-  p.softening_strain = -1.0;
+  p.material.softening_strain = -1.0;
   EXPECT_THROW(farm::ElasticMicro(0, p), common::InputError);
 }
 
@@ -280,7 +425,7 @@ TEST(ElasticMicro, SofteningParametersAreChecked) {
 // from an isotropic stress p0 ends on the cone, tau = p0 sin(phi) (no dilatancy: p stays p0).
 TEST(ElasticMicro, FrictionAngleBoundsTheShearStress) {
   farm::ElasticMicroParams p = params();
-  p.friction_angle = 30.0 * M_PI / 180.0;
+  p.material.friction_deg = 30.0;
   const double p0 = 10e3;
   farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
   common::Mat3 L = common::Mat3::Zero();
@@ -302,10 +447,10 @@ TEST(ElasticMicro, DilatantFlowMatchesPlaneStrainMohrCoulomb) {
   for (const double phi_deg : {30.0, 40.0}) {
     for (const double psi_deg : {0.0, 10.0, phi_deg}) {
       farm::ElasticMicroParams p = params();
-      p.friction_angle = phi_deg * M_PI / 180.0;
-      p.dilatancy_angle = psi_deg * M_PI / 180.0;
+      p.material.friction_deg = phi_deg;
+      p.material.dilatancy_deg = psi_deg;
       farm::ElasticMicro m(0, p, -10e3 * common::Mat3::Identity());
-      const double sin_psi = std::sin(p.dilatancy_angle);
+      const double sin_psi = std::sin(psi_deg * M_PI / 180.0);
       common::Mat3 L = common::Mat3::Zero();
       L(2, 2) = -1.0;                               // eps_3 (major, compression), 1 /s
       L(0, 0) = (1.0 + sin_psi) / (1.0 - sin_psi);  // eps_1: (e1 + e3) / (e1 - e3) = sin(psi)
@@ -315,7 +460,7 @@ TEST(ElasticMicro, DilatantFlowMatchesPlaneStrainMohrCoulomb) {
       const common::Mat3 s = m.stress();
       const double ratio = (s(0, 0) - s(2, 2)) / -(s(0, 0) + s(2, 2));
       SCOPED_TRACE(testing::Message() << "phi " << phi_deg << " psi " << psi_deg);
-      EXPECT_NEAR(ratio, std::sin(p.friction_angle), 1e-6);
+      EXPECT_NEAR(ratio, std::sin(phi_deg * M_PI / 180.0), 1e-6);
       EXPECT_LT((s - before).norm(), 1e-6 * s.norm());  // a steady plastic flow
     }
   }
@@ -326,7 +471,7 @@ TEST(ElasticMicro, DilatantFlowMatchesPlaneStrainMohrCoulomb) {
 // density).
 TEST(ElasticMicro, DilatedFrictionalMaterialCarriesNoStressUntilRecompressed) {
   farm::ElasticMicroParams p = params();
-  p.friction_angle = 30.0 * M_PI / 180.0;
+  p.material.friction_deg = 30.0;
   const double p0 = 1e3;
   farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
   const common::Mat3 I = common::Mat3::Identity();
@@ -337,7 +482,7 @@ TEST(ElasticMicro, DilatedFrictionalMaterialCarriesNoStressUntilRecompressed) {
     v += volumetric(1.0, 1e-3);
   }
   EXPECT_TRUE(m.stress() == common::Mat3::Zero());
-  const double bulk = p.young / (3.0 * (1.0 - 2.0 * p.poisson));
+  const double bulk = p.material.young_modulus / (3.0 * (1.0 - 2.0 * p.material.poisson_ratio));
   const double free = v - p0 / bulk;  // the elastic unloading took p0 / K of the dilation
   // Compress back by about 0.2: still disconnected.
   double back = 0.0;

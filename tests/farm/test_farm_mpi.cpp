@@ -191,7 +191,8 @@ TEST(Farm, ElasticFarmEqualsDirectSolver) {
   const farm::RunSummary s = farm::run_coupled(cfg, MPI_COMM_WORLD);
   EXPECT_EQ(s.steps, steps);
   if (world_rank() != 0) return;
-  mpm::LinearElastic elastic(ep.young, ep.poisson, ep.density, ep.initial_stress);
+  mpm::LinearElastic elastic(ep.material.young_modulus, ep.material.poisson_ratio, ep.density,
+                             ep.initial_stress);
   mpm::Solver direct(cfg.solver, cfg.points, {&elastic});
   for (const auto& c : cfg.constraints) direct.add_constraint(c);
   for (const auto& t : cfg.tractions) direct.add_traction(t);

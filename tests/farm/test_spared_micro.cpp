@@ -39,8 +39,8 @@ farm::MicroKind dem_kind() {
 
 farm::ElasticMicroParams elastic() {
   farm::ElasticMicroParams p;
-  p.young = 50e6;
-  p.poisson = 0.25;
+  p.material.young_modulus = 50e6;
+  p.material.poisson_ratio = 0.25;
   p.density = 1600.0;
   p.initial_stress = -100e3 * Mat3::Identity();
   return p;
@@ -48,7 +48,8 @@ farm::ElasticMicroParams elastic() {
 
 // The exact tangent of ElasticMicro: lambda tr(e) I + 2 mu e.
 dem::Tangent elastic_tangent(const farm::MicroModel&) {
-  const common::Lame c = common::lame(elastic().young, elastic().poisson);
+  const common::Lame c =
+      common::lame(elastic().material.young_modulus, elastic().material.poisson_ratio);
   dem::Tangent t = dem::Tangent::Zero();
   for (int i = 0; i < 3; ++i) {
     for (int k = 0; k < 3; ++k) t(4 * i, 4 * k) += c.lambda;

@@ -212,6 +212,13 @@ void softening_rules(const Job& job, Rules& r) {
     r.fail(gamma, "needs mpm.elastic.residual_friction_angle: the friction it softens to");
     return;
   }
+  // The table's range takes 0 (farm::ElasticMaterial: no softening); a job writing 0 would mean
+  // a sudden drop, which the model does not do.
+  if (!(job.number(gamma) > 0.0)) {
+    r.fail(gamma,
+           "must be > 0 (remove it and mpm.elastic.residual_friction_angle for no "
+           "softening)");
+  }
   const std::string phi = "mpm.elastic.friction_angle";
   if (!job.has(phi)) {
     r.fail(phi_r, "needs mpm.elastic.friction_angle: the peak it softens from");

@@ -1,8 +1,10 @@
 // Job-file sections of the MPM (paper section 2.1): [mpm], [mpm.grid], [[mpm.body]], [mpm.elastic],
 // [[mpm.velocity]], [[mpm.traction]]. The numeric knobs of [mpm] are the rows of mpm's parameter
-// table (mpm/solver.hpp, kSolverConfig).
+// table (mpm/solver.hpp, kSolverConfig), the keys of [mpm.elastic] those of farm::kElasticMaterial
+// (farm/elastic_material.hpp).
 #include "app/job/schema.hpp"
 #include "app/job/schema_params.hpp"
+#include "farm/elastic_material.hpp"
 #include "mpm/solver.hpp"
 #include "mpm/solver_choices.hpp"
 
@@ -80,44 +82,13 @@ void add_grid_and_bodies(Schema& s) {
       .len(6, 6);
 }
 
-// [mpm.elastic]: the continuum material of the bodies that are not DEM.
+// [mpm.elastic]: the continuum material of the bodies that are not DEM (farm::kElasticMaterial).
 void add_elastic(Schema& s) {
-  using Q = Quantity;
   s.add(
       "mpm.elastic", Type::Table,
       "Continuum material for bodies with material = \"elastic\": linear elastic "
       "(verification), or with friction_angle a frictional continuum (a reference for the RVEs).");
-  s.add("mpm.elastic.young_modulus", Type::Float, "Young's modulus.")
-      .unit(Q::Pressure)
-      .in(0, std::nullopt, true)
-      .need();
-  s.add("mpm.elastic.poisson_ratio", Type::Float, "Poisson's ratio.")
-      .in(-1, 0.5, true, true)
-      .need();
-  s.add("mpm.elastic.friction_angle", Type::Float,
-        "Absent: linear elastic. Given: elastic-perfectly plastic, cohesionless Drucker-Prager "
-        "cone matched to Mohr-Coulomb in plane strain (tension returns to zero stress): a "
-        "frictional continuum to compare the DEM RVEs with on the same mesh (docs/design/mpm.md, "
-        "Frictional continuum).")
-      .unit(Q::Angle)
-      .in(0, 90, false, true);
-  s.add("mpm.elastic.dilatancy_angle", Type::Float,
-        "Dilatancy angle psi of the Drucker-Prager flow, matched to Mohr-Coulomb in plane strain "
-        "with friction_angle (needs it; at most friction_angle). Absent or 0: no dilatancy; "
-        "equal to friction_angle: associated flow, for which Prandtl's bearing capacity is exact.")
-      .unit(Q::Angle)
-      .in(0, 90, false, true);
-  s.add("mpm.elastic.residual_friction_angle", Type::Float,
-        "Friction softening (with softening_strain; needs friction_angle, no dilatancy): sin(phi) "
-        "falls linearly with the accumulated plastic shear strain from sin(friction_angle) to "
-        "sin(residual_friction_angle), at most friction_angle (docs/design/mpm.md, Frictional "
-        "continuum). Absent: perfectly plastic.")
-      .unit(Q::Angle)
-      .in(0, 90, false, true);
-  s.add("mpm.elastic.softening_strain", Type::Float,
-        "The accumulated plastic shear strain at which the friction reaches "
-        "residual_friction_angle (with it).")
-      .in(0, std::nullopt, true);
+  add_params(s, farm::kElasticMaterial);  // young_modulus, poisson_ratio, the angles, softening
 }
 
 // The boundary conditions: [[mpm.velocity]] constraints and [[mpm.traction]] loads.

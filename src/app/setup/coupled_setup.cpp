@@ -30,8 +30,7 @@ namespace {
 farm::ElasticMicroParams elastic_params(const Job& job, const MpmSetup& setup,
                                         const std::set<std::int64_t>& dem_ids) {
   farm::ElasticMicroParams p;
-  p.young = job.number("mpm.elastic.young_modulus");
-  p.poisson = job.number("mpm.elastic.poisson_ratio");
+  fill_from_job(job, farm::kElasticMaterial, p.material);  // absent angles: 0, no softening
   // The wave speed (CFL) uses the lightest elastic body: the fastest waves.
   p.density = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < setup.points.size(); ++i) {
@@ -40,14 +39,6 @@ farm::ElasticMicroParams elastic_params(const Job& job, const MpmSetup& setup,
     }
   }
   p.initial_stress = setup.elastic_initial_stress;
-  if (job.has("mpm.elastic.friction_angle"))
-    p.friction_angle = job.number("mpm.elastic.friction_angle") * M_PI / 180.0;
-  if (job.has("mpm.elastic.dilatancy_angle"))
-    p.dilatancy_angle = job.number("mpm.elastic.dilatancy_angle") * M_PI / 180.0;
-  if (job.has("mpm.elastic.softening_strain")) {
-    p.softening_strain = job.number("mpm.elastic.softening_strain");
-    p.residual_friction_angle = job.number("mpm.elastic.residual_friction_angle") * M_PI / 180.0;
-  }
   p.validate();
   return p;
 }

@@ -204,8 +204,8 @@ farm::MicroKind balance_kind(const Args& a, bool dem, int n, std::string& what) 
   } else {
     const std::int64_t base = std::stoll(a.get("substeps", "20000"));
     farm::ElasticMicroParams p;
-    p.young = 50e6;
-    p.poisson = 0.25;
+    p.material.young_modulus = 50e6;
+    p.material.poisson_ratio = 0.25;
     p.density = 1600.0;
     kind.create = [p, base](std::int64_t id) {
       farm::ElasticMicroParams q = p;
@@ -300,8 +300,8 @@ farm::RveFarm dem_farm_in_one_cell(const Args& a, MPI_Comm comm,
 /// Tiny RVEs for counting what grows with their number: ElasticMicro, one substep.
 farm::MicroKind tiny_kind() {
   farm::ElasticMicroParams p;
-  p.young = 50e6;
-  p.poisson = 0.25;
+  p.material.young_modulus = 50e6;
+  p.material.poisson_ratio = 0.25;
   p.density = 1600.0;
   p.initial_stress = -100e3 * Mat3::Identity();
   return farm::ElasticMicro::kind(p);
