@@ -406,11 +406,13 @@ DAMPING_ASPECTS = [
     (0.5, "0", "dense_a0.5_l28.8_E3e6_l0",
      "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0_g1e-6", "gravity x (1 + 1e-6)"),
     (0.5, "0", "dense_a0.5_l28.8_E3e6_l0_seed2", None, "another packing (--seed 2)"),
+    (0.5, "0", "dense_a0.5_l28.8_E3e6_l0", "a0.5_l28.8_h32_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (0.5, "0.05", "dense_a0.5_l28.8_E3e6", "a0.5_l28.8_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0_g1e-6",
      "gravity x (1 + 1e-6)"),
     (1, "0", "dense_a1_l14.4_E3e6_l0_seed2", None, "another packing (--seed 2)"),
+    (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (1, "0.05", "dense_a1_l14.4_E3e6", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (2, "0", "dense_a2_l14.4_E3e6_l0", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0"),
     (2, "0", "dense_a2_l14.4_E3e6_l0",
@@ -440,7 +442,7 @@ def damping_aspect_table(data, yade):
         if tag != last_tag:  # a variant of the same damping sits under the first run's grains
             lines.append(row.replace(f"| {a:g} | pure DEM", f"| {a:g} | {damping} | pure DEM", 1))
         last_tag = tag
-        label = ASPECT_LABELS[a] + "".join(f", {v}" for v in variant)
+        label = FINER_LABELS.get(stem, ASPECT_LABELS[a]) + "".join(f", {v}" for v in variant)
         row = run_row(data, yade, a, stem, label, ref, tag)
         if row is not None:
             lines.append(row.replace(f"| {a:g} | MPM x DEM", f"| {a:g} | {damping} | MPM x DEM", 1))
@@ -448,6 +450,9 @@ def damping_aspect_table(data, yade):
 
 
 ASPECT_LABELS = {0.5: "16 x 8 cells", 1: "8 x 8 cells", 2: "8 x 16 cells"}
+# the same configuration on cells of half the size (0.9 d50)
+FINER_LABELS = {"a1_h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "16 x 16 cells",
+                "a0.5_l28.8_h32_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "32 x 16 cells"}
 
 
 # Stiffness number and size: (a, label, E, "yade" tag or "mpm" stem); L0 = 14.4 d50 unless named
