@@ -10,12 +10,28 @@
 #include <string>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "mpm/friction.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/shape_function.hpp"
 
 namespace mpm {
+
+/// A face of an axis-aligned box (the grid, the material): its normal axis and side, in the order
+/// axis-major, lower side first (axis_of, side_of).
+enum class Face { x_lower, x_upper, y_lower, y_upper, z_lower, z_upper };
+/// The job's names (mpm.velocity[].face and .normal, mpm.traction[].face).
+inline constexpr std::array<common::Named<Face>, 6> kFaceNames{{{"x-", Face::x_lower},
+                                                                {"x+", Face::x_upper},
+                                                                {"y-", Face::y_lower},
+                                                                {"y+", Face::y_upper},
+                                                                {"z-", Face::z_lower},
+                                                                {"z+", Face::z_upper}}};
+/// Normal axis of face f, 0..2.
+[[nodiscard]] constexpr int axis_of(Face f) { return static_cast<int>(f) / 2; }
+/// Side of face f: -1 at the lowest coordinate along its axis, +1 at the highest.
+[[nodiscard]] constexpr int side_of(Face f) { return static_cast<int>(f) % 2 == 0 ? -1 : 1; }
 
 /// Prescribed velocity components on the nodes whose position lies in the box [lo, hi]
 /// (tolerance 1e-9 cell). Applied to the nodal velocity before the velocity gradient is taken,

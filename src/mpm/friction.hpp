@@ -3,6 +3,9 @@
 // other side. docs/design/mpm.md, "Frictional boundaries and reactions".
 #pragma once
 
+#include <array>
+
+#include "common/choice_table.hpp"
 #include "common/types.hpp"
 
 namespace mpm {
@@ -12,6 +15,9 @@ enum class WallContact {
   fixed,           ///< the normal velocity is the wall's, pushing or pulling
   no_penetration,  ///< only approach is stopped: the node may separate from the wall
 };
+/// The job's names (mpm.velocity[].contact).
+inline constexpr std::array<common::Named<WallContact>, 2> kWallContactNames{
+    {{"fixed", WallContact::fixed}, {"no_penetration", WallContact::no_penetration}}};
 
 /// A rigid wall with an axis-aligned normal. `side` is the side of the material the wall lies on
 /// (-1: the wall is below the material along `axis`, like the grid face "z-"), so the unit normal

@@ -4,14 +4,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "app/job/job.hpp"
 #include "app/job/schema_params.hpp"
 #include "app/setup/dem_setup.hpp"
+#include "app/setup/insitu.hpp"
+#include "app/setup/mpm_setup.hpp"
 #include "common/choice_table.hpp"
 #include "common/errors.hpp"
 #include "common/param_table.hpp"
@@ -22,6 +27,8 @@
 #include "farm/mpi_util.hpp"
 #include "farm/run_options.hpp"
 #include "farm/rve_farm.hpp"
+#include "mpm/boundary.hpp"
+#include "mpm/friction.hpp"
 #include "mpm/solver.hpp"
 #include "mpm/solver_choices.hpp"
 
@@ -256,6 +263,60 @@ TEST(Schema, ChoiceTablesAreTheSchemaOfTheirKeysAndFillTheirStructs) {
   expect_choices_in_schema(dem::kRveChoices);
   expect_choices_in_schema(farm::kFarmChoices);
   expect_choices_in_schema(dem::kMaterialChoices);
+}
+
+// A key of an array of tables (mpm.body[].material) whose names are a list beside an enum: the
+// schema's allowed values are the list's names, in its order, and a job of that key alone (the
+// job schema's own key under its sections) gives back each name's value through choice_of, and
+// the fallback where the key is absent.
+template <class E, std::size_t N>
+void expect_names_of(const std::string& path, const std::array<common::Named<E>, N>& names) {
+  const app::Key* key = app::job_schema().find(path);
+  ASSERT_NE(key, nullptr) << path;
+  std::vector<std::string> want;
+  for (const auto& n : names) want.emplace_back(n.name);
+  EXPECT_EQ(key->choices, want) << path;
+
+  const std::string array = app::parent_path(path);  // "mpm.body[]"
+  const std::string section = app::parent_path(array);
+  const std::string table = array.substr(0, array.size() - 2);
+  app::Schema only;
+  only.add(section, app::Type::Table, "the section");
+  only.add(array, app::Type::TableList, "the array of tables");
+  only.keys.push_back(*key);
+  only.keys.back().required = false;
+  const std::string entry = table + "[0]." + app::leaf_name(path);
+  for (const auto& n : names) {
+    const app::Job job = app::Job::parse(
+        "[[" + table + "]]\n" + app::leaf_name(path) + " = \"" + std::string(n.name) + "\"\n",
+        "names.toml", only, false);
+    EXPECT_EQ(app::choice_of(job, entry, names), n.value) << path << " = " << n.name;
+  }
+  const app::Job empty = app::Job::parse("[[" + table + "]]\n", "names.toml", only, false);
+  EXPECT_EQ(app::choice_of(empty, entry, names, names.back().value), names.back().value) << path;
+}
+
+TEST(Schema, KeysOfArraysOfTablesTakeTheNamesOfTheirLists) {
+  expect_names_of("mpm.body[].material", app::kBodyMaterialNames);
+  expect_names_of("mpm.body[].initial_state", app::kInitialStateNames);
+  expect_names_of("mpm.velocity[].face", mpm::kFaceNames);
+  expect_names_of("mpm.velocity[].normal", mpm::kFaceNames);
+  expect_names_of("mpm.velocity[].contact", mpm::kWallContactNames);
+  expect_names_of("mpm.traction[].face", mpm::kFaceNames);
+  // Every other key of an array of tables with names is one of the above, or it would have them
+  // written out of its list.
+  const std::vector<std::string> listed = {"mpm.body[].material",    "mpm.body[].initial_state",
+                                           "mpm.velocity[].face",    "mpm.velocity[].normal",
+                                           "mpm.velocity[].contact", "mpm.traction[].face"};
+  for (const auto& k : app::job_schema().keys) {
+    if (k.choices.empty() || k.path.find("[]") == std::string::npos) continue;
+    EXPECT_NE(std::find(listed.begin(), listed.end(), k.path), listed.end()) << k.path;
+  }
+  // A face's name is its axis and side.
+  for (const auto& n : mpm::kFaceNames) {
+    EXPECT_EQ(mpm::axis_of(n.value), n.name[0] - 'x') << n.name;
+    EXPECT_EQ(mpm::side_of(n.value), n.name[1] == '-' ? -1 : 1) << n.name;
+  }
 }
 
 // The other [mpm] keys that are no table rows keep the struct's defaults too, and the names the

@@ -9,8 +9,10 @@
 
 #include "app/job/job.hpp"
 #include "app/job/memory_check.hpp"
+#include "app/job/schema_params.hpp"
 #include "app/setup/dem_setup.hpp"
 #include "app/setup/insitu.hpp"
+#include "app/setup/mpm_setup.hpp"
 #include "common/choice_table.hpp"
 #include "common/errors.hpp"
 #include "dem/params.hpp"
@@ -301,9 +303,10 @@ BodyMaterials body_rules(const Job& job, Rules& r) {
         break;
       }
     }
-    const std::string& m = job.text(base + "material");  // dem + initial_stress: insitu rules
-    used.dem = used.dem || m == "dem";
-    used.elastic = used.elastic || m == "elastic";
+    // A dem body's initial_stress: the insitu rules (check_insitu_rules).
+    const std::int32_t m = choice_of(job, base + "material", kBodyMaterialNames);
+    used.dem = used.dem || m == kDemMaterial;
+    used.elastic = used.elastic || m == kElasticMaterial;
   }
   return used;
 }
@@ -496,10 +499,11 @@ void stress_level_rules(const Job& job, Rules& r) {
   // Young modulus (a strain above 100 %), DEM bodies against a tenth of the grains' as above.
   double stiffest = 0.0;
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
-    const std::string m = job.text(fmt::format("mpm.body[{}].material", b));
-    if (m == "elastic" && job.has("mpm.elastic.young_modulus")) {
+    const std::int32_t m =
+        choice_of(job, fmt::format("mpm.body[{}].material", b), kBodyMaterialNames);
+    if (m == kElasticMaterial && job.has("mpm.elastic.young_modulus")) {
       stiffest = std::max(stiffest, job.number("mpm.elastic.young_modulus"));
-    } else if (m == "dem") {
+    } else if (m == kDemMaterial) {
       stiffest = std::max(stiffest, limit);
     }
   }

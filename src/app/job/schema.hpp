@@ -3,6 +3,8 @@
 // come from it.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "app/job/units.hpp"
+#include "common/choice_table.hpp"
 
 namespace app {
 
@@ -65,6 +68,14 @@ struct Key {
   }
   Key& one_of(std::vector<std::string> c) {
     choices = std::move(c);
+    return *this;
+  }
+  /// The names of a list declared beside its enum (e.g. mpm::kFaceNames), in the list's order:
+  /// the one home of the names of a key of an array of tables, which choice_of reads back.
+  template <class E, std::size_t N>
+  Key& one_of(const std::array<common::Named<E>, N>& names) {
+    choices.clear();
+    for (const auto& n : names) choices.emplace_back(n.name);
     return *this;
   }
   /// An Int key that also accepts a list of 3 integers, one per axis (Job::per_axis reads both).

@@ -8,7 +8,9 @@
 
 #include "app/job/job.hpp"
 #include "app/job/schema.hpp"
+#include "app/job/schema_params.hpp"
 #include "app/setup/insitu.hpp"
+#include "app/setup/mpm_setup.hpp"
 
 namespace app {
 
@@ -23,7 +25,7 @@ void add_body_keys(Schema& s) {
         "isotropic prepared sample); uniform: initial_stress; geostatic: from gravity, density "
         "and k0 (docs/design/dem.md, In-situ initial states). material = \"elastic\": geostatic "
         "only (absent: initial_stress, or zero).")
-      .one_of({"prepared", "uniform", "geostatic"});
+      .one_of(kInitialStateNames);
   b.add("mpm.body[].k0", Type::Float,
         "initial_state = \"geostatic\": lateral over vertical stress K0 (sigma_h = K0 sigma_v).")
       .in(0, std::nullopt, true);
@@ -79,26 +81,26 @@ std::vector<std::string> check_insitu_rules(const Job& job) {
   std::vector<std::string> err;
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
     const std::string base = fmt::format("mpm.body[{}].", b);
-    const bool dem = job.text(base + "material") == "dem";
-    const std::string state =
-        job.has(base + "initial_state") ? job.text(base + "initial_state") : "prepared";
-    if (!dem && job.has(base + "initial_state") && state != "geostatic") {
+    const bool dem = choice_of(job, base + "material", kBodyMaterialNames) == kDemMaterial;
+    const InitialState state =
+        choice_of(job, base + "initial_state", kInitialStateNames, InitialState::prepared);
+    if (!dem && job.has(base + "initial_state") && state != InitialState::geostatic) {
       err.push_back(job.message(base + "initial_state",
                                 "an elastic body takes initial_state = \"geostatic\" only "
                                 "(otherwise it starts from initial_stress)"));
       continue;
     }
-    if (!dem && state == "geostatic" && job.has(base + "initial_stress")) {
+    if (!dem && state == InitialState::geostatic && job.has(base + "initial_stress")) {
       err.push_back(job.message(base + "initial_stress",
                                 "not with initial_state = \"geostatic\" (the initial stress "
                                 "comes from gravity, density and k0)"));
     }
-    if (dem && job.has(base + "initial_stress") && state != "uniform") {
+    if (dem && job.has(base + "initial_stress") && state != InitialState::uniform) {
       err.push_back(job.message(base + "initial_stress",
                                 "used with material = \"dem\" only when initial_state = "
                                 "\"uniform\" (otherwise the initial stress is the RVEs' own)"));
     }
-    if (state == "uniform") {
+    if (state == InitialState::uniform) {
       if (!job.has(base + "initial_stress")) {
         err.push_back(job.missing_message(base + "initial_stress",
                                           "required when initial_state = \"uniform\""));
@@ -113,11 +115,11 @@ std::vector<std::string> check_insitu_rules(const Job& job) {
       }
     }
     for (const char* k : {"k0", "surface"}) {
-      if (job.has(base + k) && state != "geostatic") {
+      if (job.has(base + k) && state != InitialState::geostatic) {
         err.push_back(job.message(base + k, "only with initial_state = \"geostatic\""));
       }
     }
-    if (state == "geostatic") {
+    if (state == InitialState::geostatic) {
       if (!job.has(base + "k0")) {
         err.push_back(
             job.missing_message(base + "k0", "required when initial_state = \"geostatic\""));

@@ -4,7 +4,10 @@
 // (farm/elastic_material.hpp).
 #include "app/job/schema.hpp"
 #include "app/job/schema_params.hpp"
+#include "app/setup/mpm_setup.hpp"
 #include "farm/elastic_material.hpp"
+#include "mpm/boundary.hpp"
+#include "mpm/friction.hpp"
 #include "mpm/solver.hpp"
 #include "mpm/solver_choices.hpp"
 
@@ -74,7 +77,7 @@ void add_grid_and_bodies(Schema& s) {
   s.add("mpm.body[].material", Type::String,
         "Material of the points: a DEM RVE each, or the continuum of [mpm.elastic] (linear "
         "elastic, or Drucker-Prager with a friction angle).")
-      .one_of({"dem", "elastic"})
+      .one_of(kBodyMaterialNames)
       .need();
   s.add("mpm.body[].initial_stress", Type::FloatList,
         "Initial Cauchy stress xx, yy, zz, yz, xz, xy (tension positive); dem: from the RVEs.")
@@ -97,7 +100,7 @@ void add_boundaries(Schema& s) {
   s.add("mpm.velocity[]", Type::TableList,
         "Imposed velocity components on grid nodes: a grid face, one node, or the nodes in a box.");
   s.add("mpm.velocity[].face", Type::String, "Grid face (give one of face, node, min and max).")
-      .one_of({"x-", "x+", "y-", "y+", "z-", "z+"});
+      .one_of(mpm::kFaceNames);
   s.add("mpm.velocity[].node", Type::FloatList,
         "Position of one grid node, e.g. to pin rigid motions (docs/design/mpm.md).")
       .unit(Q::Length);
@@ -117,11 +120,11 @@ void add_boundaries(Schema& s) {
       .in(0, std::nullopt);
   s.add("mpm.velocity[].normal", Type::String,
         "Side of the material a frictional box or node wall lies on (a face gives its own).")
-      .one_of({"x-", "x+", "y-", "y+", "z-", "z+"});
+      .one_of(mpm::kFaceNames);
   s.add("mpm.velocity[].contact", Type::String,
         "Normal behaviour of a frictional wall: fixed (normal velocity imposed) or "
         "no_penetration (the material may leave the wall); absent: fixed.")
-      .one_of({"fixed", "no_penetration"});
+      .one_of(mpm::kWallContactNames);
   s.add("mpm.velocity[].from", Type::Float, "Time from which the constraint acts; absent: 0.")
       .unit(Q::Time)
       .in(0, std::nullopt);
@@ -136,7 +139,7 @@ void add_boundaries(Schema& s) {
   s.add("mpm.traction[]", Type::TableList,
         "A pressure on a face of the material, applied on its current area.");
   s.add("mpm.traction[].face", Type::String, "Face of the material.")
-      .one_of({"x-", "x+", "y-", "y+", "z-", "z+"})
+      .one_of(mpm::kFaceNames)
       .need();
   s.add("mpm.traction[].pressure", Type::Float, "Pressure (compression positive) on the face.")
       .unit(Q::Pressure)

@@ -4,6 +4,7 @@
 // table.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -109,6 +110,25 @@ void fill_choices_from_job(const Job& job, const common::ChoiceTable<S, N>& tabl
     if (!i) throw common::InputError(job.message(key, "is not one of the names of this setting"));
     c.assign(s, *i);
   }
+}
+
+/// The value that string key `key` of the job names in `names` (the list its schema key takes
+/// with Key::one_of, e.g. a key of an array of tables: mpm.body[0].material). The schema has
+/// checked the name; a name the list lacks (a schema and list out of step) throws
+/// common::InputError naming the key. The key must be in the job.
+template <class E, std::size_t N>
+[[nodiscard]] E choice_of(const Job& job, const std::string& key,
+                          const std::array<common::Named<E>, N>& names) {
+  const auto v = common::value_of(names, job.text(key));
+  if (!v) throw common::InputError(job.message(key, "is not one of the names of this setting"));
+  return *v;
+}
+
+/// As above, with `fallback` where the job has no key `key` (an optional key).
+template <class E, std::size_t N>
+[[nodiscard]] E choice_of(const Job& job, const std::string& key,
+                          const std::array<common::Named<E>, N>& names, E fallback) {
+  return job.has(key) ? choice_of(job, key, names) : fallback;
 }
 
 }  // namespace app

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "app/job/job.hpp"
+#include "app/job/schema_params.hpp"
 #include "app/setup/mpm_setup.hpp"
 #include "common/errors.hpp"
 
@@ -170,17 +171,17 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
   std::vector<std::size_t> with_target;  // index into plan.ids
   for (const auto& [id, i] : dem_points) {
     const std::string base = fmt::format("mpm.body[{}].", setup.body[i]);
-    const std::string state =
-        job.has(base + "initial_state") ? job.text(base + "initial_state") : "prepared";
+    const InitialState state =
+        choice_of(job, base + "initial_state", kInitialStateNames, InitialState::prepared);
     plan.ids.push_back(id);
     plan.group.push_back(-1);
     Mat3 t = Mat3::Zero();
-    if (state == "uniform") {
+    if (state == InitialState::uniform) {
       t = voigt(job.numbers(base + "initial_stress"));
-    } else if (state == "geostatic") {
+    } else if (state == InitialState::geostatic) {
       t = geostatic_target(job, setup, i);
     }
-    if (state != "prepared") {
+    if (state != InitialState::prepared) {
       if (apply_pressure_floor(t, o.pressure_floor)) ++plan.floored;
       with_target.push_back(plan.ids.size() - 1);
       targets.push_back(t);
@@ -198,7 +199,8 @@ std::map<std::int64_t, Mat3> continuum_initial_stress(const Job& job, const MpmS
   for (std::size_t i = 0; i < setup.points.size(); ++i) {
     if (setup.points.material[i] == kDemMaterial) continue;
     const std::string base = fmt::format("mpm.body[{}].", setup.body[i]);
-    if (job.has(base + "initial_state") && job.text(base + "initial_state") == "geostatic")
+    if (choice_of(job, base + "initial_state", kInitialStateNames, InitialState::prepared) ==
+        InitialState::geostatic)
       out[setup.points.id[i]] = geostatic_target(job, setup, i);
   }
   return out;

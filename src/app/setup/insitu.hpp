@@ -4,11 +4,13 @@
 // independently generated samples. docs/design/dem.md, "In-situ initial states".
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "common/choice_table.hpp"
 #include "common/types.hpp"
 
 namespace app {
@@ -18,7 +20,17 @@ class Job;
 /// Cross-key rules of the in-situ keys (schema_insitu.cpp): one message per broken rule.
 [[nodiscard]] std::vector<std::string> check_insitu_rules(const Job& job);
 
-enum class InitialState { prepared, uniform, geostatic };
+/// The initial state of a body's points (mpm.body[].initial_state; absent: prepared).
+enum class InitialState {
+  prepared,   ///< dem: every RVE a copy of the isotropic prepared sample
+  uniform,    ///< dem: the RVEs' target is initial_stress
+  geostatic,  ///< from gravity, density and k0
+};
+/// The job's names (mpm.body[].initial_state).
+inline constexpr std::array<common::Named<InitialState>, 3> kInitialStateNames{
+    {{"prepared", InitialState::prepared},
+     {"uniform", InitialState::uniform},
+     {"geostatic", InitialState::geostatic}}};
 
 /// [dem.initial_state]: the knobs shared by every DEM body (defaults: the job defaults).
 struct InsituOptions {

@@ -12,11 +12,6 @@
 
 namespace app {
 
-void face_axis_side(const std::string& face, int& axis, int& side) {
-  axis = face[0] - 'x';
-  side = face[1] == '-' ? -1 : 1;
-}
-
 namespace {
 common::Vec3 vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
 
@@ -53,9 +48,8 @@ void velocity_extras(const Job& job, const std::string& base, mpm::VelocityConst
                       "a frictional box or node needs normal (the side of the material "
                       "the wall lies on, e.g. normal = \"z+\" for a top platen)"));
     }
-    int axis = 0;
-    int side = 0;
-    face_axis_side(job.text(base + (face ? "face" : "normal")), axis, side);
+    const mpm::Face side_face = choice_of(job, base + (face ? "face" : "normal"), mpm::kFaceNames);
+    const int axis = mpm::axis_of(side_face);
     const std::string n_key = base + std::string(1, static_cast<char>('x' + axis));
     if (!job.has(n_key)) {
       throw common::InputError(
@@ -63,9 +57,8 @@ void velocity_extras(const Job& job, const std::string& base, mpm::VelocityConst
                       fmt::format("a frictional wall needs its normal velocity {} (e.g. {} = 0.0)",
                                   n_key, static_cast<char>('x' + axis))));
     }
-    const bool no_pen = job.has(base + "contact") && job.text(base + "contact") == "no_penetration";
-    c.wall = {axis, side, job.number(base + "friction"),
-              no_pen ? mpm::WallContact::no_penetration : mpm::WallContact::fixed};
+    c.wall = {axis, mpm::side_of(side_face), job.number(base + "friction"),
+              choice_of(job, base + "contact", mpm::kWallContactNames, mpm::WallContact::fixed)};
   }
   if (job.has(base + "from")) c.from = job.number(base + "from");
   if (job.has(base + "until")) c.until = job.number(base + "until");
@@ -136,8 +129,8 @@ void add_bodies(const Job& job, MpmSetup& setup) {
   const auto& grid = setup.config.grid;
   for (std::size_t b = 0; b < job.count("mpm.body"); ++b) {
     const std::string base = fmt::format("mpm.body[{}].", b);
-    const bool is_dem = job.text(base + "material") == "dem";
-    const std::int32_t material = is_dem ? kDemMaterial : kElasticMaterial;
+    const std::int32_t material = choice_of(job, base + "material", kBodyMaterialNames);
+    const bool is_dem = material == kDemMaterial;
     const std::size_t first = setup.points.size();
     std::size_t added = 0;
     try {
@@ -177,10 +170,8 @@ mpm::VelocityConstraint velocity_constraint(const Job& job, const std::string& b
   }
   mpm::VelocityConstraint c;
   if (job.has(base + "face")) {
-    int axis = 0;
-    int side = 0;
-    face_axis_side(job.text(base + "face"), axis, side);
-    c = mpm::face_constraint(grid, axis, side, fixed, v);
+    const mpm::Face face = choice_of(job, base + "face", mpm::kFaceNames);
+    c = mpm::face_constraint(grid, mpm::axis_of(face), mpm::side_of(face), fixed, v);
   } else if (job.has(base + "node")) {
     c = mpm::node_constraint(grid, vec3(job.numbers(base + "node")), fixed, v);
   } else {
@@ -243,7 +234,9 @@ MpmSetup mpm_setup(const Job& job) {
   for (std::size_t i = 0; i < job.count("mpm.traction"); ++i) {
     const std::string base = fmt::format("mpm.traction[{}].", i);
     mpm::TractionLoad load;
-    face_axis_side(job.text(base + "face"), load.axis, load.side);
+    const mpm::Face face = choice_of(job, base + "face", mpm::kFaceNames);
+    load.axis = mpm::axis_of(face);
+    load.side = mpm::side_of(face);
     load.pressure = job.number(base + "pressure");
     setup.tractions.push_back(load);
   }

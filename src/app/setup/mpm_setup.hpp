@@ -2,10 +2,13 @@
 // every body, velocity constraints and tractions.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "app/job/job.hpp"
+#include "common/choice_table.hpp"
 #include "mpm/boundary.hpp"
 #include "mpm/material_points.hpp"
 #include "mpm/solver.hpp"
@@ -15,6 +18,9 @@ namespace app {
 /// Material index of the points: kElastic for bodies with material = "elastic", kDem for "dem".
 inline constexpr std::int32_t kElasticMaterial = 0;
 inline constexpr std::int32_t kDemMaterial = 1;
+/// The job's names of the material indices (mpm.body[].material).
+inline constexpr std::array<common::Named<std::int32_t>, 2> kBodyMaterialNames{
+    {{"dem", kDemMaterial}, {"elastic", kElasticMaterial}}};
 
 struct MpmSetup {
   mpm::SolverConfig config;
@@ -30,8 +36,5 @@ struct MpmSetup {
 
 /// Throws common::InputError (naming the job key) when the job is inconsistent with the grid.
 [[nodiscard]] MpmSetup mpm_setup(const Job& job);
-
-/// Axis (0..2) and side (-1, +1) of a face name "x-", ..., "z+".
-void face_axis_side(const std::string& face, int& axis, int& side);
 
 }  // namespace app
