@@ -359,7 +359,8 @@ void scheme_rules(const Job& job, Rules& r) {
                          "(mpm.grid.cells = [{}, {}, {}])",
                          "xyz"[a], n[0], n[1], n[2]));
     }
-    if (job.text("mpm.shape_function") == "bspline2") {
+    if (common::value_of(mpm::kShapeKindNames, job.text("mpm.shape_function")) ==
+        mpm::ShapeKind::bspline2) {
       r.fail("mpm.plane_strain",
              fmt::format("needs mpm.shape_function = \"linear\" or \"ugimp\", not \"{}\" "
                          "(the B-spline spans 3 node planes, the one-cell-thick grid has 2; "
