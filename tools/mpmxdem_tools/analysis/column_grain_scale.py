@@ -8,6 +8,8 @@ docs/validation/column_collapse.md, "At the grains' own size". Modes:
                            DATA/STEM_mobilised.csv (the RVEs' mobilised friction angle and void
                            ratio per output row, from RUN_DIR/results.h5) and DATA/STEM_core.csv
                            (the back-lower quarter's deformation and density per output row)
+                           and DATA/STEM_fronts05.csv (the fronts measured as the runout:
+                           tools/mpmxdem_tools/analysis/column_fronts.py)
   --mobilised-table STEM   prints the page's table of DATA/STEM_mobilised.csv
   --transfer-table [A]     prints the page's table of the a = A column (default 2) against the
                            transfer (FLIP, its PIC share, XPIC; deposit and front), beside the grains'
@@ -83,6 +85,8 @@ def analyse(run, stem, data):
     H0, L0 = float(summary["H0_m"]), float(summary["L0_m"])
     mobilised_series(os.path.join(run, "results.h5"), H0, os.path.join(data, f"{stem}_mobilised.csv"))
     core_series(os.path.join(run, "results.h5"), L0, H0, os.path.join(data, f"{stem}_core.csv"))
+    from . import column_fronts  # it imports this module
+    column_fronts.analyse(run, stem, data)
     print(f"wrote {data}/{stem}_*.csv")
 
 
