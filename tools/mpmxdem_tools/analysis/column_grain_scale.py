@@ -418,6 +418,7 @@ DAMPING_ASPECTS = [
     (1, "0", "dense_a1_l14.4_E3e6_l0_seed2", None, "another packing (--seed 2)"),
     (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_h16_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
+    (1, "0", "dense_a1_l14.4_E3e6_l0", "a1_h32_E3MPa_wallpts_flip0.99_xpic3_strained_damping0"),
     (1, "0.05", "dense_a1_l14.4_E3e6", "a1_2x2_E3MPa_wallpts_flip0.99_xpic3_strained"),
     (2, "0", "dense_a2_l14.4_E3e6_l0", "a2_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0"),
     (2, "0", "dense_a2_l14.4_E3e6_l0",
@@ -460,7 +461,8 @@ ASPECT_LABELS = {0.5: "16 x 8 cells", 1: "8 x 8 cells", 2: "8 x 16 cells"}
 FINER_LABELS = {"a1_h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "16 x 16 cells",
                 "a0.5_l28.8_h32_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "32 x 16 cells",
                 "a2_h16_2x2_E3MPa_wallpts_flip0.99_xpic3_strained_oneflight_damping0": "16 x 32 cells",
-                "a1_h16_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "16 x 16 cells, 1 point per cell"}
+                "a1_h16_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "16 x 16 cells, 1 point per cell",
+                "a1_h32_E3MPa_wallpts_flip0.99_xpic3_strained_damping0": "32 x 32 cells, 1 point per cell"}
 
 
 # Stiffness number and size: (a, label, E, "yade" tag or "mpm" stem); L0 = 14.4 d50 unless named
