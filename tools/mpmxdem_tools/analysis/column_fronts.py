@@ -75,11 +75,12 @@ def analyse(run, stem, data):
     print(f"wrote {path}")
 
 
-def yade_fronts(yade, tag):
-    """The fronts of a YADE column at TIMES, from its profiles and summary."""
-    summary = cgs.read_csv(os.path.join(yade, f"{tag}_summary.csv"))[0]
+def profile_fronts(folder, tag):
+    """The fronts at TIMES of a column with FOLDER/TAG_summary.csv (L0_m, H0_m) and TAG_profiles.csv:
+    a YADE column's, or an MPM x DEM run's (its profiles hold only the "final" rows: nan at 1-3 t*)."""
+    summary = cgs.read_csv(os.path.join(folder, f"{tag}_summary.csv"))[0]
     L0, H0 = float(summary["L0_m"]), float(summary["H0_m"])
-    profiles = cgs.read_csv(os.path.join(yade, f"{tag}_profiles.csv"))
+    profiles = cgs.read_csv(os.path.join(folder, f"{tag}_profiles.csv"))
     out = []
     for label in TIMES:
         rows = sorted((float(r["x_m"]), float(r["h_vol_m"])) for r in profiles if r["t_over_tstar"] == label)
@@ -97,7 +98,7 @@ def table(items, data, yade):
             values = [by.get(label, float("nan")) for label in TIMES]
             name = f"MPM x DEM {item}"
         else:
-            values = yade_fronts(yade, item)
+            values = profile_fronts(yade, item)
             name = f"pure DEM (YADE) {item}"
         lines.append(f"| {name} | " + " | ".join(f"{v:.2f}" for v in values) + " |")
     return "\n".join(lines)

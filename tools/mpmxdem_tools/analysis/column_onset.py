@@ -47,34 +47,23 @@ def number(value):
     return "-" if math.isnan(value) else f"{value:.2f}"
 
 
-def final_front(data, stem, summary):
-    """The runout to 0.05 H0 of STEM from its final profile (DATA/STEM_profiles.csv), as
-    column_fronts measures a YADE column's: every stored run has it."""
-    rows = sorted((float(r["x_m"]), float(r["h_vol_m"]))
-                  for r in cgs.read_csv(os.path.join(data, f"{stem}_profiles.csv")) if r["t_over_tstar"] == "final")
-    return column_fronts.front([r[0] for r in rows], [r[1] for r in rows], float(summary["L0_m"]),
-                               float(summary["H0_m"]))
-
-
 def series(item, data, yade):
     """(label, times, kinetic energies, fronts at 1/2/3 t* and the end, H_f / H0) of one item."""
     stem, _, label = item.partition("=")
-    path = os.path.join(data, f"{stem}_timeseries.csv")
-    if os.path.exists(path):
-        rows = cgs.read_csv(path)
-        ts = cgs.released_times(data, stem, rows)
-        ks = [float(r["kinetic_motion_over_MgH0"]) for r in rows]
-        fronts_csv = os.path.join(data, f"{stem}_fronts05.csv")  # runs kept before the tool: none
-        by = ({r["t_label"]: float(r["front05_over_L0"]) for r in cgs.read_csv(fronts_csv)}
-              if os.path.exists(fronts_csv) else {})
-        summary = cgs.read_csv(os.path.join(data, f"{stem}_summary.csv"))[0]
-        fronts = [by.get(t, float("nan")) for t in column_fronts.TIMES[:-1]] + [final_front(data, stem, summary)]
-        return label or f"MPM x DEM {stem}", ts, ks, fronts, float(summary["Hf_over_H0"])
-    rows = cgs.read_csv(os.path.join(yade, f"{stem}_timeseries.csv"))
-    summary = cgs.read_csv(os.path.join(yade, f"{stem}_summary.csv"))[0]
-    return (label or f"pure DEM (YADE) {stem}", [float(r["t_over_tstar"]) for r in rows],
-            [float(r["kinetic_over_MgH0"]) for r in rows], column_fronts.yade_fronts(yade, stem),
-            float(summary["Hf_over_H0"]))
+    mpm = os.path.exists(os.path.join(data, f"{stem}_timeseries.csv"))
+    folder = data if mpm else yade
+    rows = cgs.read_csv(os.path.join(folder, f"{stem}_timeseries.csv"))
+    hf = float(cgs.read_csv(os.path.join(folder, f"{stem}_summary.csv"))[0]["Hf_over_H0"])
+    fronts = column_fronts.profile_fronts(folder, stem)
+    if not mpm:
+        return (label or f"pure DEM (YADE) {stem}", [float(r["t_over_tstar"]) for r in rows],
+                [float(r["kinetic_over_MgH0"]) for r in rows], fronts, hf)
+    fronts_csv = os.path.join(data, f"{stem}_fronts05.csv")  # runs kept before the tool: none
+    if os.path.exists(fronts_csv):  # the profiles of a run hold its final rows only
+        by = {r["t_label"]: float(r["front05_over_L0"]) for r in cgs.read_csv(fronts_csv)}
+        fronts[:3] = [by[t] for t in column_fronts.TIMES[:3]]
+    return (label or f"MPM x DEM {stem}", cgs.released_times(data, stem, rows),
+            [float(r["kinetic_motion_over_MgH0"]) for r in rows], fronts, hf)
 
 
 def table(items, data, yade):
