@@ -11,6 +11,9 @@ the footing's (300 MPa, at 50 kPa; docs/validation/footing.md) are
                 and copies each run's dem_series.csv to DATA/<stem>_series.csv
   --table       prints the page's table from DATA/*_series.csv (standard library only)
   --dilatancy   adds the dilatancy angle at the peak to the table
+  --early-dilatancy
+                adds the dilatancy angle over the first 2 % of axial strain (a dense sample's
+                first failure, where a 100-sphere RVE's peak row can come late and noisy)
 
 Usage: tools/mpmxdem-tools rve_low_pressure_strength [--data D] [--exe E] (--run DIR | --table)
 Defaults: D = docs/data/column_collapse_rve_strength, E = build/mpmxdem.
@@ -20,7 +23,8 @@ and s3 the lateral (x) stress, compression positive. Peak: the largest mean over
 rows (about 0.6 % of axial strain: a 100-sphere RVE's single rows are noisy); critical state: the
 mean over axial strains above 15 %, with its standard deviation over the rows. Dilatancy angle at
 the peak (--dilatancy): asin(-d eps_v / (d eps_a - d eps_x)) over the peak's rows (plane strain:
-eps_x = eps_v - eps_a; compression positive).
+eps_x = eps_v - eps_a; compression positive); over the first 2 % (--early-dilatancy): the same
+from the first row to the first row at 2 % of axial strain or more.
 """
 import argparse
 import csv
@@ -66,15 +70,26 @@ def dilatancy_at_peak(series_path):
     return math.degrees(math.asin(-dv / (2 * da - dv)))
 
 
+def early_dilatancy(series_path, strain=0.02):
+    """Dilatancy angle [deg] from the first row to the first at `strain` of axial strain."""
+    rows = list(csv.DictReader(open(series_path)))
+    j = next(k for k, r in enumerate(rows) if float(r["eps_a"]) >= strain)
+    da = float(rows[j]["eps_a"]) - float(rows[0]["eps_a"])
+    dv = float(rows[j]["eps_v"]) - float(rows[0]["eps_v"])
+    return math.degrees(math.asin(-dv / (2 * da - dv)))
+
+
 def stems(data):
     return sorted((os.path.basename(p)[:-len(".toml")] for p in glob.glob(os.path.join(data, "*.toml"))),
                   key=lambda n: (int(n.split("_")[0][1:]), n))
 
 
-def table(data, dilatancy=False):
+def table(data, dilatancy=False, early=False):
     lines = ["| RVE | spheres | peak friction angle | " + ("dilatancy angle at the peak | " if dilatancy else "")
+             + ("dilatancy angle over the first 2 % | " if early else "")
              + "critical-state friction angle (axial strain > 15 %) "
-             "| void ratio at 30 % | coordination at 30 % |", "|---|---|---|---|---|---|" + ("---|" if dilatancy else "")]
+             "| void ratio at 30 % | coordination at 30 % |",
+             "|---|---|---|---|---|---|" + ("---|" if dilatancy else "") + ("---|" if early else "")]
     for stem in stems(data):
         path = os.path.join(data, f"{stem}_series.csv")
         if not os.path.exists(path):
@@ -82,6 +97,7 @@ def table(data, dilatancy=False):
         peak, crit, sd, e, z = mobilised(path)
         n, seed = stem.split("_")
         psi = f"{dilatancy_at_peak(path):.1f} deg | " if dilatancy else ""
+        psi += f"{early_dilatancy(path):.1f} deg | " if early else ""
         lines.append(f"| seed {seed[len('seed'):]} | {n[1:]} | {peak:.1f} deg | {psi}{crit:.1f} +- {sd:.1f} deg | "
                      f"{e:.3f} | {z:.2f} |")
     return "\n".join(lines)
@@ -107,11 +123,13 @@ def main():
     ap.add_argument("--run", metavar="DIR")
     ap.add_argument("--table", action="store_true")
     ap.add_argument("--dilatancy", action="store_true", help="the table with the dilatancy angle at the peak")
+    ap.add_argument("--early-dilatancy", action="store_true",
+                    help="the table with the dilatancy angle over the first 2 %% of axial strain")
     args = ap.parse_args()
     if args.run:
         run(args.data, args.exe, args.run)
     if args.table:
-        print(table(args.data, args.dilatancy))
+        print(table(args.data, args.dilatancy, args.early_dilatancy))
     if not (args.run or args.table):
         ap.error("one of --run DIR, --table")
 

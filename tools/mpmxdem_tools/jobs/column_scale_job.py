@@ -20,11 +20,15 @@ continuum's young_modulus. --damping sets the RVEs' Cundall damping, to match a 
 reference; --young-modulus sets the grains' contact modulus (dem.material.young_modulus) and
 scales dem.preparation.pressure by the same factor (the same stiffness number E / p when the RVEs
 are prepared), for the stiffness-number study of docs/validation/column_collapse.md; --mpm adds
-[mpm] lines (a transfer or wall option of a variant). Comments are dropped and a header naming the
-source and the factors is written.
+[mpm] lines (a transfer or wall option of a variant); --continuum replaces the RVEs by the
+Drucker-Prager continuum of [mpm.elastic] with the lines given (the [dem.*] and [farm] tables
+dropped, material = "elastic", "MPM x DEM, N RVEs of M spheres" in the title becomes
+"Drucker-Prager continuum"): the same column, cells and walls with a law whose strength is known.
+Comments are dropped and a header naming the source and the factors is written.
 
 Usage: tools/mpmxdem-tools column_scale_job JOB --l0 METRES --out OUT.toml [--damping D]
-           [--young-modulus PA] [--mpm 'KEY = VALUE' ...] [--tag TEXT]
+           [--young-modulus PA] [--mpm 'KEY = VALUE' ...] [--continuum 'KEY = VALUE' ...]
+           [--tag TEXT]
        tools/mpmxdem-tools column_scale_job --check SCALED [SCALED ...]
            (exit 1 when a SCALED job is not what the command in its header writes)
        tools/mpmxdem-tools column_scale_job --self-test
@@ -98,15 +102,30 @@ def section_value(text, section, key):
     return v.group(1).strip() if v else None
 
 
+def as_continuum(text, elastic):
+    """`text` with its RVEs replaced by the continuum of [mpm.elastic] with the lines `elastic`:
+    the [dem.*] and [farm] tables dropped, the bodies' material "elastic", the title's "MPM x DEM,
+    N RVEs of M spheres" read "Drucker-Prager continuum"."""
+    blocks = re.split(r"(?m)^(?=\[)", text)
+    kept = [b for b in blocks
+            if not re.match(r"\[(dem\.[^\]]*|farm)\]\s*(#.*)?$", b.split("\n", 1)[0].strip())]
+    text = "".join(kept)
+    text = re.sub(r'^(material\s*=\s*)"dem"', r'\1"elastic"', text, flags=re.M)
+    text = re.sub(r"MPM x DEM, \d+ RVEs of \d+ spheres", "Drucker-Prager continuum", text)
+    return re.sub(r"^\[mpm\]\s*$", "[mpm.elastic]\n" + "\n".join(elastic) + "\n\n[mpm]", text,
+                  count=1, flags=re.M)
+
+
 def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), spheres=None,
-          coupling=(), sets=()):
+          coupling=(), sets=(), continuum=()):
     """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
     grains' contact modulus [Pa] with the preparation pressure scaled by the same factor, the
     [mpm] lines `mpm` ("key = value", dimensionless or names: not scaled) added first in [mpm],
     the number of spheres per RVE, dem.sample.spheres, with the title's "of N spheres", and the
     [dem.coupling] lines `coupling`, added first there, not scaled; and `sets`,
     "section.key = value" lines whose value replaces that key's in the scaled job, e.g. gravity
-    changed by 1e-6 for a family of runs: ValueError if the job has no such key)."""
+    changed by 1e-6 for a family of runs: ValueError if the job has no such key); with
+    `continuum` ([mpm.elastic] lines) the column of a Drucker-Prager continuum instead of RVEs."""
     replace = {}
     for line in sets:
         full, _, value = line.partition("=")
@@ -114,6 +133,8 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
         entry = re.fullmatch(r"(.+)\[([^\]]+)\]", section)  # an entry of an array of tables, by its name
         replace[(entry.group(1), entry.group(2), key) if entry else (section, None, key)] = value.strip()
     used = set()
+    if continuum:
+        text = as_continuum(text, continuum)
     if damping is not None:
         text = set_damping(text, damping)
     if mpm:
@@ -188,6 +209,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
             + (f" --spheres {spheres}" if spheres is not None else "")
             + "".join(f" --coupling '{line}'" for line in coupling)
             + "".join(f" --set '{line}'" for line in sets)
+            + "".join(f" --continuum '{line}'" for line in continuum)
             + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
     while out and out[-1] == "":
         out.pop()
@@ -195,8 +217,8 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
 
 
 def options_of_scaled(text):
-    """(source, l0, tag, damping, young, mpm lines, spheres, coupling lines, set lines) from the
-    header of a scaled job; None when it has none."""
+    """(source, l0, tag, damping, young, mpm lines, spheres, coupling lines, set lines, continuum
+    lines) from the header of a scaled job; None when it has none."""
     cmd = re.search(r"^# Do not edit: tools/mpmxdem-tools column_scale_job (\S+) (.*) --out THIS_FILE$",
                     text, re.M)
     if not cmd:
@@ -210,7 +232,8 @@ def options_of_scaled(text):
             (float(d.group(1)) if d else None), (float(e.group(1)) if e else None),
             tuple(re.findall(r"--mpm '([^']*)'", cmd.group(2))), (int(n.group(1)) if n else None),
             tuple(re.findall(r"--coupling '([^']*)'", cmd.group(2))),
-            tuple(re.findall(r"--set '([^']*)'", cmd.group(2))))
+            tuple(re.findall(r"--set '([^']*)'", cmd.group(2))),
+            tuple(re.findall(r"--continuum '([^']*)'", cmd.group(2))))
 
 
 def self_test():
@@ -251,7 +274,7 @@ every = 50
         print("self-test FAILED; missing:", missing, "\n" + out)
         return 1
     if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6, ('wall_impulse = "points"',), None,
-                                  (), ()):
+                                  (), (), ()):
         print("self-test FAILED: the header does not name --l0")
         return 1
     more = scale('title = "a, 512 RVEs of 100 spheres"\n[dem.sample]\nspheres = 100\n' + src, 0.005,
@@ -276,6 +299,17 @@ every = 50
     at = more.index('name = "base"')
     if more[at + 1] != "friction = 0.6" or more[more.index('name = "back"') + 1] != "friction = 0.0":
         print("self-test FAILED: --set of one named entry of an array of tables\n" + "\n".join(more))
+        return 1
+    body = ('title = "c, MPM x DEM, 64 RVEs of 100 spheres, plane strain"\n' + src
+            + '[[mpm.body]]\nmaterial = "dem"\n[farm]\nwait = "sleep"\n')
+    lines = ('young_modulus = "1 MPa"', 'friction_angle = "60 deg"')
+    more = scale(body, 0.005, "src.toml", continuum=lines)
+    kept = more.split("\n")
+    if (any(line.startswith(("[dem", "[farm", "pressure_floor", "wait")) for line in kept)
+            or 'material = "elastic"' not in kept or kept[kept.index("[mpm.elastic]") + 2] != lines[1]
+            or 'title = "c, Drucker-Prager continuum, plane strain, L0 = 0.005 m"' not in kept
+            or options_of_scaled(more)[9] != lines):
+        print("self-test FAILED: --continuum\n" + more)
         return 1
     for absent in ("mpm.velocity[top].friction = 1", "mpm.gravity = 1"):  # an entry, a key the job lacks
         try:
@@ -313,6 +347,11 @@ def main():
                          "'mpm.gravity = [0.0, 0.0, \"-9.81001 m/s^2\"]' for a family of runs "
                          "that differ by 1e-6; an entry of an array of tables by its name: "
                          "'mpm.velocity[base].friction = 0.6'; repeat for several")
+    ap.add_argument("--continuum", action="append", default=[], metavar="'KEY = VALUE'",
+                    help="a line of [mpm.elastic]: the column of that Drucker-Prager continuum "
+                         "instead of RVEs (the [dem.*] and [farm] tables dropped); repeat for "
+                         "several, e.g. 'young_modulus = \"1 MPa\"' 'poisson_ratio = 0.3' "
+                         "'friction_angle = \"60 deg\"'")
     ap.add_argument("--check", nargs="+", metavar="SCALED",
                     help="each job is what the command in its header writes (run from the "
                          "repository root)")
@@ -329,9 +368,9 @@ def main():
                 print(f"{scaled}: no 'Do not edit' line of tools/mpmxdem-tools column_scale_job in its header")
                 fails += 1
                 continue
-            source, l0, tag, damping, young, mpm, spheres, coupling, sets = options
+            source, l0, tag, damping, young, mpm, spheres, coupling, sets, continuum = options
             if have != scale(open(source).read(), l0, source, tag, damping, young, mpm, spheres,
-                             coupling, sets):
+                             coupling, sets, continuum):
                 print(f"{scaled}: not what tools/mpmxdem-tools column_scale_job writes from {source} at "
                       f"L0 = {l0} m; regenerate it with the command in its header")
                 fails += 1
@@ -343,7 +382,7 @@ def main():
     try:
         text = scale(open(args.job).read(), args.l0, args.job, args.tag, args.damping,
                      args.young_modulus, tuple(args.mpm), args.spheres, tuple(args.coupling),
-                     tuple(args.set))
+                     tuple(args.set), tuple(args.continuum))
     except ValueError as e:
         print(f"column_scale_job.py: {e}", file=sys.stderr)
         return 2
