@@ -379,6 +379,10 @@ def main():
         return 1 if fails else 0
     if not (args.job and args.l0 and args.out):
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
+    if args.continuum and (args.damping is not None or args.young_modulus is not None
+                           or args.spheres is not None or args.coupling):
+        ap.error("--continuum replaces the RVEs: --damping, --young-modulus, --spheres and "
+                 "--coupling set the RVEs and do not apply")
     try:
         text = scale(open(args.job).read(), args.l0, args.job, args.tag, args.damping,
                      args.young_modulus, tuple(args.mpm), args.spheres, tuple(args.coupling),
