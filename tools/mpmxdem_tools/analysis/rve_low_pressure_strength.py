@@ -57,6 +57,14 @@ def mobilised(series_path):
             float(rows[-1]["Z"]))
 
 
+def dilatancy_between(rows, i, j):
+    """Dilatancy angle [deg] of a plane-strain test between rows i and j: asin(-d eps_v /
+    (d eps_a - d eps_x)), eps_x = eps_v - eps_a, compression positive."""
+    da = float(rows[j]["eps_a"]) - float(rows[i]["eps_a"])
+    dv = float(rows[j]["eps_v"]) - float(rows[i]["eps_v"])
+    return math.degrees(math.asin(-dv / (2 * da - dv)))
+
+
 def dilatancy_at_peak(series_path):
     """Dilatancy angle [deg] over the rows of the peak's running mean (see mobilised)."""
     rows = list(csv.DictReader(open(series_path)))
@@ -64,19 +72,13 @@ def dilatancy_at_peak(series_path):
     runs = [sum(s[i:i + WINDOW]) / WINDOW for i in range(len(s) - WINDOW + 1)]
     i = max(range(len(runs)), key=runs.__getitem__)
     j = min(i + WINDOW - 1, len(rows) - 1)
-    i = max(i - 1, 0)
-    da = float(rows[j]["eps_a"]) - float(rows[i]["eps_a"])
-    dv = float(rows[j]["eps_v"]) - float(rows[i]["eps_v"])
-    return math.degrees(math.asin(-dv / (2 * da - dv)))
+    return dilatancy_between(rows, max(i - 1, 0), j)
 
 
 def early_dilatancy(series_path, strain=0.02):
     """Dilatancy angle [deg] from the first row to the first at `strain` of axial strain."""
     rows = list(csv.DictReader(open(series_path)))
-    j = next(k for k, r in enumerate(rows) if float(r["eps_a"]) >= strain)
-    da = float(rows[j]["eps_a"]) - float(rows[0]["eps_a"])
-    dv = float(rows[j]["eps_v"]) - float(rows[0]["eps_v"])
-    return math.degrees(math.asin(-dv / (2 * da - dv)))
+    return dilatancy_between(rows, 0, next(k for k, r in enumerate(rows) if float(r["eps_a"]) >= strain))
 
 
 def stems(data):
