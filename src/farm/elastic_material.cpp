@@ -43,6 +43,9 @@ void ElasticMaterial::validate() const {
     fail("dilatancy_angle", dilatancy_deg,
          "must be <= mpm.elastic.friction_angle (" + deg(friction_deg) + ")");
   }
+  if (dilatancy_cutoff > 0.0 && !(dilatancy_deg > 0.0)) {
+    fail("dilatancy_cutoff", dilatancy_cutoff, "needs mpm.elastic.dilatancy_angle > 0");
+  }
   if (softening_strain > 0.0) {
     if (!(friction_deg > 0.0))
       fail("softening_strain", softening_strain, "needs mpm.elastic.friction_angle > 0");

@@ -10,7 +10,7 @@
 namespace farm {
 
 /// Linear elastic, or with a friction angle a cohesionless Drucker-Prager continuum (dilatant or
-/// not, softening or not). The angles are in degrees, as the job writes them; the defaults are a
+/// not, with a dilatancy cut-off or not, softening or not). The angles are in degrees, as the job writes them; the defaults are a
 /// linear elastic material without a modulus (young_modulus and poisson_ratio are required).
 struct ElasticMaterial {
   double young_modulus = 0.0;  ///< E [Pa], > 0
@@ -30,6 +30,11 @@ struct ElasticMaterial {
   /// softening_strain [-]. 0: no softening (perfectly plastic). > 0 needs a friction angle and no
   /// dilatancy.
   double softening_strain = 0.0;
+  /// Dilatancy cut-off: the plastic volumetric strain (dilation, the sum of tr(d eps_p)) after
+  /// which the flow is deviatoric, the critical state of a dense material (Vermeer & de Borst
+  /// 1984; PLAXIS's "dilatancy cut-off" at a maximum void ratio) [-]. 0: none, the material
+  /// dilates for ever. > 0 needs a dilatancy angle.
+  double dilatancy_cutoff = 0.0;
 
   /// Throws common::InputError naming the job key of the first invalid entry: the ranges of
   /// kElasticMaterial, then the rules between the angles.
@@ -67,7 +72,13 @@ inline constexpr auto kElasticMaterial = common::make_table<ElasticMaterial>(
      {"softening_strain", &ElasticMaterial::softening_strain, Unit::Dimensionless, common::ge(0),
       Source::job_optional,
       "The accumulated plastic shear strain at which the friction reaches "
-      "residual_friction_angle (with it; > 0 when given). Absent: no softening."}});
+      "residual_friction_angle (with it; > 0 when given). Absent: no softening."},
+     {"dilatancy_cutoff", &ElasticMaterial::dilatancy_cutoff, Unit::Dimensionless, common::ge(0),
+      Source::job_optional,
+      "Dilatancy cut-off: the plastic volumetric strain (dilation) after which the flow is "
+      "deviatoric, the critical state of a dense material (needs dilatancy_angle; > 0 when "
+      "given; docs/design/mpm.md, Frictional continuum). Absent: the material dilates for "
+      "ever."}});
 
 /// An angle of the job in radians, as the model uses it: deg * pi / 180, the one conversion (the
 /// expression the app has always used, so that a job's results stay bit for bit).

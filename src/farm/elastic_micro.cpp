@@ -2,6 +2,7 @@
 #include "farm/elastic_micro.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -130,7 +131,11 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
   const ElasticMaterial& m = params_.material;
   const common::Lame c = common::lame(m.young_modulus, m.poisson_ratio);
   const double bulk = c.lambda + 2.0 * c.mu / 3.0;
-  const mpm::DruckerPragerCone cone = mpm::plane_strain_cone(angles_.friction, angles_.dilatancy);
+  // Past the cut-off the flow is deviatoric, on the cone of the same plane-strain friction angle.
+  const bool dilates =
+      angles_.dilatancy > 0.0 && !(m.dilatancy_cutoff > 0.0 && plastic_dilation_ >= m.dilatancy_cutoff);
+  const mpm::DruckerPragerCone cone =
+      mpm::plane_strain_cone(angles_.friction, dilates ? angles_.dilatancy : 0.0);
   auto ret = [&](const common::Mat3& trial) {
     if (m.softening_strain > 0.0) {
       const mpm::FrictionSoftening softening{
@@ -139,7 +144,12 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
       plastic_shear_ = r.gamma;
       return r.result;
     }
-    return mpm::drucker_prager_return(trial, cone, bulk, c.mu);
+    const mpm::DruckerPragerResult r = mpm::drucker_prager_return(trial, cone, bulk, c.mu);
+    if (dilates && r.plastic && !r.apex) {
+      // The return raises p by K tr(d eps_p) (mpm::drucker_prager_return).
+      plastic_dilation_ += (trial.trace() - r.stress.trace()) / (3.0 * bulk);
+    }
+    return r;
   };
   if (free_volume_ > 0.0) {  // disconnected: a dilation adds to the free volume, stress-free
     free_volume_ += volumetric;
@@ -189,6 +199,7 @@ void ElasticMicro::save(common::StateWriter& w) const {
   common::write_scalar(w, "elastic/j", j_);
   common::write_scalar(w, "elastic/free_volume", free_volume_);
   common::write_scalar(w, "elastic/plastic_shear_strain", plastic_shear_);
+  common::write_scalar(w, "elastic/plastic_volumetric_strain", plastic_dilation_);
   common::write_scalar(w, "elastic/steps", steps_);
 }
 
@@ -204,7 +215,8 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
         std::to_string(kElasticStateVersion) +
         " only (version 1 stored the parameters as the positional array "
         "'elastic/params'; versions 2 to 5 named fields such as 'elastic/params/young', 6 the "
-        "job keys such as 'elastic/params/young_modulus'); restart from a state written by this "
+        "job keys such as 'elastic/params/young_modulus', 7 added the dilatancy cut-off); restart "
+        "from a state written by this "
         "version");
   }
   auto matrix = [&r](const char* name) {
@@ -219,7 +231,12 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   ElasticMicroParams params;
   std::optional<ElasticAngles> stored_radians;
   if (version >= 6) {
-    common::read_params(r, kParamsDir, kElasticMaterial, params.material, kWhat);
+    // A version-6 state has no cut-off: the material keeps its default, none.
+    constexpr std::array<common::FormerField, 1> kBeforeCutoff{
+        {{"dilatancy_cutoff", "dilatancy_cutoff", true}}};
+    common::read_params(r, kParamsDir, kElasticMaterial, params.material, kWhat,
+                        version == 6 ? std::span<const common::FormerField>(kBeforeCutoff)
+                                     : std::span<const common::FormerField>());
   } else {
     const FormerMaterial former = read_former_material(r, version);
     params.material = former.material;
@@ -254,6 +271,14 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
     if (!(m->plastic_shear_ >= 0.0 && std::isfinite(m->plastic_shear_))) {
       throw common::InputError("elastic micro state: field 'elastic/plastic_shear_strain' = " +
                                std::to_string(m->plastic_shear_) + ": must be finite and >= 0");
+    }
+  }
+  if (version >= 7) {
+    m->plastic_dilation_ = common::read_scalar_f64(r, "elastic/plastic_volumetric_strain");
+    if (!std::isfinite(m->plastic_dilation_)) {
+      throw common::InputError("elastic micro state: field 'elastic/plastic_volumetric_strain' = " +
+                               std::to_string(m->plastic_dilation_) +
+                               ": a state holds finite numbers only");
     }
   }
   return m;

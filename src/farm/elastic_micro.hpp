@@ -21,8 +21,10 @@ namespace farm {
 /// without softening: softening_strain = 0, residual_friction_angle = friction_angle); 6: the
 /// material's parameters under their job keys (kElasticMaterial: elastic/params/young_modulus,
 /// the angles in degrees), where 2 to 5 named them after C++ members (elastic/params/young) and
-/// stored the angles in radians (read as the model's radians, unconverted).
-inline constexpr std::int64_t kElasticStateVersion = 6;
+/// stored the angles in radians (read as the model's radians, unconverted); 7: adds
+/// elastic/params/dilatancy_cutoff and elastic/plastic_volumetric_strain (a version-6 state is read
+/// without a cut-off and with no plastic dilation so far).
+inline constexpr std::int64_t kElasticStateVersion = 7;
 
 struct ElasticMicroParams {
   ElasticMaterial material;  ///< [mpm.elastic]: moduli, angles [deg], softening
@@ -56,7 +58,8 @@ class ElasticMicro final : public MicroModel {
   /// Named fields (docs/reference/checkpoint.md): elastic/version, elastic/id,
   /// elastic/params/<key> (the rows of kElasticMaterial under their job keys, common/
   /// state_params.hpp), elastic/params/<name> (the other members of ElasticMicroParams),
-  /// elastic/stress, elastic/j, elastic/free_volume, elastic/plastic_shear_strain, elastic/steps.
+  /// elastic/stress, elastic/j, elastic/free_volume, elastic/plastic_shear_strain,
+  /// elastic/plastic_volumetric_strain, elastic/steps.
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override {
     return static_cast<double>(params_.substeps);
@@ -64,8 +67,9 @@ class ElasticMicro final : public MicroModel {
   /// P-wave speed sqrt((lambda + 2 mu) / rho) [m/s].
   [[nodiscard]] double wave_speed() const override;
 
-  /// Rebuilds from save(), or from a state of versions 2 to 5 with the radians it stored (the
-  /// degrees of the parameters from degrees_of_radians); throws common::InputError naming a
+  /// Rebuilds from save(), or from a state of versions 2 to 6 (versions 2 to 5 with the radians
+  /// they stored
+  /// and the degrees of the parameters from degrees_of_radians); throws common::InputError naming a
   /// missing or malformed field, or the version found and the ones this build reads.
   static std::unique_ptr<MicroModel> load(const common::StateReader& reader);
   /// A MicroKind creating ElasticMicro(id, params) for every id.
@@ -82,7 +86,9 @@ class ElasticMicro final : public MicroModel {
   /// cone; a tensile trial returns to zero stress and the dilation beyond the elastic unloading
   /// goes to the free volume; while it is positive the material is disconnected (stress-free),
   /// and a compression closes it before the material carries stress again (Dunatunga & Kamrin
-  /// 2015, as dem.coupling.contact_loss = "disconnected" does for an RVE).
+  /// 2015, as dem.coupling.contact_loss = "disconnected" does for an RVE). The flow is dilatant
+  /// while the plastic dilation is below the material's cut-off at the sub-step's start, then
+  /// deviatoric.
   /// @param update the elastic predictor of the sub-step (L over h)
   /// @param volumetric ln det(I + h L) of the sub-step [-]
   void frictional_substep(const common::HughesWinget& update, const common::Mat3& L, double h,
@@ -91,6 +97,8 @@ class ElasticMicro final : public MicroModel {
   double j_ = 1.0;              ///< volume ratio V / V0 [-]
   double free_volume_ = 0.0;    ///< ln(V / V_connected) >= 0 of a disconnected material [-]
   double plastic_shear_ = 0.0;  ///< accumulated plastic shear strain of the softening [-]
+  /// Accumulated plastic volumetric strain, sum of tr(d eps_p) of the dilatant returns [-].
+  double plastic_dilation_ = 0.0;
   std::int64_t steps_ = 0;
 };
 

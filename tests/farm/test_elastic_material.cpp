@@ -77,6 +77,19 @@ TEST(ElasticMaterial, RulesBetweenTheAngles) {
             "mpm.elastic.softening_strain = 0.05: needs mpm.elastic.friction_angle > 0");
 }
 
+// A dilatancy cut-off stops a dilatancy: it needs one (job rule: mpm.elastic.dilatancy_cutoff).
+TEST(ElasticMaterial, CutoffNeedsADilatancy) {
+  farm::ElasticMaterial m = material();
+  m.friction_deg = 40.0;
+  m.dilatancy_cutoff = 0.1;
+  EXPECT_EQ(error_of(m),
+            "mpm.elastic.dilatancy_cutoff = 0.1: needs mpm.elastic.dilatancy_angle > 0");
+  m.dilatancy_deg = 10.0;
+  EXPECT_EQ(error_of(m), "");
+  m.dilatancy_cutoff = -0.1;
+  EXPECT_EQ(error_of(m), "mpm.elastic.dilatancy_cutoff = -0.1: must be >= 0");
+}
+
 // The one conversion is the expression the app used before the table (deg * M_PI / 180.0), so that
 // a job's results stay bit for bit.
 TEST(ElasticMaterial, RadiansAreTheJobsExpression) {

@@ -28,13 +28,14 @@ farm::ElasticMicroParams params() {
 
 // The state s (this version's) as an older version of ElasticMicro wrote it (the version history
 // of farm/elastic_micro.hpp): versions 2 to 5 named the moduli after the C++ members and stored
-// the angles in radians, those the app derived from the job's degrees (farm::to_radians); without
-// the fields added since, with that version's number.
+// the angles in radians, those the app derived from the job's degrees (farm::to_radians), version 6
+// as now; without the fields added since, with that version's number.
 common::StateStore as_version(const common::StateStore& s, std::int64_t version) {
   const std::vector<std::pair<std::int64_t, std::string>> added = {
       {3, "elastic/params/friction_angle"},          {3, "elastic/free_volume"},
       {4, "elastic/params/dilatancy_angle"},         {5, "elastic/params/softening_strain"},
-      {5, "elastic/params/residual_friction_angle"}, {5, "elastic/plastic_shear_strain"}};
+      {5, "elastic/params/residual_friction_angle"}, {5, "elastic/plastic_shear_strain"},
+      {7, "elastic/params/dilatancy_cutoff"},        {7, "elastic/plastic_volumetric_strain"}};
   const std::vector<std::pair<std::string, std::string>> renamed = {
       {"elastic/params/young_modulus", "elastic/params/young"},
       {"elastic/params/poisson_ratio", "elastic/params/poisson"}};
@@ -49,9 +50,9 @@ common::StateStore as_version(const common::StateStore& s, std::int64_t version)
     if (later || name == "elastic/version") continue;
     std::string old_name = name;
     for (const auto& [now, then] : renamed) {
-      if (name == now) old_name = then;
+      if (name == now && version <= 5) old_name = then;
     }
-    if (std::find(angles.begin(), angles.end(), name) != angles.end()) {
+    if (version <= 5 && std::find(angles.begin(), angles.end(), name) != angles.end()) {
       old.write(name, std::vector<double>{farm::to_radians(s.read_f64(name).at(0))});
       continue;
     }
@@ -157,7 +158,7 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   const farm::ElasticMicro m(4, p);
   common::StateStore s;
   m.save(s);
-  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{6});
+  EXPECT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{7});
   EXPECT_EQ(s.read_i64("elastic/id"), std::vector<std::int64_t>{4});
   for (const auto& row : farm::kElasticMaterial) {
     EXPECT_EQ(s.read_f64("elastic/params/" + std::string(row.key)),
@@ -170,6 +171,7 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   EXPECT_EQ(s.read_f64("elastic/params/dilatancy_angle"), std::vector<double>{12.5});
   EXPECT_EQ(s.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{25.0});
   EXPECT_EQ(s.read_f64("elastic/params/softening_strain"), std::vector<double>{0.0});
+  EXPECT_EQ(s.read_f64("elastic/params/dilatancy_cutoff"), std::vector<double>{0.0});
   EXPECT_EQ(s.read_f64("elastic/params/density"), std::vector<double>{p.density});
   EXPECT_EQ(s.read_f64("elastic/params/void_ratio0"), std::vector<double>{0.55});
   const auto s0 = s.read_f64("elastic/params/initial_stress");
@@ -177,6 +179,7 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   EXPECT_EQ(s0[1], p.initial_stress(0, 1));  // row-major
   EXPECT_EQ(s0[8], p.initial_stress(2, 2));
   EXPECT_EQ(s.read_f64("elastic/plastic_shear_strain"), std::vector<double>{0.0});
+  EXPECT_EQ(s.read_f64("elastic/plastic_volumetric_strain"), std::vector<double>{0.0});
   EXPECT_EQ(s.read_i64("elastic/params/substeps"), std::vector<std::int64_t>{3});
   EXPECT_EQ(s.read_i64("elastic/params/fail_id"), std::vector<std::int64_t>{9});
   EXPECT_EQ(s.read_i64("elastic/params/fail_step"), std::vector<std::int64_t>{11});
@@ -189,17 +192,19 @@ TEST(ElasticMicro, ParametersAreNamedFields) {
   EXPECT_TRUE(again.fields() == s.fields());
 }
 
-// A version-6 state of a dilatant frictional model, saved mid-shear, comes back with the same
-// fields and continues bit for bit.
-TEST(ElasticMicro, Version6RoundTripsAndContinuesBitForBit) {
+// A version-7 state of a dilatant frictional model with a cut-off, saved mid-shear, comes back
+// with the same fields and continues bit for bit.
+TEST(ElasticMicro, Version7RoundTripsAndContinuesBitForBit) {
   farm::ElasticMicroParams p = params();
   p.material.friction_deg = 37.3;
   p.material.dilatancy_deg = 8.1;
+  p.material.dilatancy_cutoff = 0.01;
   p.substeps = 2;
   farm::ElasticMicro m = sheared(p);
   common::StateStore s;
   m.save(s);
-  ASSERT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{6});
+  ASSERT_EQ(s.read_i64("elastic/version"), std::vector<std::int64_t>{7});
+  ASSERT_GT(s.read_f64("elastic/plastic_volumetric_strain").at(0), 0.0);
   const auto loaded = farm::ElasticMicro::load(common::StateStore::deserialize(s.serialize()));
   common::StateStore again;
   loaded->save(again);
@@ -207,9 +212,27 @@ TEST(ElasticMicro, Version6RoundTripsAndContinuesBitForBit) {
   expect_same_continuation(m, *loaded, kShear);
 }
 
+// A version-6 state (before the cut-off) is read without a cut-off and with no plastic dilation so
+// far, and continues as the same state saved by this version would.
+TEST(ElasticMicro, Version6IsReadWithoutCutoff) {
+  farm::ElasticMicroParams p = params();
+  p.material.friction_deg = 34.0;
+  p.material.dilatancy_deg = 11.0;
+  farm::ElasticMicro m = sheared(p);
+  common::StateStore s;
+  m.save(s);
+  const auto loaded = farm::ElasticMicro::load(as_version(s, 6));
+  common::StateStore again;
+  loaded->save(again);
+  EXPECT_EQ(again.read_i64("elastic/version"), std::vector<std::int64_t>{7});
+  EXPECT_EQ(again.read_f64("elastic/params/dilatancy_cutoff"), std::vector<double>{0.0});
+  EXPECT_EQ(again.read_f64("elastic/plastic_volumetric_strain"), std::vector<double>{0.0});
+  expect_same_continuation(m, *loaded, kShear);
+}
+
 // A version-5 state, written here field by field with that version's names and radians (those the
 // app derived from the job's degrees), is read with those radians and continues bit for bit as
-// the model of the same radians; saved again (version 6, degrees) and read, it still does.
+// the model of the same radians; saved again (this version, degrees) and read, it still does.
 TEST(ElasticMicro, Version5StateIsReadWithItsRadiansAndContinuesBitForBit) {
   farm::ElasticMicroParams p = params();
   p.material.friction_deg = 41.7;
@@ -243,7 +266,7 @@ TEST(ElasticMicro, Version5StateIsReadWithItsRadiansAndContinuesBitForBit) {
   const auto loaded = farm::ElasticMicro::load(v5);
   common::StateStore as_v6;
   loaded->save(as_v6);
-  EXPECT_EQ(as_v6.read_i64("elastic/version"), std::vector<std::int64_t>{6});
+  EXPECT_EQ(as_v6.read_i64("elastic/version"), std::vector<std::int64_t>{7});
   // The degrees are the job's, whose radians the state held (farm::degrees_of_radians).
   EXPECT_EQ(as_v6.read_f64("elastic/params/friction_angle"), std::vector<double>{41.7});
   EXPECT_EQ(as_v6.read_f64("elastic/params/residual_friction_angle"), std::vector<double>{33.3});
@@ -297,7 +320,7 @@ TEST(ElasticMicro, OldVersionRefused) {
     ADD_FAILURE() << "a version-1 state was loaded";
   } catch (const common::InputError& e) {
     const std::string m = e.what();
-    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2 to 6 only",
+    for (const char* needle : {"'elastic/version' = 1 (absent)", "reads versions 2 to 7 only",
                                "elastic/params/young", "elastic/params/young_modulus"}) {
       EXPECT_NE(m.find(needle), std::string::npos) << m;
     }
@@ -313,13 +336,13 @@ TEST(ElasticMicro, LaterVersionRefused) {
   for (const auto& [name, field] : s.fields()) {
     if (name != "elastic/version") std::visit([&](const auto& v) { later.write(name, v); }, field);
   }
-  later.write("elastic/version", std::vector<std::int64_t>{7});
+  later.write("elastic/version", std::vector<std::int64_t>{8});
   try {
     (void)farm::ElasticMicro::load(later);
-    ADD_FAILURE() << "a version-7 state was loaded";
+    ADD_FAILURE() << "a version-8 state was loaded";
   } catch (const common::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(
-                  "field 'elastic/version' = 7: this build reads versions 2 to 6 only"),
+                  "field 'elastic/version' = 8: this build reads versions 2 to 7 only"),
               std::string::npos)
         << e.what();
   }
@@ -464,6 +487,44 @@ TEST(ElasticMicro, DilatantFlowMatchesPlaneStrainMohrCoulomb) {
       EXPECT_LT((s - before).norm(), 1e-6 * s.norm());  // a steady plastic flow
     }
   }
+}
+
+// The dilatancy cut-off: a simple shear at constant volume from an isotropic p0 raises p by K
+// tr(d eps_p) while the material dilates (the volume is held: the plastic dilation compresses it
+// elastically), then, past the cut-off, the flow is deviatoric and p stays; the stress lies on the
+// cone of the same friction angle without dilatancy, sqrt(J2) = sin(phi) p. Without a cut-off p
+// keeps rising. The plastic dilation passes the cut-off by at most one step's increment.
+TEST(ElasticMicro, DilatancyStopsAtTheCutoff) {
+  const double p0 = 1e4;
+  const double cutoff = 0.005;
+  auto run = [&](double c, int steps) {
+    farm::ElasticMicroParams p = params();
+    p.material.friction_deg = 40.0;
+    p.material.dilatancy_deg = 20.0;
+    p.material.dilatancy_cutoff = c;
+    farm::ElasticMicro m(0, p, -p0 * common::Mat3::Identity());
+    for (int k = 0; k < steps; ++k) (void)m.step(kShear, 1e-4);
+    return m;
+  };
+  const double bulk = 10e6 / (3.0 * (1.0 - 2.0 * 0.2));
+  farm::ElasticMicro m = run(cutoff, 2000);  // gamma = 0.2
+  common::StateStore s;
+  m.save(s);
+  const double dilation = s.read_f64("elastic/plastic_volumetric_strain").at(0);
+  EXPECT_GE(dilation, cutoff);
+  EXPECT_LT(dilation, cutoff + 1e-4);  // one step: tr(d eps_p) <= eta_bar gamma_dot dt
+  const double p = -m.stress().trace() / 3.0;
+  EXPECT_NEAR(p, p0 + bulk * dilation, 1e-9 * bulk);
+  const common::Mat3 dev = m.stress() + p * common::Mat3::Identity();
+  EXPECT_NEAR(std::sqrt(0.5 * dev.squaredNorm()), std::sin(40.0 * M_PI / 180.0) * p, 1e-6 * p);
+  // The same material without a cut-off has dilated far beyond it, under a higher pressure.
+  farm::ElasticMicro free = run(0.0, 2000);
+  common::StateStore f;
+  free.save(f);
+  EXPECT_GT(f.read_f64("elastic/plastic_volumetric_strain").at(0), 10.0 * cutoff);
+  EXPECT_GT(-free.stress().trace() / 3.0, 2.0 * p);
+  // A material below its cut-off is the material without one, bit for bit.
+  EXPECT_TRUE(run(cutoff, 20).stress() == run(0.0, 20).stress());
 }
 
 // A frictional material pulled apart is disconnected: stress-free while its free volume lasts, and

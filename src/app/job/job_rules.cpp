@@ -237,11 +237,21 @@ void softening_rules(const Job& job, Rules& r) {
   }
 }
 
-// The dilatancy of the Drucker-Prager continuum: with its friction angle, and not above it; then
-// its softening.
+// The dilatancy of the Drucker-Prager continuum: with its friction angle, and not above it; its
+// cut-off with a dilatancy; then its softening.
 void continuum_rules(const Job& job, Rules& r) {
   softening_rules(job, r);
   const std::string psi = "mpm.elastic.dilatancy_angle";
+  const std::string cutoff = "mpm.elastic.dilatancy_cutoff";
+  if (job.has(cutoff)) {
+    // The table's range takes 0 (farm::ElasticMaterial: no cut-off); a job writing 0 would mean
+    // no dilatancy at all, which is dilatancy_angle = 0.
+    if (!(job.number(cutoff) > 0.0)) {
+      r.fail(cutoff, "must be > 0 (remove it for a material that dilates for ever)");
+    } else if (!job.has(psi) || !(job.number(psi) > 0.0)) {
+      r.fail(cutoff, "needs mpm.elastic.dilatancy_angle > 0: it stops the dilatancy");
+    }
+  }
   if (!job.has(psi)) return;
   const std::string phi = "mpm.elastic.friction_angle";
   if (!job.has(phi)) {

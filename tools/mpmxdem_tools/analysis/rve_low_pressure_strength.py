@@ -14,8 +14,12 @@ the footing's (300 MPa, at 50 kPa; docs/validation/footing.md) are
   --early-dilatancy
                 adds the dilatancy angle over the first 2 % of axial strain (a dense sample's
                 first failure, where a 100-sphere RVE's peak row can come late and noisy)
+  --dilation    adds the dilation at the end of the test, ln(V / V0) = -eps_v (the volumetric
+                strain from the dense state to the critical state: what a continuum's dilatancy
+                cut-off, mpm.elastic.dilatancy_cutoff, stands for)
 
 Usage: tools/mpmxdem-tools rve_low_pressure_strength [--data D] [--exe E] (--run DIR | --table)
+       [--dilatancy] [--early-dilatancy] [--dilation]
 Defaults: D = docs/data/column_collapse_rve_strength, E = build/mpmxdem.
 
 The mobilised friction angle of a plane-strain test is asin((s1 - s3) / (s1 + s3)), s1 the axial
@@ -86,12 +90,20 @@ def stems(data):
                   key=lambda n: (int(n.split("_")[0][1:]), n))
 
 
-def table(data, dilatancy=False, early=False):
+def dilation_at_end(series_path):
+    """ln(V / V0) at the last row: -eps_v (eps_v = -ln(V / V0), compression positive)."""
+    rows = list(csv.DictReader(open(series_path)))
+    return -float(rows[-1]["eps_v"])
+
+
+def table(data, dilatancy=False, early=False, dilation=False):
     lines = ["| RVE | spheres | peak friction angle | " + ("dilatancy angle at the peak | " if dilatancy else "")
              + ("dilatancy angle over the first 2 % | " if early else "")
              + "critical-state friction angle (axial strain > 15 %) "
-             "| void ratio at 30 % | coordination at 30 % |",
-             "|---|---|---|---|---|---|" + ("---|" if dilatancy else "") + ("---|" if early else "")]
+             "| void ratio at 30 % | " + ("dilation ln(V / V0) at 30 % | " if dilation else "")
+             + "coordination at 30 % |",
+             "|---|---|---|---|---|---|" + ("---|" if dilatancy else "") + ("---|" if early else "")
+             + ("---|" if dilation else "")]
     for stem in stems(data):
         path = os.path.join(data, f"{stem}_series.csv")
         if not os.path.exists(path):
@@ -100,8 +112,9 @@ def table(data, dilatancy=False, early=False):
         n, seed = stem.split("_")
         psi = f"{dilatancy_at_peak(path):.1f} deg | " if dilatancy else ""
         psi += f"{early_dilatancy(path):.1f} deg | " if early else ""
+        dv = f"{dilation_at_end(path):.3f} | " if dilation else ""
         lines.append(f"| seed {seed[len('seed'):]} | {n[1:]} | {peak:.1f} deg | {psi}{crit:.1f} +- {sd:.1f} deg | "
-                     f"{e:.3f} | {z:.2f} |")
+                     f"{e:.3f} | {dv}{z:.2f} |")
     return "\n".join(lines)
 
 
@@ -127,11 +140,13 @@ def main():
     ap.add_argument("--dilatancy", action="store_true", help="the table with the dilatancy angle at the peak")
     ap.add_argument("--early-dilatancy", action="store_true",
                     help="the table with the dilatancy angle over the first 2 %% of axial strain")
+    ap.add_argument("--dilation", action="store_true",
+                    help="the table with the dilation ln(V / V0) at the end (dense to critical state)")
     args = ap.parse_args()
     if args.run:
         run(args.data, args.exe, args.run)
     if args.table:
-        print(table(args.data, args.dilatancy, args.early_dilatancy))
+        print(table(args.data, args.dilatancy, args.early_dilatancy, args.dilation))
     if not (args.run or args.table):
         ap.error("one of --run DIR, --table")
 
