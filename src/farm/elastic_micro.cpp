@@ -275,10 +275,9 @@ std::unique_ptr<MicroModel> ElasticMicro::load(const common::StateReader& r) {
   }
   if (version >= 7) {
     m->plastic_dilation_ = common::read_scalar_f64(r, "elastic/plastic_volumetric_strain");
-    if (!std::isfinite(m->plastic_dilation_)) {
+    if (!(m->plastic_dilation_ >= 0.0 && std::isfinite(m->plastic_dilation_))) {
       throw common::InputError("elastic micro state: field 'elastic/plastic_volumetric_strain' = " +
-                               std::to_string(m->plastic_dilation_) +
-                               ": a state holds finite numbers only");
+                               std::to_string(m->plastic_dilation_) + ": must be finite and >= 0");
     }
   }
   return m;
