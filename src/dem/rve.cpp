@@ -210,23 +210,34 @@ StepReport Rve::step(const Mat3& l, double dt) {
     rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return rep;
   }
-  const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
-  double t_p = relaxation_time(g, dt, dt_dem, rep);
-  std::int64_t n = dem_step_count(g, dt_dem, t_p, rep);
-  if (params_.free_flight && n > 1 && one_free_step(g, t_p)) {
-    n = 1;
-    rep.guards |= kGuardFreeFlight;
+  if (spray_near_thin_cell(g)) {
+    // A spray stretched by its point's neighbours: its cell follows the point's shape until the
+    // cell is thinner than its spheres allow (the neighbour search's NumericalError). Then the
+    // step is taken again from here with the increment's volume change only: a spray below the
+    // disconnection fraction carries next to no stress (a few collisions), and its cell's shape
+    // is nobody's (the point keeps its F). A step that does not fail is the step of before, bit
+    // for bit.
+    const Rve before = *this;
+    try {
+      advance(g, dt, rep);
+    } catch (const common::NumericalError&) {
+      if (!cell_too_thin()) throw;
+      *this = before;
+      rep = StepReport{};
+      rep.guards |= kGuardSprayShape;
+      advance((g.trace() / 3.0) * Mat3::Identity(), dt, rep);
+    }
+  } else {
+    advance(g, dt, rep);
   }
-  run_dem_steps(g, t_p, n);
 
   const Mat3& sigma = sim_.stress();
   if (!sigma.allFinite()) {
-    throw common::NumericalError("dem::Rve::step: non-finite stress after " + std::to_string(n) +
-                                 " DEM steps (t = " + std::to_string(sim_.time()) + " s)");
+    throw common::NumericalError("dem::Rve::step: non-finite stress after " +
+                                 std::to_string(rep.dem_steps) + " DEM steps (t = " +
+                                 std::to_string(sim_.time()) + " s)");
   }
   const StepReport m = measure();
-  rep.dem_steps = n;
-  rep.t_p = t_p;
   rep.dt_dem = sim_.dt();
   rep.p = m.p;
   rep.q = m.q;
@@ -236,6 +247,44 @@ StepReport Rve::step(const Mat3& l, double dt) {
   rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }
+
+void Rve::advance(const Mat3& g, double dt, StepReport& rep) {
+  const double dt_dem = sim_.numerics().dt_safety * critical_dt_for_step();
+  double t_p = relaxation_time(g, dt, dt_dem, rep);
+  std::int64_t n = dem_step_count(g, dt_dem, t_p, rep);
+  if (params_.free_flight && n > 1 && one_free_step(g, t_p)) {
+    n = 1;
+    rep.guards |= kGuardFreeFlight;
+  }
+  run_dem_steps(g, t_p, n);
+  rep.dem_steps = n;
+  rep.t_p = t_p;
+}
+
+namespace {
+// The neighbour search's limit on a cell width, 2 r_max + skin, with the widest skin.
+double thin_cell_limit(const Simulation& sim) {
+  const std::vector<double>& r = sim.spheres().r;
+  const double r_max = r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
+  return (2.0 + sim.numerics().skin_factor) * r_max;
+}
+
+double min_width(const PeriodicCell& cell) {
+  return std::min({cell.width(0), cell.width(1), cell.width(2)});
+}
+}  // namespace
+
+bool Rve::spray_near_thin_cell(const Mat3& g) const {
+  if (params_.contact_loss != ContactLoss::strained ||
+      !(1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
+    return false;
+  }
+  PeriodicCell after = sim_.cell();
+  after.h = (Mat3::Identity() + g) * after.h;
+  return min_width(after) < 2.0 * thin_cell_limit(sim_);
+}
+
+bool Rve::cell_too_thin() const { return min_width(sim_.cell()) < thin_cell_limit(sim_); }
 
 // With dt_refresh = 1 every step() computes it (each runs at least one DEM step): the results of
 // before this cache, bit for bit. Otherwise the value is kept while fewer than dt_refresh DEM

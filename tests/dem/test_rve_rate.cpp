@@ -3,6 +3,7 @@
 // that takes dilation as free volume and reconnects when compressed back).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -204,6 +205,43 @@ TEST(ContactLoss, StrainedRveStretchesItsCell) {
   // The cell's product of (I + L dt_DEM) over its DEM steps: exp(0.03) to O(0.03^2 / n).
   EXPECT_NEAR(std::log(rve.simulation().cell().h.determinant() / h_lost.determinant()), 0.03, 1e-4);
   EXPECT_EQ(rve.free_volume(), 0.0);
+}
+
+// A strained spray stretched far (a point at a column's front, pulled by its neighbours: x
+// stretched and z thinned at constant volume, 10 % a step): its cell thins with the point until
+// its spheres no longer fit across it (the neighbour search's limit, 2 r_max + skin), then takes
+// only the increments' volume change (kGuardSprayShape): no step fails, the spray keeps its
+// volume and next to no stress (its grains collide now and then), and its cell stays wider than
+// the limit. Before, the neighbour search stopped the run (exit 3).
+TEST(ContactLoss, StrainedSprayStretchedBeyondItsCellKeepsItsShape) {
+  dem::Rve rve = without_contacts(dem::ContactLoss::strained);
+  for (int k = 0; k < 10; ++k) (void)rve.step(Mat3::Identity() * 1e4, 2e-6);  // dilute: ~0.2
+  ASSERT_LT(solid_fraction(rve), 0.3);
+  const double v0 = rve.simulation().cell().volume();
+  const double r_max = *std::max_element(rve.simulation().spheres().r.begin(),
+                                         rve.simulation().spheres().r.end());
+  const double limit = (2.0 + rve.simulation().numerics().skin_factor) * r_max;
+  Mat3 l = Mat3::Zero();
+  l(0, 0) = 1e4;
+  l(2, 2) = -1e4;
+  int shaped = 0;
+  double p_max = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    dem::StepReport r;
+    ASSERT_NO_THROW(r = rve.step(l, 1e-5)) << "step " << k;
+    if ((r.guards & dem::kGuardSprayShape) != 0) ++shaped;
+    p_max = std::max(p_max, r.p);
+  }
+  const dem::PeriodicCell& cell = rve.simulation().cell();
+  std::printf("steps that kept the shape: %d of 40; widths %.3g %.3g %.3g m, limit %.3g m; "
+              "ln(V / V0) %.2e; largest p %.3g Pa\n",
+              shaped, cell.width(0), cell.width(1), cell.width(2), limit,
+              std::log(cell.volume() / v0), p_max);
+  EXPECT_GT(shaped, 0);
+  EXPECT_GE(std::min({cell.width(0), cell.width(1), cell.width(2)}), limit);
+  // The isochoric steps that stretch the cell lose O(g^2 / n) of volume each to the product of
+  // (I + L dt_DEM) over their n DEM steps (0.1^2 / n, n ~ 70 here); the shape-keeping ones none.
+  EXPECT_NEAR(std::log(cell.volume() / v0), 0.0, 5e-3);
 }
 
 // A state written before the keys existed continues as it ran: coupling rate, strained cell.
