@@ -47,11 +47,12 @@ P_LOW = 100.0  # [Pa] "near-zero pressure"
 
 
 def run_dem_steps(run):
-    """The run's DEM steps, all of them (run_summary.json); "" for a run that wrote none. (The
-    sum of results.h5's rve/dem_steps counts only the written rows, every output.every-th MPM
-    step: a small fraction of the work.)"""
+    """The run's DEM steps, all of them (run_summary.json); "" for a run that wrote none or
+    stopped on an error (its summary then has no counts: the rows it wrote are still analysed).
+    (The sum of results.h5's rve/dem_steps counts only the written rows, every output.every-th
+    MPM step: a small fraction of the work.)"""
     s = readers.summary(run, required=False)
-    return s["dem_steps"] if s else ""
+    return s.get("dem_steps", "") if s else ""
 
 
 def analyse(run):
