@@ -210,26 +210,16 @@ StepReport Rve::step(const Mat3& l, double dt) {
     rep.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return rep;
   }
-  if (spray_near_thin_cell(g)) {
+  if (spray_too_thin_after(g)) {
     // A spray stretched by its point's neighbours: its cell follows the point's shape until the
-    // cell is thinner than its spheres allow (the neighbour search's NumericalError). Then the
-    // step is taken again from here with the increment's volume change only: a spray below the
+    // increment would make it thinner than its spheres allow (the neighbour search needs 2 r_max
+    // + skin across). Then it takes the increment's volume change only: a spray below the
     // disconnection fraction carries next to no stress (a few collisions), and its cell's shape
-    // is nobody's (the point keeps its F). A step that does not fail is the step of before, bit
-    // for bit.
-    const Rve before = *this;
-    try {
-      advance(g, dt, rep);
-    } catch (const common::NumericalError&) {
-      if (!cell_too_thin()) throw;
-      *this = before;
-      rep = StepReport{};
-      rep.guards |= kGuardSprayShape;
-      advance((g.trace() / 3.0) * Mat3::Identity(), dt, rep);
-    }
-  } else {
-    advance(g, dt, rep);
+    // is nobody's (the point keeps its F).
+    g = (g.trace() / 3.0) * Mat3::Identity();
+    rep.guards |= kGuardSprayShape;
   }
+  advance(g, dt, rep);
 
   const Mat3& sigma = sim_.stress();
   if (!sigma.allFinite()) {
@@ -274,17 +264,15 @@ double min_width(const PeriodicCell& cell) {
 }
 }  // namespace
 
-bool Rve::spray_near_thin_cell(const Mat3& g) const {
+bool Rve::spray_too_thin_after(const Mat3& g) const {
   if (params_.contact_loss != ContactLoss::strained ||
       !(1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
     return false;
   }
   PeriodicCell after = sim_.cell();
   after.h = (Mat3::Identity() + g) * after.h;
-  return min_width(after) < 2.0 * thin_cell_limit(sim_);
+  return min_width(after) < thin_cell_limit(sim_);
 }
-
-bool Rve::cell_too_thin() const { return min_width(sim_.cell()) < thin_cell_limit(sim_); }
 
 // With dt_refresh = 1 every step() computes it (each runs at least one DEM step): the results of
 // before this cache, bit for bit. Otherwise the value is kept while fewer than dt_refresh DEM

@@ -175,8 +175,8 @@ enum RveGuard : std::uint32_t {
   kGuardDisconnected = 1u << 6,   ///< ContactLoss::disconnected: held, stress-free (no DEM step)
   kGuardMinSteps = 1u << 7,       ///< T_p raised to min_dem_steps DEM steps
   kGuardFreeFlight = 1u << 8,     ///< RveParams::free_flight: one DEM step of T_p, no contact
-  /// ContactLoss::strained: a spray (below disconnect_fraction) whose cell the increment made
-  /// thinner than its neighbour search allows took the increment's volume change only
+  /// ContactLoss::strained: a spray (below disconnect_fraction) whose cell the increment would
+  /// make thinner than its neighbour search allows took the increment's volume change only
   /// (docs/design/rve_step.md)
   kGuardSprayShape = 1u << 9,
 };
@@ -266,11 +266,9 @@ class Rve {
   /// and t_p into rep).
   void advance(const common::Mat3& g, double dt, StepReport& rep);
   /// ContactLoss::strained, a solid fraction below disconnect_fraction, and a cell that (I + g)
-  /// would bring within twice the neighbour search's limit (2 + verlet_skin) r_max: a spray whose
-  /// step may make its cell too thin for its spheres.
-  [[nodiscard]] bool spray_near_thin_cell(const common::Mat3& g) const;
-  /// Whether a width of the cell is below the neighbour search's limit (2 + verlet_skin) r_max.
-  [[nodiscard]] bool cell_too_thin() const;
+  /// would make thinner than the neighbour search's limit with the widest skin, (2 +
+  /// verlet_skin) r_max: a spray whose cell would become too thin for its spheres.
+  [[nodiscard]] bool spray_too_thin_after(const common::Mat3& g) const;
 
   Simulation sim_;
   RveParams params_;

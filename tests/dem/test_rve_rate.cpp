@@ -209,8 +209,8 @@ TEST(ContactLoss, StrainedRveStretchesItsCell) {
 
 // A strained spray stretched far (a point at a column's front, pulled by its neighbours: x
 // stretched and z thinned at constant volume, 10 % a step): its cell thins with the point until
-// its spheres no longer fit across it (the neighbour search's limit, 2 r_max + skin), then takes
-// only the increments' volume change (kGuardSprayShape): no step fails, the spray keeps its
+// its spheres would no longer fit across it (the neighbour search's limit, 2 r_max + skin), then
+// takes only the increments' volume change (kGuardSprayShape): no step fails, the spray keeps its
 // volume and next to no stress (its grains collide now and then), and its cell stays wider than
 // the limit. Before, the neighbour search stopped the run (exit 3).
 TEST(ContactLoss, StrainedSprayStretchedBeyondItsCellKeepsItsShape) {
