@@ -146,8 +146,9 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
     }
     const mpm::DruckerPragerResult r = mpm::drucker_prager_return(trial, cone, bulk, c.mu);
     if (dilates && r.plastic && !r.apex) {
-      // The return raises p by K tr(d eps_p) (mpm::drucker_prager_return).
-      plastic_dilation_ += (trial.trace() - r.stress.trace()) / (3.0 * bulk);
+      // The return raises p by K tr(d eps_p) >= 0 (mpm::drucker_prager_return); read back from
+      // the traces, a tiny return can round below zero, which a state may not hold.
+      plastic_dilation_ += std::max(0.0, (trial.trace() - r.stress.trace()) / (3.0 * bulk));
     }
     return r;
   };
