@@ -224,8 +224,8 @@ StepReport Rve::step(const Mat3& l, double dt) {
   const Mat3& sigma = sim_.stress();
   if (!sigma.allFinite()) {
     throw common::NumericalError("dem::Rve::step: non-finite stress after " +
-                                 std::to_string(rep.dem_steps) + " DEM steps (t = " +
-                                 std::to_string(sim_.time()) + " s)");
+                                 std::to_string(rep.dem_steps) +
+                                 " DEM steps (t = " + std::to_string(sim_.time()) + " s)");
   }
   const StepReport m = measure();
   rep.dt_dem = sim_.dt();

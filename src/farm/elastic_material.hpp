@@ -10,8 +10,9 @@
 namespace farm {
 
 /// Linear elastic, or with a friction angle a cohesionless Drucker-Prager continuum (dilatant or
-/// not, with a dilatancy cut-off or not, softening or not). The angles are in degrees, as the job writes them; the defaults are a
-/// linear elastic material without a modulus (young_modulus and poisson_ratio are required).
+/// not, with a dilatancy cut-off or not, softening or not). The angles are in degrees, as the job
+/// writes them; the defaults are a linear elastic material without a modulus (young_modulus and
+/// poisson_ratio are required).
 struct ElasticMaterial {
   double young_modulus = 0.0;  ///< E [Pa], > 0
   double poisson_ratio = 0.0;  ///< nu [-], in (-1, 0.5)

@@ -132,8 +132,8 @@ void ElasticMicro::frictional_substep(const common::HughesWinget& update, const 
   const common::Lame c = common::lame(m.young_modulus, m.poisson_ratio);
   const double bulk = c.lambda + 2.0 * c.mu / 3.0;
   // Past the cut-off the flow is deviatoric, on the cone of the same plane-strain friction angle.
-  const bool dilates =
-      angles_.dilatancy > 0.0 && !(m.dilatancy_cutoff > 0.0 && plastic_dilation_ >= m.dilatancy_cutoff);
+  const bool dilates = angles_.dilatancy > 0.0 &&
+                       !(m.dilatancy_cutoff > 0.0 && plastic_dilation_ >= m.dilatancy_cutoff);
   const mpm::DruckerPragerCone cone =
       mpm::plane_strain_cone(angles_.friction, dilates ? angles_.dilatancy : 0.0);
   auto ret = [&](const common::Mat3& trial) {

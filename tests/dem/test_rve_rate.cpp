@@ -218,8 +218,8 @@ TEST(ContactLoss, StrainedSprayStretchedBeyondItsCellKeepsItsShape) {
   for (int k = 0; k < 10; ++k) (void)rve.step(Mat3::Identity() * 1e4, 2e-6);  // dilute: ~0.2
   ASSERT_LT(solid_fraction(rve), 0.3);
   const double v0 = rve.simulation().cell().volume();
-  const double r_max = *std::max_element(rve.simulation().spheres().r.begin(),
-                                         rve.simulation().spheres().r.end());
+  const double r_max =
+      *std::max_element(rve.simulation().spheres().r.begin(), rve.simulation().spheres().r.end());
   const double limit = (2.0 + rve.simulation().numerics().skin_factor) * r_max;
   Mat3 l = Mat3::Zero();
   l(0, 0) = 1e4;
@@ -233,10 +233,11 @@ TEST(ContactLoss, StrainedSprayStretchedBeyondItsCellKeepsItsShape) {
     p_max = std::max(p_max, r.p);
   }
   const dem::PeriodicCell& cell = rve.simulation().cell();
-  std::printf("steps that kept the shape: %d of 40; widths %.3g %.3g %.3g m, limit %.3g m; "
-              "ln(V / V0) %.2e; largest p %.3g Pa\n",
-              shaped, cell.width(0), cell.width(1), cell.width(2), limit,
-              std::log(cell.volume() / v0), p_max);
+  std::printf(
+      "steps that kept the shape: %d of 40; widths %.3g %.3g %.3g m, limit %.3g m; "
+      "ln(V / V0) %.2e; largest p %.3g Pa\n",
+      shaped, cell.width(0), cell.width(1), cell.width(2), limit, std::log(cell.volume() / v0),
+      p_max);
   EXPECT_GT(shaped, 0);
   EXPECT_GE(std::min({cell.width(0), cell.width(1), cell.width(2)}), limit);
   // The isochoric steps that stretch the cell lose O(g^2 / n) of volume each to the product of
