@@ -266,7 +266,7 @@ class Rve {
   /// and t_p into rep).
   void advance(const common::Mat3& g, double dt, StepReport& rep);
   /// ContactLoss::strained, a solid fraction below disconnect_fraction, and a cell that (I + g)
-  /// would make thinner than the neighbour search's limit with the widest skin, (2 +
+  /// would bring within 10 % of the neighbour search's limit with the widest skin, (2 +
   /// verlet_skin) r_max: a spray whose cell would become too thin for its spheres.
   [[nodiscard]] bool spray_too_thin_after(const common::Mat3& g) const;
 
