@@ -76,6 +76,11 @@ std::int64_t active_contacts(const Simulation& sim) {
 }
 }  // namespace
 
+bool Rve::dilute() const {
+  // exp(-0) = 1: with no free volume, the cell's fraction 1 / (1 + e) to the bit.
+  return std::exp(-free_volume_) / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction;
+}
+
 bool Rve::take_free_volume(Mat3& g) {
   if (params_.contact_loss != ContactLoss::disconnected) return false;
   // ln J of the increment: the cell's own kinematics (a product of I + L dt_DEM) give exp(g).
@@ -83,8 +88,7 @@ bool Rve::take_free_volume(Mat3& g) {
   // Held only below the disconnection fraction: a contact-free RVE denser than that is a dense
   // gas, in which a shear or a compression makes contacts at once (holding it loses its shear:
   // a dense column, held at phi ~ 0.63, flowed as a fluid).
-  if (!(free_volume_ > 0.0) && !(dv > 0.0 && active_contacts(sim_) == 0 &&
-                                 1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
+  if (!(free_volume_ > 0.0) && !(dv > 0.0 && active_contacts(sim_) == 0 && dilute())) {
     return false;
   }
   const double after = free_volume_ + dv;
@@ -265,10 +269,7 @@ double min_width(const PeriodicCell& cell) {
 }  // namespace
 
 bool Rve::spray_too_thin_after(const Mat3& g) const {
-  if (params_.contact_loss != ContactLoss::strained ||
-      !(1.0 / (1.0 + void_ratio(sim_)) < params_.disconnect_fraction)) {
-    return false;
-  }
+  if (params_.contact_loss != ContactLoss::strained || !dilute()) return false;
   PeriodicCell after = sim_.cell();
   after.h = (Mat3::Identity() + g) * after.h;
   // A tenth of margin: the cell runs through the product of (I + L dt_DEM), which differs from

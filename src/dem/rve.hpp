@@ -242,6 +242,10 @@ class Rve {
   /// ContactLoss::disconnected: ln of the material's volume over the cell's since the RVE lost its
   /// contacts (> 0: disconnected and held) [-]. Part of the state.
   [[nodiscard]] double free_volume() const { return free_volume_; }
+  /// A dilute material, a spray of grains: its solid fraction (the cell's, diluted by the free
+  /// volume of ContactLoss::disconnected) below disconnect_fraction. Its volume carries no lasting
+  /// force (docs/design/rve_step.md, "Contact loss").
+  [[nodiscard]] bool dilute() const;
 
  private:
   Rve(Simulation sim, const RveParams& params, double d50);

@@ -37,6 +37,8 @@ class DemMicro final : public MicroModel {
   /// Upper bound: sqrt(E / rho_s) with the contact modulus E and the solid density [m/s]
   /// (a packing is softer and lighter per volume than its grains' contacts suggest).
   [[nodiscard]] double wave_speed() const override;
+  /// dem::Rve::dilute: a solid fraction below dem.coupling.disconnect_fraction.
+  [[nodiscard]] bool dilute() const override { return rve_.dilute(); }
 
   static std::unique_ptr<MicroModel> load(const common::StateReader& reader);
   /// A MicroKind building the RVE of point id from packing_of(id) (e.g. one shared packing,

@@ -49,7 +49,7 @@ struct RveRecord {
   double wave_speed = 0.0;  ///< MicroModel::wave_speed after the step [m/s]
   double cpu_s = 0.0;       ///< CPU time of the thread that stepped it (the RVE's cost) [s]
   ErrorKind error = ErrorKind::none;  ///< the step failed: the text follows on request
-  std::int32_t reserved = 0;          ///< explicit padding (zero)
+  std::int32_t dilute = 0;            ///< MicroModel::dilute after the step (1) or not (0)
 };
 static_assert(std::is_trivially_copyable_v<RveRecord>);
 static_assert(sizeof(RveRecord) == 160 && sizeof(RveRecord) % sizeof(double) == 0);

@@ -211,6 +211,10 @@ class MicroModel {
   [[nodiscard]] virtual double cost_estimate() const = 0;
   /// Largest elastic wave speed of the RVE's continuum response (CFL bound) [m/s].
   [[nodiscard]] virtual double wave_speed() const = 0;
+  /// Whether the current state is a dilute material whose volume carries no lasting force (for
+  /// DEM, a spray of grains: dem::Rve::dilute). The MPM's blow-up bound on a point's volume does
+  /// not apply to it (mpm::MaterialModel::mark_dilute). Continuum models: never.
+  [[nodiscard]] virtual bool dilute() const { return false; }
 };
 
 inline MicroMeasures MicroMeasures::none() {

@@ -156,6 +156,7 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
   allgather_owned(comm_, init);
   std::vector<double> est(n, 0.0);
   wave_.assign(n, 0.0);
+  dilute_.assign(n, 0);
   reports_.assign(n, MicroReport{});
   stresses_.assign(n, common::Mat3::Zero());
   for (std::size_t k = 0; k < n; ++k) {
@@ -220,6 +221,13 @@ void RveFarm::update_stress(std::span<const std::int64_t> ids, std::span<const c
   ledger_.add_step_wall(now() - t0);
 }
 
+void RveFarm::mark_dilute(std::span<const std::int64_t> ids, std::span<std::uint8_t> dilute) const {
+  MPMXDEM_CHECK(rank_ == 0, "mark_dilute is called on rank 0 only");
+  MPMXDEM_CHECK(ids.size() == dilute.size() && points_.size() == ids.size() && points_.matches(ids),
+                "mark_dilute needs the ids of the last update_stress");
+  for (std::size_t p = 0; p < ids.size(); ++p) dilute[p] = dilute_[points_.rve_of(p)];
+}
+
 void RveFarm::exec_step(const CommandHeader& h, std::span<common::Mat3> stress) {
   const double dt = h.value;
   step_ = h.step;
@@ -244,6 +252,7 @@ void RveFarm::exec_step(const CommandHeader& h, std::span<common::Mat3> stress) 
                                      " Pa)");
       common::row_major_out(rec.stress) = s;
       rec.wave_speed = m.wave_speed();
+      rec.dilute = m.dilute() ? 1 : 0;
     } catch (const std::exception& e) {
       rec.error = current_error_kind();
       errors_[j] = e.what();
@@ -281,6 +290,7 @@ void RveFarm::collect_records(std::span<common::Mat3> stress) {
       stresses_[k] = common::row_major(rec.stress);
       reports_[k] = rec.report;
       wave_[k] = rec.wave_speed;
+      dilute_[k] = static_cast<std::uint8_t>(rec.dilute);
       ledger_.add_rve(k, rec.cpu_s);
       if (trace_) step_cpu_[k] = rec.cpu_s;
     }

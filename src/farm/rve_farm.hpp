@@ -86,6 +86,10 @@ class RveFarm final : public mpm::MaterialModel {
                      std::span<common::Mat3> stress) override;
   /// Largest wave speed over all RVEs as of their last step (or creation) [m/s].
   double wave_speed() const override { return wave_speed_; }
+  /// Rank 0 only, for the ids of the last update_stress: MicroModel::dilute of each point's RVE
+  /// after that step (0 before the first step).
+  void mark_dilute(std::span<const std::int64_t> ids,
+                   std::span<std::uint8_t> dilute) const override;
   /// Rank 0 only. Collective checkpoint (all ranks write one HDF5 file; see checkpoint.hpp).
   void checkpoint(const std::string& path, std::int64_t step, double time,
                   const std::string& job_text, const common::StateStore& mpm_state,
@@ -196,6 +200,7 @@ class RveFarm final : public mpm::MaterialModel {
   std::vector<MicroReport> reports_;    ///< rank 0, by index
   std::vector<common::Mat3> stresses_;  ///< rank 0, by index
   std::vector<double> wave_;            ///< rank 0, by index [m/s]
+  std::vector<std::uint8_t> dilute_;    ///< rank 0, by index: MicroModel::dilute after the step
   double wave_speed_ = 0.0;
   CostLedger ledger_;
   std::int64_t step_ = 0;

@@ -1,7 +1,8 @@
 // farm::SparedMicro: a MicroModel decorator that spares an RVE whose accumulated strain increment
 // since its last update is small: the stress is predicted with a tangent taken at that update,
 // and the accumulated increment is handed to the inner model (the DEM) in one step when it passes
-// the tolerance, after max_spared_steps, or at once where the prediction drifted (docs/design/sparing.md).
+// the tolerance, after max_spared_steps, or at once where the prediction drifted
+// (docs/design/sparing.md).
 #pragma once
 
 #include <cstdint>
@@ -47,7 +48,8 @@ inline constexpr auto kSparingOptions = common::make_table<SparingOptions>(
       common::Source::job_default,
       "Sparing of idle RVEs: an RVE whose strain increment accumulated since its last DEM update "
       "(Frobenius norm of the symmetric part of sum L dt) stays at or below this is not stepped; "
-      "its stress is predicted with a tangent (docs/design/sparing.md). 0: off, every RVE is stepped "
+      "its stress is predicted with a tangent (docs/design/sparing.md). 0: off, every RVE is "
+      "stepped "
       "every MPM step."},
      {"max_spared_steps", &SparingOptions::max_spared_steps, common::Unit::Dimensionless,
       common::in_cc(1, 1e6), common::Source::job_default,
@@ -90,6 +92,8 @@ class SparedMicro final : public MicroModel {
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override { return inner_->cost_estimate(); }
   [[nodiscard]] double wave_speed() const override { return inner_->wave_speed(); }
+  /// The wrapped model's state as of its last DEM step.
+  [[nodiscard]] bool dilute() const override { return inner_->dilute(); }
 
   /// Rebuilds a SparedMicro around inner_load(reader) with the spare/* fields of the reader
   /// (options from the caller: a restart may change them).

@@ -1,6 +1,8 @@
-// The seam between MPM and any constitutive model, the DEM farm included (docs/design/mpm.md, "Seam").
+// The seam between MPM and any constitutive model, the DEM farm included (docs/design/mpm.md,
+// "Seam").
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -23,6 +25,17 @@ class MaterialModel {
                              double dt, std::span<common::Mat3> stress) = 0;
   /// Largest elastic wave speed (m/s) for a CFL time step.
   virtual double wave_speed() const = 0;
+  /// For the points of the last update_stress call (`ids` as given there, in that order):
+  /// dilute[p] = 1 where the point's material is, after that update, a dilute material whose
+  /// volume carries no lasting force (a spray of grains that collide now and then), 0 elsewhere.
+  /// The solver's blow-up bound on a point's volume does not apply to those (docs/design/mpm.md,
+  /// "Blow-up guard"). Default: no point is.
+  /// @pre ids.size() == dilute.size()
+  virtual void mark_dilute(std::span<const std::int64_t> ids,
+                           std::span<std::uint8_t> dilute) const {
+    (void)ids;
+    std::fill(dilute.begin(), dilute.end(), std::uint8_t{0});
+  }
 };
 
 }  // namespace mpm

@@ -368,8 +368,10 @@ Energies Solver::energies() const {
 }
 
 void Solver::update_material_stress(double dt) {
+  dilute_.resize(points_.size());
   if (materials_.size() == 1) {
     materials_[0]->update_stress(points_.id, points_.L, dt, points_.stress);
+    materials_[0]->mark_dilute(points_.id, dilute_);
     return;
   }
   for (std::size_t k = 0; k < materials_.size(); ++k) {
@@ -383,10 +385,13 @@ void Solver::update_material_stress(double dt) {
     if (gather_ids_.empty()) continue;
     gather_stress_.resize(gather_ids_.size());
     materials_[k]->update_stress(gather_ids_, gather_L_, dt, gather_stress_);
+    gather_dilute_.resize(gather_ids_.size());
+    materials_[k]->mark_dilute(gather_ids_, gather_dilute_);
     std::size_t j = 0;
     for (std::size_t p = 0; p < points_.size(); ++p) {
-      if (static_cast<std::size_t>(points_.material[p]) == k)
-        points_.stress[p] = gather_stress_[j++];
+      if (static_cast<std::size_t>(points_.material[p]) != k) continue;
+      points_.stress[p] = gather_stress_[j];
+      dilute_[p] = gather_dilute_[j++];
     }
   }
 }
@@ -395,9 +400,10 @@ void Solver::check_points(double t_end) const {
   // Which points fail, in parallel; the first of them (in slot order) is reported below.
   const double vr = config_.max_volume_ratio;
   // A stress-free point may expand without bound: a disconnected material (a spray of grains,
-  // dem.coupling.contact_loss) whose volume carries no force; a stressed one has blown up.
+  // dem.coupling.contact_loss) whose volume carries no force; so may a dilute one, whose grains
+  // collide now and then (its material says so); a stressed, dense one has blown up.
   const auto too_large = [&](std::size_t p, double ratio) {
-    return ratio > vr && !points_.stress[p].isZero(0.0);
+    return ratio > vr && !points_.stress[p].isZero(0.0) && dilute_[p] == 0;
   };
   thread_local std::vector<std::uint8_t> bad;
   compute_terms(static_cast<std::int64_t>(points_.size()), bad, [&](std::int64_t q) {

@@ -95,7 +95,8 @@ struct SolverConfig {
   /// for tests that provoke a blow-up on purpose.
   bool refuse_unstable_dt = true;
   /// Blow-up guard: a point whose volume leaves [V0 / ratio, V0 * ratio] stops the run
-  /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1.
+  /// (common::NumericalError naming the step, time, point id and the ratio) [-]; > 1. A point
+  /// without stress, or whose material is dilute (MaterialModel::mark_dilute), may expand beyond.
   double max_volume_ratio = 10.0;
   /// Plane strain (docs/design/mpm.md, "Plane strain"): the thickness axis 0, 1 or 2 (-1: 3D). The
   /// grid must have exactly one cell along it; the nodal velocity along it is held at zero and the
@@ -334,6 +335,10 @@ class Solver {
   std::vector<std::int64_t> gather_ids_;
   std::vector<common::Mat3> gather_L_;
   std::vector<common::Mat3> gather_stress_;
+  std::vector<std::uint8_t> gather_dilute_;
+  /// By slot, from the last stress update: the point's material is dilute
+  /// (MaterialModel::mark_dilute), exempt from the upper volume bound of check_points.
+  std::vector<std::uint8_t> dilute_;
   std::vector<std::pair<std::int64_t, std::int64_t>> smoothing_scratch_;  ///< (cell, point)
   XpicScratch xpic_scratch_;                 ///< xpic_velocity's work arrays
   std::vector<common::Vec3> xpic_velocity_;  ///< V* of XPIC(m) on the grid [m/s]

@@ -245,6 +245,43 @@ TEST(ContactLoss, StrainedSprayStretchedBeyondItsCellKeepsItsShape) {
   EXPECT_NEAR(std::log(cell.volume() / v0), 0.0, 5e-3);
 }
 
+// dilute(): a solid fraction below disconnect_fraction, the material's (a held RVE's free volume
+// counted), whatever the contacts: the dense packing is not, its spray is, on either side of the
+// fraction to the bit.
+TEST(ContactLoss, ASprayIsDiluteThePackingNot) {
+  const dem::RveParams strained = params(dem::RveRate::material, dem::ContactLoss::strained);
+  EXPECT_FALSE(dem::Rve(dem_test::reference_packing(), strained).dilute());
+  dem::Rve spray = without_contacts(dem::ContactLoss::strained);
+  EXPECT_TRUE(spray.dilute());
+  const double phi = solid_fraction(spray);
+  dem::RveParams p = strained;
+  p.disconnect_fraction = std::nextafter(phi, 1.0);
+  EXPECT_TRUE(dem::Rve::from_simulation(spray.simulation(), p).dilute());
+  p.disconnect_fraction = phi;
+  EXPECT_FALSE(dem::Rve::from_simulation(spray.simulation(), p).dilute());
+  // Held with free volume f: its cell (fraction phi_c) does not move, the material it stands for
+  // (phi_c exp(-f)) dilutes on. With the fraction between the two, the material's decides.
+  dem::Rve held = without_contacts(dem::ContactLoss::disconnected);
+  for (int k = 0; k < 5; ++k) (void)held.step(Mat3::Identity() * 1e4, 1e-6);
+  const double f = held.free_volume();
+  ASSERT_NEAR(f, 5 * 0.03, 1e-12);
+  common::StateStore saved;
+  held.save(saved);
+  common::StateStore edited;  // the same state with disconnect_fraction = phi_c exp(-f / 2)
+  const double between = solid_fraction(held) * std::exp(-0.5 * f);
+  for (const auto& [name, field] : saved.fields()) {
+    if (name == "rve/params/disconnect_fraction") {
+      edited.write(name, std::span<const double>(&between, 1));
+      continue;
+    }
+    std::visit([&, &name = name](const auto& v) { edited.write(name, std::span(v)); }, field);
+  }
+  const dem::Rve back = dem::Rve::load(edited);
+  ASSERT_EQ(back.params().disconnect_fraction, between);
+  EXPECT_GT(solid_fraction(back), between);  // the cell alone would not be dilute
+  EXPECT_TRUE(back.dilute());
+}
+
 // A state written before the keys existed continues as it ran: coupling rate, strained cell.
 TEST(ContactLoss, StateWithoutTheKeysContinuesAsBefore) {
   dem::Rve rve(dem_test::reference_packing(),

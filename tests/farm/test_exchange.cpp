@@ -1,5 +1,5 @@
-// Unit tests of the farm's wire records (farm/exchange.hpp): sizes as docs/design/farm.md states them, and
-// a record that survives the byte copy of the wire bit for bit.
+// Unit tests of the farm's wire records (farm/exchange.hpp): sizes as docs/design/farm.md states
+// them, and a record that survives the byte copy of the wire bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,8 +12,8 @@
 
 namespace {
 
-// The figures of docs/design/farm.md ("Protocol"): a 24-byte header, 160-byte records, 120-byte start-up
-// records. A new field changes these sizes: update the docs with them.
+// The figures of docs/design/farm.md ("Protocol"): a 24-byte header, 160-byte records, 120-byte
+// start-up records. A new field changes these sizes: update the docs with them.
 TEST(Exchange, RecordSizesAreThoseTheDocsState) {
   EXPECT_EQ(sizeof(farm::CommandHeader), 24u);
   EXPECT_EQ(sizeof(farm::RveRecord), 160u);
@@ -62,6 +62,7 @@ TEST(Exchange, RecordRoundTripsThroughBytesBitForBit) {
   a.wave_speed = 336.0;
   a.cpu_s = 0.125;
   a.error = farm::ErrorKind::numerical;
+  a.dilute = 1;
   std::vector<double> wire(sizeof a / sizeof(double));
   std::memcpy(wire.data(), &a, sizeof a);
   farm::RveRecord b;
@@ -76,6 +77,7 @@ TEST(Exchange, RecordRoundTripsThroughBytesBitForBit) {
   EXPECT_EQ(b.report.wall_s, a.report.wall_s);
   EXPECT_EQ(b.error, farm::ErrorKind::numerical);
   EXPECT_EQ(b.cpu_s, 0.125);
+  EXPECT_EQ(b.dilute, 1);
 }
 
 }  // namespace

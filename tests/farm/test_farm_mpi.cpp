@@ -332,6 +332,74 @@ TEST(Farm, MigrationKeepsResults) {
   }
 }
 
+namespace {
+
+/// An ElasticMicro that says it is dilute when its id is odd (a stand-in for a DEM spray).
+class OddDiluteMicro final : public farm::MicroModel {
+ public:
+  OddDiluteMicro(std::unique_ptr<farm::MicroModel> inner, std::int64_t id)
+      : inner_(std::move(inner)), id_(id) {}
+  farm::MicroReport step(const common::Mat3& L, double dt) override { return inner_->step(L, dt); }
+  [[nodiscard]] common::Mat3 stress() const override { return inner_->stress(); }
+  [[nodiscard]] farm::MicroReport report() const override { return inner_->report(); }
+  [[nodiscard]] farm::MicroMeasures measures() const override { return inner_->measures(); }
+  void save(common::StateWriter& w) const override { inner_->save(w); }
+  [[nodiscard]] double cost_estimate() const override { return inner_->cost_estimate(); }
+  [[nodiscard]] double wave_speed() const override { return inner_->wave_speed(); }
+  [[nodiscard]] bool dilute() const override { return id_ % 2 == 1; }
+
+ private:
+  std::unique_ptr<farm::MicroModel> inner_;
+  std::int64_t id_;
+};
+
+farm::MicroKind odd_dilute_kind() {
+  farm::MicroKind k;
+  const farm::MicroKind inner = mixed_elastic_kind();
+  k.create = [inner](std::int64_t id) -> std::unique_ptr<farm::MicroModel> {
+    return std::make_unique<OddDiluteMicro>(inner.create(id), id);
+  };
+  k.load = [](const common::StateReader& r) -> std::unique_ptr<farm::MicroModel> {
+    return std::make_unique<OddDiluteMicro>(farm::ElasticMicro::load(r),
+                                            common::read_scalar_i64(r, "elastic/id"));
+  };
+  return k;
+}
+
+}  // namespace
+
+// mark_dilute answers, for the points of the last step in the solver's order, what each point's
+// RVE said after that step on whichever rank stepped it: the same before and after a migration.
+TEST(Farm, DiluteRvesAreMarkedByPoint) {
+  const std::int64_t n_rve = 10;
+  std::vector<std::int64_t> ids(n_rve);
+  std::vector<common::Vec3> x(n_rve);
+  for (std::int64_t k = 0; k < n_rve; ++k) {
+    ids[static_cast<std::size_t>(k)] = 3 * k + 1;  // 1, 4, 7, ...: odd and even ids
+    x[static_cast<std::size_t>(k)] = common::Vec3(0.05 * static_cast<double>(k), 0.5, 0.5);
+  }
+  const mpm::Grid grid{common::Vec3::Zero(), common::Vec3::Ones(), common::Vec3i(2, 1, 1)};
+  farm::RveFarm f(MPI_COMM_WORLD, odd_dilute_kind(), ids, x, grid, {});
+  if (world_rank() == 0) {
+    const std::vector<std::int64_t> order{7, 4, 1, 28, 25, 22, 19, 16, 13, 10};
+    const std::vector<common::Mat3> L(order.size(), 0.01 * common::Mat3::Identity());
+    std::vector<common::Mat3> stress(order.size());
+    for (int round = 0; round < 2; ++round) {
+      f.update_stress(order, L, 1e-3, stress);
+      std::vector<std::uint8_t> dilute(order.size(), 7);
+      f.mark_dilute(order, dilute);
+      for (std::size_t p = 0; p < order.size(); ++p)
+        EXPECT_EQ(dilute[p], order[p] % 2 == 1 ? 1 : 0) << "RVE id " << order[p];
+      std::vector<int> owner = f.owner();
+      for (int& o : owner) o = (o + 1) % f.size();
+      f.migrate_to(owner);
+    }
+    f.stop();
+  } else {
+    f.serve();
+  }
+}
+
 // An RVE failure on any rank stops the job on every rank with the RVE id, the step and the cause;
 // nothing is left hanging, and no checkpoint is written after the failure.
 TEST(Farm, RveFailureStopsEveryRank) {

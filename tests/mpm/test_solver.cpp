@@ -226,6 +226,55 @@ TEST(Solver, AStressFreePointMayExpandBeyondTheBlowUpBound) {
   expect_message([&] { c.run(200); }, {"volume / initial volume = 0.", "outside [1/1.1, 1.1]"});
 }
 
+// A material that keeps a small pressure (a spray whose grains collide now and then) and says
+// whether it is dilute (MaterialModel::mark_dilute).
+class SprayMaterial : public mpm::MaterialModel {
+ public:
+  explicit SprayMaterial(bool dilute) : dilute_(dilute) {}
+  void update_stress(std::span<const std::int64_t> /*ids*/, std::span<const common::Mat3> /*L*/,
+                     double /*dt*/, std::span<common::Mat3> stress) override {
+    for (auto& s : stress) s = -0.0625 * common::Mat3::Identity();  // 1/16 Pa: exact in binary
+  }
+  [[nodiscard]] double wave_speed() const override { return 10.0; }
+  void mark_dilute(std::span<const std::int64_t> /*ids*/,
+                   std::span<std::uint8_t> dilute) const override {
+    std::fill(dilute.begin(), dilute.end(), static_cast<std::uint8_t>(dilute_ ? 1 : 0));
+  }
+
+ private:
+  bool dilute_;
+};
+
+// A dilute point with a stress expands beyond the bound without stopping the run (its volume
+// carries no lasting force); the same stress on a point that is not dilute stops it, and so does a
+// dilute point compressed below V0 / ratio.
+TEST(Solver, ADilutePointMayExpandBeyondTheBlowUpBound) {
+  mpm::SolverConfig cfg = small_config(mpm::ShapeKind::linear);
+  cfg.gravity = Vec3::Zero();
+  cfg.max_volume_ratio = 1.1;
+  const auto block = [&](double rate) {
+    mpm::MaterialPoints pts = small_block(cfg.grid);
+    for (std::size_t p = 0; p < pts.size(); ++p)
+      pts.v[p] = rate * (pts.x[p] - Vec3(0.75, 0.6, 0.9));
+    return pts;
+  };
+  SprayMaterial spray(true);
+  mpm::Solver s(cfg, block(0.2), {&spray});
+  s.run(200);
+  double largest = 0.0;
+  for (std::size_t p = 0; p < s.points().size(); ++p) {
+    largest = std::max(largest, s.points().volume[p] / s.points().volume0[p]);
+    EXPECT_FALSE(s.points().stress[p].isZero(0.0));
+  }
+  EXPECT_GT(largest, 1.1);
+  SprayMaterial dense(false);
+  mpm::Solver d(cfg, block(0.2), {&dense});
+  expect_message([&] { d.run(200); }, {"volume / initial volume = 1.", "outside [1/1.1, 1.1]",
+                                       "its pressure 0.0625 Pa"});
+  mpm::Solver c(cfg, block(-0.2), {&spray});
+  expect_message([&] { c.run(200); }, {"volume / initial volume = 0.", "outside [1/1.1, 1.1]"});
+}
+
 // A material that fails at its third update, as an RVE of the farm may.
 class FailingMaterial : public mpm::MaterialModel {
  public:
