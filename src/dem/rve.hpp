@@ -244,7 +244,7 @@ class Rve {
   [[nodiscard]] double free_volume() const { return free_volume_; }
   /// A dilute material, a spray of grains: its solid fraction (the cell's, diluted by the free
   /// volume of ContactLoss::disconnected) below disconnect_fraction. Its volume carries no lasting
-  /// force (docs/design/rve_step.md, "Contact loss").
+  /// force (docs/design/rve_step.md, "An RVE without contacts").
   [[nodiscard]] bool dilute() const;
 
  private:

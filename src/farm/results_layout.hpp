@@ -1,6 +1,6 @@
 // results.h5's layout (internal to src/farm/results*.cpp): the table of its series with their
-// units and descriptions, the attributes, and small HDF5 helpers of the writer.
-// docs/design/farm.md, "Outputs".
+// units and descriptions, the attributes, and small HDF5 helpers of the writer. docs/design/farm.md,
+// "Outputs".
 #pragma once
 
 #include <hdf5.h>

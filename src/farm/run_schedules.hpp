@@ -59,8 +59,7 @@ class BalanceSchedule {
   /// Share of the run the proposals may take (METIS dominates them; the incremental one takes
   /// 0.3-12 % of its time from 256 parts on): after a check whose proposals took m seconds with
   /// steps of s seconds, the next check waits max(check_every, m / (kMetisShare s)) steps
-  /// (docs/validation/scaling.md, finding 3: 0.25 s of METIS at 10^4 RVEs on 1024 parts is 12-17
-  /// steps).
+  /// (docs/validation/scaling.md, finding 3: 0.25 s of METIS at 10^4 RVEs on 1024 parts is 12-17 steps).
   static constexpr double kMetisShare = 0.01;
   BalanceSchedule(const BalanceOptions& options, int nranks) : options_(options), nranks_(nranks) {}
   [[nodiscard]] bool due(std::int64_t step) const {

@@ -1,8 +1,7 @@
 // farm::SparedMicro: a MicroModel decorator that spares an RVE whose accumulated strain increment
 // since its last update is small: the stress is predicted with a tangent taken at that update,
 // and the accumulated increment is handed to the inner model (the DEM) in one step when it passes
-// the tolerance, after max_spared_steps, or at once where the prediction drifted
-// (docs/design/sparing.md).
+// the tolerance, after max_spared_steps, or at once where the prediction drifted (docs/design/sparing.md).
 #pragma once
 
 #include <cstdint>
@@ -48,8 +47,7 @@ inline constexpr auto kSparingOptions = common::make_table<SparingOptions>(
       common::Source::job_default,
       "Sparing of idle RVEs: an RVE whose strain increment accumulated since its last DEM update "
       "(Frobenius norm of the symmetric part of sum L dt) stays at or below this is not stepped; "
-      "its stress is predicted with a tangent (docs/design/sparing.md). 0: off, every RVE is "
-      "stepped "
+      "its stress is predicted with a tangent (docs/design/sparing.md). 0: off, every RVE is stepped "
       "every MPM step."},
      {"max_spared_steps", &SparingOptions::max_spared_steps, common::Unit::Dimensionless,
       common::in_cc(1, 1e6), common::Source::job_default,

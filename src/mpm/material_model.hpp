@@ -1,5 +1,4 @@
-// The seam between MPM and any constitutive model, the DEM farm included (docs/design/mpm.md,
-// "Seam").
+// The seam between MPM and any constitutive model, the DEM farm included (docs/design/mpm.md, "Seam").
 #pragma once
 
 #include <algorithm>
@@ -28,8 +27,8 @@ class MaterialModel {
   /// For the points of the last update_stress call (`ids` as given there, in that order):
   /// dilute[p] = 1 where the point's material is, after that update, a dilute material whose
   /// volume carries no lasting force (a spray of grains that collide now and then), 0 elsewhere.
-  /// The solver's blow-up bound on a point's volume does not apply to those (docs/design/mpm.md,
-  /// "Blow-up guard"). Default: no point is.
+  /// The solver's blow-up bound on a point's volume does not apply to those
+  /// (docs/design/rve_step.md, "An RVE without contacts"). Default: no point is.
   /// @pre ids.size() == dilute.size()
   virtual void mark_dilute(std::span<const std::int64_t> ids,
                            std::span<std::uint8_t> dilute) const {

@@ -1,5 +1,5 @@
-// Unit tests of the farm's wire records (farm/exchange.hpp): sizes as docs/design/farm.md states
-// them, and a record that survives the byte copy of the wire bit for bit.
+// Unit tests of the farm's wire records (farm/exchange.hpp): sizes as docs/design/farm.md states them, and
+// a record that survives the byte copy of the wire bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,8 +12,8 @@
 
 namespace {
 
-// The figures of docs/design/farm.md ("Protocol"): a 24-byte header, 160-byte records, 120-byte
-// start-up records. A new field changes these sizes: update the docs with them.
+// The figures of docs/design/farm.md ("Protocol"): a 24-byte header, 160-byte records, 120-byte start-up
+// records. A new field changes these sizes: update the docs with them.
 TEST(Exchange, RecordSizesAreThoseTheDocsState) {
   EXPECT_EQ(sizeof(farm::CommandHeader), 24u);
   EXPECT_EQ(sizeof(farm::RveRecord), 160u);
