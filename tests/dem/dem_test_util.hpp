@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "common/state_store.hpp"
 #include "dem/packing_io.hpp"
 #include "dem/params.hpp"
 #include "dem/reference_material.hpp"
@@ -29,7 +32,8 @@ inline std::string reference_packing_path() {
 inline dem::Packing reference_packing() { return dem::read_packing(reference_packing_path()); }
 
 /// YADE's consolidation of the reference packing with the Hertz-Mindlin reference material
-/// (tools/mpmxdem_tools/references/yade_triax_hertz_mindlin.py; the packing of jobs/triaxial_dem_hertz_mindlin.toml).
+/// (tools/mpmxdem_tools/references/yade_triax_hertz_mindlin.py; the packing of
+/// jobs/triaxial_dem_hertz_mindlin.toml).
 inline dem::Packing hertz_mindlin_packing() {
   return dem::read_packing(MPMXDEM_SOURCE_DIR "/jobs/packings/packing_N1000_hertz_mindlin.txt");
 }
@@ -87,6 +91,16 @@ inline void measure_pair(const dem::Simulation& sim, double r1, double r2, doubl
     got[11] = pr.kn;
     got[12] = pr.ks;
   }
+}
+
+/// A copy of `s` without the fields whose names start with `prefix`.
+inline common::StateStore copy_without(const common::StateStore& s, const std::string& prefix) {
+  common::StateStore out;
+  for (const auto& [name, field] : s.fields()) {
+    if (name.rfind(prefix, 0) == 0) continue;
+    std::visit([&out, &name](const auto& v) { out.write(name, std::span(v)); }, field);
+  }
+  return out;
 }
 
 }  // namespace dem_test

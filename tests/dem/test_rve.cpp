@@ -249,15 +249,6 @@ TEST(Rve, CriticalDtIsComputedAnewWhenContactsGrow) {
   EXPECT_GT(kept, 0);
 }
 
-common::StateStore copy_without(const common::StateStore& s, const std::string& prefix) {
-  common::StateStore out;
-  for (const auto& [name, field] : s.fields()) {
-    if (name.rfind(prefix, 0) == 0) continue;
-    std::visit([&out, &name](const auto& v) { out.write(name, std::span(v)); }, field);
-  }
-  return out;
-}
-
 dem::Rve stepped_with_kept_dt(int steps) {
   dem::RveParams p = params();
   p.dt_refresh = 7;
@@ -292,12 +283,13 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
   EXPECT_EQ(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)), 0);
 
   // A state of before (DEM state version 3, without rve/dt_refresh and rve/dt_cache/*).
-  const dem::Rve c = dem::Rve::load(copy_without(dem_test::as_former_version(store, 3), "rve/dt_"));
+  const dem::Rve c =
+      dem::Rve::load(dem_test::copy_without(dem_test::as_former_version(store, 3), "rve/dt_"));
   EXPECT_EQ(c.params().dt_refresh, 1);
   EXPECT_EQ(c.dt_cache().critical_dt, 0.0);
 
   // A cached value that cannot be: refused, naming the fields.
-  common::StateStore bad = copy_without(store, "rve/dt_cache/critical_dt");
+  common::StateStore bad = dem_test::copy_without(store, "rve/dt_cache/critical_dt");
   bad.write("rve/dt_cache/critical_dt", std::span<const double>(std::vector<double>{-1.0}));
   try {
     (void)dem::Rve::load(bad);
@@ -306,7 +298,7 @@ TEST(Rve, SaveLoadWithKeptCriticalDtContinuesBitForBit) {
     EXPECT_NE(std::string(e.what()).find("rve/dt_cache"), std::string::npos) << e.what();
   }
   // A contact count beyond the state's pairs (its growth test multiplies it): refused too.
-  common::StateStore many = copy_without(store, "rve/dt_cache/contacts");
+  common::StateStore many = dem_test::copy_without(store, "rve/dt_cache/contacts");
   many.write("rve/dt_cache/contacts", std::span<const std::int64_t>(std::vector<std::int64_t>{
                                           std::numeric_limits<std::int64_t>::max()}));
   EXPECT_THROW((void)dem::Rve::load(many), common::InputError);
@@ -364,7 +356,7 @@ TEST(Rve, CarriedEndForcesContinueBitForBitAfterSaveLoad) {
   }
   expect_same_stress_and_positions(a, b);
   // Carried forces in a state that does not carry them cannot be: refused, naming the fields.
-  common::StateStore bad = copy_without(store, "rve/params/end_forces");
+  common::StateStore bad = dem_test::copy_without(store, "rve/params/end_forces");
   bad.write("rve/params/end_forces", std::span<const std::int64_t>(std::vector<std::int64_t>{0}));
   try {
     (void)dem::Rve::load(bad);
@@ -374,8 +366,9 @@ TEST(Rve, CarriedEndForcesContinueBitForBitAfterSaveLoad) {
   }
   // A state of before the key (DEM state version 3, without rve/carry_end_forces) loads as
   // "separate".
-  const dem::Rve old = dem::Rve::load(copy_without(
-      copy_without(dem_test::as_former_version(store, 3), "rve/carry_end_forces"), "rve/forces_"));
+  const dem::Rve old = dem::Rve::load(dem_test::copy_without(
+      dem_test::copy_without(dem_test::as_former_version(store, 3), "rve/carry_end_forces"),
+      "rve/forces_"));
   EXPECT_FALSE(old.params().carry_end_forces);
 }
 
