@@ -14,7 +14,12 @@ Modes:
                    and DATA/STEM_fronts05.csv (column_fronts --analyse; a run kept before that tool
                    has none: its fronts during the flow are shown as -), or a
                    YADE tag with YADE/TAG_timeseries.csv, _summary.csv and _profiles.csv
-  --self-test      checks the first-crossing time on a synthetic series
+  --back ITEM...   one row per ITEM (as --table) on what stands at the back wall at the end: H_f / H0
+                   (the top of the bin at the wall), the width from the wall over which the deposit
+                   stands at 0.95 H0 or more (in L0 and, for MPM x DEM, in spacings of its points),
+                   the mean height over x < L0/4 (the mass kept at the back) and the height at L0/4
+  --self-test      checks the first-crossing time on a synthetic series and the standing width on
+                   a synthetic profile
 
 Usage: tools/mpmxdem-tools column_onset [--data D] [--yade Y] MODE. Defaults: D =
 docs/data/column_collapse_mpm_grain_scale, Y = docs/data/column_collapse_yade. Standard library only.
@@ -79,12 +84,51 @@ def table(items, data, yade):
     return "\n".join(lines)
 
 
+def standing_width(xs, hs, level):
+    """How far from the wall (x = 0) the profile (bin centres xs, heights hs) stays at level or
+    above: the outer edge of the last such bin of the run that starts at the wall (0 if none)."""
+    width = 0.0
+    for k, (x, h) in enumerate(zip(xs, hs)):
+        if h < level:
+            break
+        width = x + (xs[1] - xs[0] if k == 0 and len(xs) > 1 else x - xs[k - 1]) / 2
+    return width
+
+
+def back(item, data, yade):
+    """(label, H_f / H0, standing width / L0, the same in point spacings or None, mean h / H0 over
+    x < L0/4, h / H0 at L0/4) of one item."""
+    stem, _, label = item.partition("=")
+    mpm = os.path.exists(os.path.join(data, f"{stem}_timeseries.csv"))
+    folder = data if mpm else yade
+    s = cgs.read_csv(os.path.join(folder, f"{stem}_summary.csv"))[0]
+    L0, H0 = float(s["L0_m"]), float(s["H0_m"])
+    xs, hs = cgs.final_profile(os.path.join(folder, f"{stem}_profiles.csv"))
+    width = standing_width(xs, hs, 0.95 * H0)
+    cells = width / float(s["cell_m"]) if mpm else None
+    return (label or stem, float(s["Hf_over_H0"]), width / L0, cells,
+            cgs.back_mass_height((xs, hs), L0, H0), cgs.interp(L0 / 4, xs, hs) / H0)
+
+
+def back_table(items, data, yade):
+    lines = ["| column | H_f/H0 | standing at >= 0.95 H0 from the wall: width / L0 (point spacings) "
+             "| mean h/H0 over x < L0/4 | h/H0 at L0/4 |", "|---|---|---|---|---|"]
+    for item in items:
+        label, hf, width, cells, mean, quarter = back(item, data, yade)
+        in_cells = "" if cells is None else f" ({cells:.1f})"
+        lines.append(f"| {label} | {hf:.2f} | {width:.3f}{in_cells} | {mean:.2f} | {quarter:.2f} |")
+    return "\n".join(lines)
+
+
 def self_test():
     """A kinetic energy growing as t^2 / 100 reaches 0.01 at t = 1; one that stays below never does."""
     ts = [0.1 * i for i in range(40)]
     got = first_reaching(ts, [t * t / 100.0 for t in ts], KE_LEVEL)
     assert got is not None and abs(got - 1.0) < 0.01, got
     assert first_reaching(ts, [1e-4] * len(ts), KE_LEVEL) is None
+    xs = [0.5 + k for k in range(10)]  # bins of width 1 from the wall
+    assert standing_width(xs, [1.0, 1.0, 0.97, 0.5] + [1.0] * 6, 0.95) == 3.0  # the run at the wall only
+    assert standing_width(xs, [0.9] + [1.0] * 9, 0.95) == 0.0
     print("column_onset self-test: ok")
 
 
@@ -93,12 +137,15 @@ def main():
     ap.add_argument("--data", default=os.path.join(ROOT, "docs", "data", "column_collapse_mpm_grain_scale"))
     ap.add_argument("--yade", default=os.path.join(ROOT, "docs", "data", "column_collapse_yade"))
     ap.add_argument("--table", nargs="+", metavar="ITEM")
+    ap.add_argument("--back", nargs="+", metavar="ITEM")
     ap.add_argument("--self-test", action="store_true")
     args = ap.parse_args()
     if args.self_test:
         self_test()
     elif args.table:
         print(table(args.table, args.data, args.yade))
+    elif args.back:
+        print(back_table(args.back, args.data, args.yade))
     else:
         ap.print_usage()
         sys.exit(2)
