@@ -52,11 +52,16 @@ def number(value):
     return "-" if math.isnan(value) else f"{value:.2f}"
 
 
-def series(item, data, yade):
-    """(label, times, kinetic energies, fronts at 1/2/3 t* and the end, H_f / H0) of one item."""
+def locate(item, data, yade):
+    """(stem, label, whether it is an MPM x DEM run, its folder) of an ITEM, STEM or STEM=LABEL."""
     stem, _, label = item.partition("=")
     mpm = os.path.exists(os.path.join(data, f"{stem}_timeseries.csv"))
-    folder = data if mpm else yade
+    return stem, label, mpm, data if mpm else yade
+
+
+def series(item, data, yade):
+    """(label, times, kinetic energies, fronts at 1/2/3 t* and the end, H_f / H0) of one item."""
+    stem, label, mpm, folder = locate(item, data, yade)
     rows = cgs.read_csv(os.path.join(folder, f"{stem}_timeseries.csv"))
     hf = float(cgs.read_csv(os.path.join(folder, f"{stem}_summary.csv"))[0]["Hf_over_H0"])
     fronts = column_fronts.profile_fronts(folder, stem)
@@ -85,28 +90,28 @@ def table(items, data, yade):
 
 
 def standing_width(xs, hs, level):
-    """How far from the wall (x = 0) the profile (bin centres xs, heights hs) stays at level or
-    above: the outer edge of the last such bin of the run that starts at the wall (0 if none)."""
+    """How far from the wall (x = 0) the profile (centres xs of equal bins, heights hs) stays at
+    level or above: the outer edge of the last such bin of the run that starts at the wall (0 if
+    none)."""
+    half = (xs[1] - xs[0]) / 2 if len(xs) > 1 else xs[0]
     width = 0.0
-    for k, (x, h) in enumerate(zip(xs, hs)):
+    for x, h in zip(xs, hs):
         if h < level:
             break
-        width = x + (xs[1] - xs[0] if k == 0 and len(xs) > 1 else x - xs[k - 1]) / 2
+        width = x + half
     return width
 
 
 def back(item, data, yade):
     """(label, H_f / H0, standing width / L0, the same in point spacings or None, mean h / H0 over
     x < L0/4, h / H0 at L0/4) of one item."""
-    stem, _, label = item.partition("=")
-    mpm = os.path.exists(os.path.join(data, f"{stem}_timeseries.csv"))
-    folder = data if mpm else yade
+    stem, label, mpm, folder = locate(item, data, yade)
     s = cgs.read_csv(os.path.join(folder, f"{stem}_summary.csv"))[0]
     L0, H0 = float(s["L0_m"]), float(s["H0_m"])
     xs, hs = cgs.final_profile(os.path.join(folder, f"{stem}_profiles.csv"))
     width = standing_width(xs, hs, 0.95 * H0)
-    cells = width / float(s["cell_m"]) if mpm else None
-    return (label or stem, float(s["Hf_over_H0"]), width / L0, cells,
+    spacings = width / float(s["cell_m"]) if mpm else None
+    return (label or stem, float(s["Hf_over_H0"]), width / L0, spacings,
             cgs.back_mass_height((xs, hs), L0, H0), cgs.interp(L0 / 4, xs, hs) / H0)
 
 
@@ -114,9 +119,9 @@ def back_table(items, data, yade):
     lines = ["| column | H_f/H0 | standing at >= 0.95 H0 from the wall: width / L0 (point spacings) "
              "| mean h/H0 over x < L0/4 | h/H0 at L0/4 |", "|---|---|---|---|---|"]
     for item in items:
-        label, hf, width, cells, mean, quarter = back(item, data, yade)
-        in_cells = "" if cells is None else f" ({cells:.1f})"
-        lines.append(f"| {label} | {hf:.2f} | {width:.3f}{in_cells} | {mean:.2f} | {quarter:.2f} |")
+        label, hf, width, spacings, mean, quarter = back(item, data, yade)
+        in_spacings = "" if spacings is None else f" ({spacings:.1f})"
+        lines.append(f"| {label} | {hf:.2f} | {width:.3f}{in_spacings} | {mean:.2f} | {quarter:.2f} |")
     return "\n".join(lines)
 
 
