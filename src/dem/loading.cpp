@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -296,15 +297,68 @@ Packing make_cloud(const Psd& psd, std::int64_t n, double solid, std::uint64_t s
   return place_spheres(r, std::cbrt(vs / solid), gen);
 }
 
-std::int64_t prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe) {
+namespace {
+
+// One compaction of `sim` at `friction_deg`; returns the DEM steps.
+std::int64_t compact(Simulation& sim, double friction_deg, const EquilibriumTarget& comp,
+                     const CheckObserver& observe) {
+  sim.set_friction_deg(friction_deg, true);
+  return equilibrate(sim, comp, observe);
+}
+
+// Towards prep.void_ratio: bisection on the compaction friction in [0, friction_comp_deg] (a
+// lower friction gives a denser packing), each trial a compaction of the cloud `sim` holds; `sim`
+// ends as the trial within the tolerance, or the closest one.
+Prepared compact_to_void_ratio(Simulation& sim, const Preparation& prep,
+                               const EquilibriumTarget& comp, const CheckObserver& observe) {
+  const Simulation cloud = sim;
+  Prepared out;
+  out.reached = false;
+  double lo = 0.0;
+  double hi = prep.friction_comp_deg;
+  double f = hi;
+  double best = std::numeric_limits<double>::infinity();
+  while (out.compactions < kMaxCompactions) {
+    Simulation trial = cloud;
+    out.steps += compact(trial, f, comp, observe);
+    ++out.compactions;
+    const double e = void_ratio(trial);
+    const double miss = std::abs(e - prep.void_ratio);
+    if (miss < best) {
+      best = miss;
+      out.friction_deg = f;
+      out.compacted_void_ratio = e;
+      sim = std::move(trial);
+    }
+    if (miss <= prep.void_ratio_tol) {
+      out.reached = true;
+      break;
+    }
+    if (out.compactions == 1 && e < prep.void_ratio) break;  // denser at friction_comp_deg
+    (e > prep.void_ratio ? hi : lo) = f;
+    f = 0.5 * (lo + hi);
+  }
+  return out;
+}
+
+}  // namespace
+
+Prepared prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe) {
   const double phi = sim.law().material().friction_deg;
-  sim.set_friction_deg(prep.friction_comp_deg, true);
   EquilibriumTarget comp = prep.target;
   comp.max_rate = prep.compaction_rate;
-  std::int64_t steps = equilibrate(sim, comp, observe);
+  Prepared out;
+  if (prep.void_ratio > 0.0) {
+    out = compact_to_void_ratio(sim, prep, comp, observe);
+  } else {
+    out.friction_deg = prep.friction_comp_deg;
+    out.steps = compact(sim, out.friction_deg, comp, observe);
+    out.compacted_void_ratio = void_ratio(sim);
+    out.compactions = 1;
+  }
   sim.set_friction_deg(phi, true);
-  steps += equilibrate(sim, prep.target, observe);
-  return steps;
+  out.steps += equilibrate(sim, prep.target, observe);
+  return out;
 }
 
 }  // namespace dem

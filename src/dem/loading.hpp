@@ -133,6 +133,10 @@ struct Psd {
 /// target.max_rate) from dem.preparation.inertial_number.
 struct Preparation {
   double friction_comp_deg = 1.0;  ///< friction during compaction [deg]
+  /// Target void ratio [-]; 0: none. Above 0 the compaction friction is searched for in
+  /// [0, friction_comp_deg] until the compacted void ratio is within void_ratio_tol (prepare()).
+  double void_ratio = 0.0;
+  double void_ratio_tol = 0.003;   ///< absolute tolerance on void_ratio [-]
   EquilibriumTarget target;        ///< target pressure and tolerances
   double compaction_rate = 10.0;   ///< strain-rate bound while compacting [1/s]
 };
@@ -142,6 +146,16 @@ inline constexpr auto kPreparation = common::make_table<Preparation>(
     "dem::Preparation", "dem.preparation",
     {{"friction_angle", &Preparation::friction_comp_deg, Unit::Angle, common::in_co(0, 90),
       Source::job_required, "Friction angle during compaction (controls the void ratio)."},
+     {"void_ratio", &Preparation::void_ratio, Unit::Dimensionless, common::gt(0),
+      Source::job_optional,
+      "Target void ratio of a generated sample: the compaction friction is searched for between "
+      "0 and friction_angle (bisection, each trial a compaction of the same cloud, at most 16) "
+      "until the compacted void ratio is within void_ratio_tolerance; friction_angle must give a "
+      "looser packing. Absent: the compaction at friction_angle alone."},
+     {"void_ratio_tolerance", &Preparation::void_ratio_tol, Unit::Dimensionless,
+      common::in_oo(0, 1), Source::job_default,
+      "Absolute tolerance on void_ratio (a compaction of 100 spheres is chaotic: its void ratio "
+      "scatters by about 0.01 between nearby frictions, so a few trials land within 0.003)."},
      {"compaction_rate", &Preparation::compaction_rate, Unit::Rate, common::gt(0), Source::cpp_only,
       "Strain-rate bound while compacting."}});
 
@@ -161,9 +175,26 @@ inline constexpr auto kPreparationTarget = common::make_table<EquilibriumTarget>
       Source::cpp_only, "Steps between two checks of the target."},
      {"max_steps", &EquilibriumTarget::max_steps, Unit::Dimensionless, common::ge(1),
       Source::cpp_only, "Steps after which equilibrate() gives up."}});
-/// Isotropic compaction with lowered friction, then friction restored (also on existing contacts)
-/// and re-equilibration. Returns the number of steps.
-std::int64_t prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe = {});
+/// Compactions of one cloud a preparation towards a void ratio tries at most.
+inline constexpr int kMaxCompactions = 16;
+
+/// What prepare() reached.
+struct Prepared {
+  std::int64_t steps = 0;           ///< DEM steps, every compaction and the re-equilibration
+  double friction_deg = 0.0;        ///< the kept compaction's friction [deg]
+  double compacted_void_ratio = 0;  ///< void ratio at the end of the kept compaction [-]
+  int compactions = 0;              ///< compactions of the cloud tried
+  /// false when Preparation::void_ratio was not reached within its tolerance: the compaction at
+  /// friction_comp_deg is denser than the target (compactions == 1), or none of
+  /// kMaxCompactions came within the tolerance (the closest is kept). Always true without a
+  /// target.
+  bool reached = true;
+};
+
+/// Isotropic compaction with lowered friction (towards prep.void_ratio if set: a bisection on the
+/// compaction friction between 0 and friction_comp_deg, each trial a compaction of the cloud as
+/// given), then friction restored (also on existing contacts) and re-equilibration.
+Prepared prepare(Simulation& sim, const Preparation& prep, const CheckObserver& observe = {});
 
 }  // namespace dem
 

@@ -31,7 +31,7 @@ const dem::Simulation& prepared() {
     prep.target.unbalanced_tol = 0.02;
     prep.compaction_rate = dem::strain_rate(1e-2, 2e-4, 2650.0, 75e3);
     prep.target.max_rate = prep.compaction_rate;
-    const auto steps = dem::prepare(s, prep);
+    const auto steps = dem::prepare(s, prep).steps;
     std::cout << "  prepared: " << steps << " DEM steps\n";
     return s;
   }();

@@ -180,7 +180,7 @@ TEST(Verification, CompactionReachesTargetPressure) {
   prep.target.stress_tol = 0.01;
   prep.target.unbalanced_tol = 0.01;
   prep.compaction_rate = 20.0;
-  const auto steps = dem::prepare(sim, prep);
+  const auto steps = dem::prepare(sim, prep).steps;
   const auto m = dem::measure(sim);
   std::cout << std::setprecision(15) << "  compaction: " << steps << " steps, p = " << m.p
             << " Pa, e = " << m.void_ratio << ", Z = " << m.z << " (" << m.n_contacts

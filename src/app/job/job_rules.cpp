@@ -53,6 +53,12 @@ class Rules {
   std::vector<std::string> errors_;
 };
 
+// True when the job file gives `key` (not a default filled in).
+bool written(const Job& job, const std::string& key) {
+  const auto it = job.entries().find(key);
+  return it != job.entries().end() && !it->second.defaulted && it->second.line > 0;
+}
+
 void sample_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.sample")) return;
   if (job.has("dem.sample.cell") && !job.has("dem.sample.packing")) {
@@ -64,6 +70,13 @@ void sample_rules(const Job& job, Rules& r) {
     for (const char* k :
          {"dem.sample.spheres", "dem.sample.psd_diameters", "dem.sample.psd_passing"}) {
       if (job.has(k)) r.fail(k, "not used when dem.sample.packing is given: remove one of them");
+    }
+    for (const char* k : {"dem.preparation.void_ratio", "dem.preparation.void_ratio_tolerance"}) {
+      if (written(job, k)) {
+        r.fail(k,
+               "only for a generated sample: a packing file (dem.sample.packing) is "
+               "re-equilibrated as it is, not compacted");
+      }
     }
     std::filesystem::path p(job.text("dem.sample.packing"));
     if (p.is_relative()) p = std::filesystem::path(job.directory()) / p;
@@ -79,6 +92,12 @@ void sample_rules(const Job& job, Rules& r) {
                          short_path(p.string())));
     }
     return;
+  }
+  if (written(job, "dem.preparation.void_ratio_tolerance") &&
+      !job.has("dem.preparation.void_ratio")) {
+    r.fail("dem.preparation.void_ratio_tolerance",
+           "a tolerance on dem.preparation.void_ratio, which is not given: remove it or give the "
+           "target");
   }
   const std::string why = "when no packing file is given (dem.sample.packing)";
   r.require("dem.sample.spheres", why);
@@ -187,10 +206,7 @@ void regularisation_rules(const Job& job, Rules& r) {
   if (!job.has_section("mpm.regularisation")) return;
   // The strain-gradient regularisation needs its length and its modulus (no silent default).
   for (const char* key : {"mpm.regularisation.length", "mpm.regularisation.modulus"}) {
-    const auto& entries = job.entries();
-    const auto it = entries.find(key);
-    const bool written = it != entries.end() && !it->second.defaulted && it->second.line > 0;
-    if (!written) {
+    if (!written(job, key)) {
       r.fail_missing(key,
                      "required in [mpm.regularisation]: the regularisation needs its length "
                      "l and its modulus H (docs/design/mpm.md, Regularisation)");

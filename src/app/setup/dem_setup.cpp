@@ -98,6 +98,26 @@ double dem_d50(const Job& job, const dem::Packing& packing) {
   return rm.empty() ? 0.0 : 2.0 * rm.back().first;
 }
 
+namespace {
+// Why a generated sample did not reach dem.preparation.void_ratio (dem::Prepared::reached).
+std::string void_ratio_rule(const dem::Preparation& prep, const dem::Prepared& done) {
+  if (done.compactions == 1) {
+    return fmt::format(
+        "the compaction at dem.preparation.friction_angle = {:.4g} deg already gives a denser "
+        "packing (e = {:.4f}): the search lowers the friction from there, so raise friction_angle "
+        "or the target",
+        prep.friction_comp_deg, done.compacted_void_ratio);
+  }
+  return fmt::format(
+      "none of {} compactions of the cloud between 0 and {:.4g} deg of friction came within "
+      "dem.preparation.void_ratio_tolerance = {:.4g} (the closest: e = {:.4f} at {:.4g} deg): a "
+      "target denser than the frictionless compaction, or a tolerance tighter than the scatter "
+      "of this sample's compactions",
+      done.compactions, prep.friction_comp_deg, prep.void_ratio_tol, done.compacted_void_ratio,
+      done.friction_deg);
+}
+}  // namespace
+
 dem::Simulation prepared_sample(const Job& job, std::int64_t sample,
                                 std::vector<std::string>* lines) {
   auto say = [lines](std::string line) {
@@ -139,7 +159,18 @@ dem::Simulation prepared_sample(const Job& job, std::int64_t sample,
         "sample: {} spheres generated (seed {}); compaction to p = {:.4g} Pa with friction {} deg",
         packing.r.size(), job.integer("dem.sample.seed") + sample, prep.target.pressure,
         prep.friction_comp_deg));
-    steps = dem::prepare(sim, prep, observe);
+    const dem::Prepared done = dem::prepare(sim, prep, observe);
+    steps = done.steps;
+    if (prep.void_ratio > 0.0) {
+      if (!done.reached)
+        throw common::InputError(
+            job.message("dem.preparation.void_ratio", void_ratio_rule(prep, done)));
+      say(
+          fmt::format("sample: void ratio {:.4f} (target {:.4g} +/- {:.3g}) at compaction friction "
+                      "{:.4g} deg, compaction {} of the search",
+                      done.compacted_void_ratio, prep.void_ratio, prep.void_ratio_tol,
+                      done.friction_deg, done.compactions));
+    }
   } else {
     say(fmt::format("sample: {} spheres read from {}; re-equilibration at p = {:.4g} Pa",
                     packing.r.size(), job.text("dem.sample.packing"), prep.target.pressure));

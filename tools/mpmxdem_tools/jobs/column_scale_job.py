@@ -117,12 +117,13 @@ def as_continuum(text, elastic):
 
 
 def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), spheres=None,
-          coupling=(), sets=(), continuum=()):
+          coupling=(), sets=(), continuum=(), preparation=()):
     """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
     grains' contact modulus [Pa] with the preparation pressure scaled by the same factor, the
     [mpm] lines `mpm` ("key = value", dimensionless or names: not scaled) added first in [mpm],
     the number of spheres per RVE, dem.sample.spheres, with the title's "of N spheres", and the
-    [dem.coupling] lines `coupling`, added first there, not scaled; and `sets`,
+    [dem.coupling] lines `coupling` and the [dem.preparation] lines `preparation` (e.g. a target
+    void ratio), added first there, not scaled; and `sets`,
     "section.key = value" lines whose value replaces that key's in the scaled job, e.g. gravity
     changed by 1e-6 for a family of runs: ValueError if the job has no such key); with
     `continuum` ([mpm.elastic] lines) the column of a Drucker-Prager continuum instead of RVEs."""
@@ -142,6 +143,9 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
     if coupling:
         text = re.sub(r"^\[dem\.coupling\]\s*$", "[dem.coupling]\n" + "\n".join(coupling), text,
                       count=1, flags=re.M)
+    if preparation:
+        text = re.sub(r"^\[dem\.preparation\]\s*$", "[dem.preparation]\n" + "\n".join(preparation),
+                      text, count=1, flags=re.M)
     stiffness = 1.0
     if young is not None:
         stiffness = young / si(section_value(text, "dem.material", "young_modulus"))
@@ -208,6 +212,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
             + "".join(f" --mpm '{line}'" for line in mpm)
             + (f" --spheres {spheres}" if spheres is not None else "")
             + "".join(f" --coupling '{line}'" for line in coupling)
+            + "".join(f" --preparation '{line}'" for line in preparation)
             + "".join(f" --set '{line}'" for line in sets)
             + "".join(f" --continuum '{line}'" for line in continuum)
             + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
@@ -218,7 +223,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
 
 def options_of_scaled(text):
     """(source, l0, tag, damping, young, mpm lines, spheres, coupling lines, set lines, continuum
-    lines) from the header of a scaled job; None when it has none."""
+    lines, preparation lines) from the header of a scaled job; None when it has none."""
     cmd = re.search(r"^# Do not edit: tools/mpmxdem-tools column_scale_job (\S+) (.*) --out THIS_FILE$",
                     text, re.M)
     if not cmd:
@@ -233,7 +238,8 @@ def options_of_scaled(text):
             tuple(re.findall(r"--mpm '([^']*)'", cmd.group(2))), (int(n.group(1)) if n else None),
             tuple(re.findall(r"--coupling '([^']*)'", cmd.group(2))),
             tuple(re.findall(r"--set '([^']*)'", cmd.group(2))),
-            tuple(re.findall(r"--continuum '([^']*)'", cmd.group(2))))
+            tuple(re.findall(r"--continuum '([^']*)'", cmd.group(2))),
+            tuple(re.findall(r"--preparation '([^']*)'", cmd.group(2))))
 
 
 def self_test():
@@ -274,7 +280,7 @@ every = 50
         print("self-test FAILED; missing:", missing, "\n" + out)
         return 1
     if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6, ('wall_impulse = "points"',), None,
-                                  (), (), ()):
+                                  (), (), (), ()):
         print("self-test FAILED: the header does not name --l0")
         return 1
     more = scale('title = "a, 512 RVEs of 100 spheres"\n[dem.sample]\nspheres = 100\n' + src, 0.005,
@@ -288,6 +294,11 @@ every = 50
     if ('contact_loss = "strained"' not in more.split("\n")
             or options_of_scaled(more)[7] != ('contact_loss = "strained"',)):
         print("self-test FAILED: --coupling\n" + more)
+        return 1
+    more = scale(src, 0.005, "src.toml", preparation=("void_ratio = 0.565",)).split("\n")
+    if (more[more.index("[dem.preparation]") + 1] != "void_ratio = 0.565"
+            or options_of_scaled("\n".join(more))[10] != ("void_ratio = 0.565",)):
+        print("self-test FAILED: --preparation\n" + "\n".join(more))
         return 1
     g = 'mpm.dt = 1.000001e-4'
     more = scale(src, 0.005, "src.toml", sets=(g,))
@@ -342,6 +353,9 @@ def main():
     ap.add_argument("--coupling", action="append", default=[], metavar="'KEY = VALUE'",
                     help="a line added first to [dem.coupling], not scaled (a name or a "
                          "dimensionless value); repeat for several")
+    ap.add_argument("--preparation", action="append", default=[], metavar="'KEY = VALUE'",
+                    help="a line added first to [dem.preparation], not scaled (e.g. 'void_ratio = "
+                         "0.565', a target void ratio of the RVEs' packing); repeat for several")
     ap.add_argument("--set", action="append", default=[], metavar="'SECTION.KEY = VALUE'",
                     help="replace the value of a key of the scaled job (not scaled), e.g. "
                          "'mpm.gravity = [0.0, 0.0, \"-9.81001 m/s^2\"]' for a family of runs "
@@ -368,9 +382,9 @@ def main():
                 print(f"{scaled}: no 'Do not edit' line of tools/mpmxdem-tools column_scale_job in its header")
                 fails += 1
                 continue
-            source, l0, tag, damping, young, mpm, spheres, coupling, sets, continuum = options
+            source, l0, tag, damping, young, mpm, spheres, coupling, sets, continuum, preparation = options
             if have != scale(open(source).read(), l0, source, tag, damping, young, mpm, spheres,
-                             coupling, sets, continuum):
+                             coupling, sets, continuum, preparation):
                 print(f"{scaled}: not what tools/mpmxdem-tools column_scale_job writes from {source} at "
                       f"L0 = {l0} m; regenerate it with the command in its header")
                 fails += 1
@@ -380,13 +394,13 @@ def main():
     if not (args.job and args.l0 and args.out):
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
     if args.continuum and (args.damping is not None or args.young_modulus is not None
-                           or args.spheres is not None or args.coupling):
-        ap.error("--continuum replaces the RVEs: --damping, --young-modulus, --spheres and "
-                 "--coupling set the RVEs and do not apply")
+                           or args.spheres is not None or args.coupling or args.preparation):
+        ap.error("--continuum replaces the RVEs: --damping, --young-modulus, --spheres, "
+                 "--coupling and --preparation set the RVEs and do not apply")
     try:
         text = scale(open(args.job).read(), args.l0, args.job, args.tag, args.damping,
                      args.young_modulus, tuple(args.mpm), args.spheres, tuple(args.coupling),
-                     tuple(args.set), tuple(args.continuum))
+                     tuple(args.set), tuple(args.continuum), tuple(args.preparation))
     except ValueError as e:
         print(f"column_scale_job.py: {e}", file=sys.stderr)
         return 2
