@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <optional>
+
 #include "common/errors.hpp"
 
 namespace {
@@ -64,6 +67,26 @@ TEST(Job, ResolvedTomlParsesBackToTheSameValues) {
     ASSERT_TRUE(again.has(path)) << path;
     EXPECT_EQ(e.value, again.entries().at(path).value) << path;
   }
+}
+
+// Every shipped job's job.resolved.toml (what a run writes, defaults included) is itself a job that
+// validates, with the same values: a user re-runs a run's resolved job as it is.
+TEST(Job, EveryShippedJobsResolvedTomlIsAValidJob) {
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(MPMXDEM_SOURCE_DIR "/jobs")) {
+    if (f.path().extension() != ".toml") continue;
+    const auto job = app::Job::load(f.path().string());
+    const std::string beside = (f.path().parent_path() / "resolved.toml").string();
+    std::optional<app::Job> again;
+    ASSERT_NO_THROW(again.emplace(app::Job::parse(job.resolved_toml(), beside))) << f.path();
+    ASSERT_EQ(job.entries().size(), again->entries().size()) << f.path();
+    for (const auto& [path, e] : job.entries()) {
+      ASSERT_TRUE(again->has(path)) << f.path() << ": " << path;
+      EXPECT_EQ(e.value, again->entries().at(path).value) << f.path() << ": " << path;
+    }
+    ++n;
+  }
+  EXPECT_GE(n, 20);
 }
 
 TEST(Job, ReportsEveryErrorWithFileLineKeyValueAndRule) {

@@ -71,12 +71,11 @@ void sample_rules(const Job& job, Rules& r) {
          {"dem.sample.spheres", "dem.sample.psd_diameters", "dem.sample.psd_passing"}) {
       if (job.has(k)) r.fail(k, "not used when dem.sample.packing is given: remove one of them");
     }
-    for (const char* k : {"dem.preparation.void_ratio", "dem.preparation.void_ratio_tolerance"}) {
-      if (written(job, k)) {
-        r.fail(k,
-               "only for a generated sample: a packing file (dem.sample.packing) is "
-               "re-equilibrated as it is, not compacted");
-      }
+    // Not its tolerance: a resolved job (job.resolved.toml) writes every default.
+    if (written(job, "dem.preparation.void_ratio")) {
+      r.fail("dem.preparation.void_ratio",
+             "only for a generated sample: a packing file (dem.sample.packing) is re-equilibrated "
+             "as it is, not compacted");
     }
     std::filesystem::path p(job.text("dem.sample.packing"));
     if (p.is_relative()) p = std::filesystem::path(job.directory()) / p;
@@ -92,12 +91,6 @@ void sample_rules(const Job& job, Rules& r) {
                          short_path(p.string())));
     }
     return;
-  }
-  if (written(job, "dem.preparation.void_ratio_tolerance") &&
-      !job.has("dem.preparation.void_ratio")) {
-    r.fail("dem.preparation.void_ratio_tolerance",
-           "a tolerance on dem.preparation.void_ratio, which is not given: remove it or give the "
-           "target");
   }
   const std::string why = "when no packing file is given (dem.sample.packing)";
   r.require("dem.sample.spheres", why);
@@ -204,6 +197,9 @@ void numerics_rules(const Job& job, Rules& r) {
 
 void regularisation_rules(const Job& job, Rules& r) {
   if (!job.has_section("mpm.regularisation")) return;
+  // Both written as 0: off, as a run's job.resolved.toml writes the defaults of a job without it.
+  const auto off = [&](const char* key) { return written(job, key) && job.number(key) == 0.0; };
+  if (off("mpm.regularisation.length") && off("mpm.regularisation.modulus")) return;
   // The strain-gradient regularisation needs its length and its modulus (no silent default).
   for (const char* key : {"mpm.regularisation.length", "mpm.regularisation.modulus"}) {
     if (!written(job, key)) {
