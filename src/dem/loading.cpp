@@ -318,7 +318,7 @@ Prepared compact_to_void_ratio(Simulation& sim, const Preparation& prep,
   double hi = prep.friction_comp_deg;
   double f = hi;
   double best = std::numeric_limits<double>::infinity();
-  while (out.compactions < kMaxCompactions) {
+  while (out.compactions < prep.max_compactions) {
     Simulation trial = cloud;
     out.steps += compact(trial, f, comp, observe);
     ++out.compactions;

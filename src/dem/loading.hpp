@@ -137,6 +137,7 @@ struct Preparation {
   /// [0, friction_comp_deg] until the compacted void ratio is within void_ratio_tol (prepare()).
   double void_ratio = 0.0;
   double void_ratio_tol = 0.003;   ///< absolute tolerance on void_ratio [-]
+  std::int64_t max_compactions = 16;  ///< trials of the search towards void_ratio, at most
   EquilibriumTarget target;        ///< target pressure and tolerances
   double compaction_rate = 10.0;   ///< strain-rate bound while compacting [1/s]
 };
@@ -156,6 +157,8 @@ inline constexpr auto kPreparation = common::make_table<Preparation>(
       common::in_oo(0, 1), Source::job_default,
       "Absolute tolerance on void_ratio (a compaction of 100 spheres is chaotic: its void ratio "
       "scatters by about 0.01 between nearby frictions, so a few trials land within 0.003)."},
+     {"max_compactions", &Preparation::max_compactions, Unit::Dimensionless, common::ge(1),
+      Source::cpp_only, "Compactions the search towards void_ratio tries at most."},
      {"compaction_rate", &Preparation::compaction_rate, Unit::Rate, common::gt(0), Source::cpp_only,
       "Strain-rate bound while compacting."}});
 
@@ -175,18 +178,15 @@ inline constexpr auto kPreparationTarget = common::make_table<EquilibriumTarget>
       Source::cpp_only, "Steps between two checks of the target."},
      {"max_steps", &EquilibriumTarget::max_steps, Unit::Dimensionless, common::ge(1),
       Source::cpp_only, "Steps after which equilibrate() gives up."}});
-/// Compactions of one cloud a preparation towards a void ratio tries at most.
-inline constexpr int kMaxCompactions = 16;
-
 /// What prepare() reached.
 struct Prepared {
   std::int64_t steps = 0;           ///< DEM steps, every compaction and the re-equilibration
   double friction_deg = 0.0;        ///< the kept compaction's friction [deg]
   double compacted_void_ratio = 0;  ///< void ratio at the end of the kept compaction [-]
-  int compactions = 0;              ///< compactions of the cloud tried
+  std::int64_t compactions = 0;     ///< compactions of the cloud tried
   /// false when Preparation::void_ratio was not reached within its tolerance: the compaction at
   /// friction_comp_deg is denser than the target (compactions == 1), or none of
-  /// kMaxCompactions came within the tolerance (the closest is kept). Always true without a
+  /// max_compactions came within the tolerance (the closest is kept). Always true without a
   /// target.
   bool reached = true;
 };
