@@ -116,6 +116,14 @@ def as_continuum(text, elastic):
                   count=1, flags=re.M)
 
 
+def first_in(text, section, lines):
+    """`text` with `lines` added first in its table [section] (none: unchanged)."""
+    if not lines:
+        return text
+    return re.sub(rf"^\[{re.escape(section)}\]\s*$", f"[{section}]\n" + "\n".join(lines), text,
+                  count=1, flags=re.M)
+
+
 def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), spheres=None,
           coupling=(), sets=(), continuum=(), preparation=()):
     """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
@@ -138,14 +146,8 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
         text = as_continuum(text, continuum)
     if damping is not None:
         text = set_damping(text, damping)
-    if mpm:
-        text = re.sub(r"^\[mpm\]\s*$", "[mpm]\n" + "\n".join(mpm), text, count=1, flags=re.M)
-    if coupling:
-        text = re.sub(r"^\[dem\.coupling\]\s*$", "[dem.coupling]\n" + "\n".join(coupling), text,
-                      count=1, flags=re.M)
-    if preparation:
-        text = re.sub(r"^\[dem\.preparation\]\s*$", "[dem.preparation]\n" + "\n".join(preparation),
-                      text, count=1, flags=re.M)
+    for section, lines in (("mpm", mpm), ("dem.coupling", coupling), ("dem.preparation", preparation)):
+        text = first_in(text, section, lines)
     stiffness = 1.0
     if young is not None:
         stiffness = young / si(section_value(text, "dem.material", "young_modulus"))
