@@ -136,10 +136,10 @@ struct Preparation {
   /// Target void ratio [-]; 0: none. Above 0 the compaction friction is searched for in
   /// [0, friction_comp_deg] until the compacted void ratio is within void_ratio_tol (prepare()).
   double void_ratio = 0.0;
-  double void_ratio_tol = 0.003;   ///< absolute tolerance on void_ratio [-]
+  double void_ratio_tol = 0.003;      ///< absolute tolerance on void_ratio [-]
   std::int64_t max_compactions = 16;  ///< trials of the search towards void_ratio, at most
-  EquilibriumTarget target;        ///< target pressure and tolerances
-  double compaction_rate = 10.0;   ///< strain-rate bound while compacting [1/s]
+  EquilibriumTarget target;           ///< target pressure and tolerances
+  double compaction_rate = 10.0;      ///< strain-rate bound while compacting [1/s]
 };
 
 /// [dem.preparation]: the friction angle of the compaction (the target: kPreparationTarget).
