@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -118,6 +120,46 @@ TEST(Insitu, SampleOfPointIdIsIdModK) {
   EXPECT_EQ(app::sample_of(7, 1), 0);
   EXPECT_EQ(app::sample_of(7, 3), 1);
   EXPECT_EQ(app::sample_of(9, 3), 0);
+  app::InsituOptions o;
+  o.samples = 3;
+  EXPECT_EQ(app::sample_of(7, o), 1);  // in turn by default
+}
+
+// Scattered: a pure function of (id, seed) that is not id mod K. On a row of 16 points drawing
+// from 4 samples, in turn gives each vertical line of points one sample (id mod 4 is the line's
+// index mod 4); scattered must give the lines several samples, draw every sample about as often
+// (within 5 sigma of a binomial over 4096 points) and another seed must give another draw.
+TEST(Insitu, ScatteredDrawHasNoPatternInSpace) {
+  app::InsituOptions o;
+  o.samples = 4;
+  o.draw = app::SampleDraw::scattered;
+  o.draw_seed = 3;
+  constexpr int kRow = 16;
+  constexpr int kRows = 256;
+  std::array<int, 4> count{};
+  int lines_with_one_sample = 0;
+  for (int i = 0; i < kRow; ++i) {
+    std::set<std::int64_t> in_line;
+    for (int j = 0; j < kRows; ++j) {
+      const std::int64_t s = app::sample_of(std::int64_t{j} * kRow + i, o);
+      ASSERT_GE(s, 0);
+      ASSERT_LT(s, 4);
+      EXPECT_EQ(s, app::sample_of(std::int64_t{j} * kRow + i, o));  // deterministic
+      in_line.insert(s);
+      ++count[static_cast<std::size_t>(s)];
+    }
+    if (in_line.size() == 1) ++lines_with_one_sample;
+  }
+  EXPECT_EQ(lines_with_one_sample, 0);
+  const double n = kRow * kRows;
+  const double sigma = std::sqrt(n * 0.25 * 0.75);
+  for (const int c : count) EXPECT_LE(std::abs(c - 0.25 * n), 5.0 * sigma) << c;
+  app::InsituOptions other = o;
+  other.draw_seed = 19;
+  int same = 0;
+  for (std::int64_t id = 0; id < 4096; ++id)
+    same += app::sample_of(id, o) == app::sample_of(id, other);
+  EXPECT_LT(same, 0.35 * 4096);  // two independent draws agree on about a quarter of the points
 }
 
 const char* kFloor = R"(

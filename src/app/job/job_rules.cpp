@@ -53,12 +53,6 @@ class Rules {
   std::vector<std::string> errors_;
 };
 
-// True when the job file gives `key` (not a default filled in).
-bool written(const Job& job, const std::string& key) {
-  const auto it = job.entries().find(key);
-  return it != job.entries().end() && !it->second.defaulted && it->second.line > 0;
-}
-
 void sample_rules(const Job& job, Rules& r) {
   if (!job.has_section("dem.sample")) return;
   if (job.has("dem.sample.cell") && !job.has("dem.sample.packing")) {

@@ -40,6 +40,25 @@ void add_body_keys(Schema& s) {
   }
   s.keys.insert(s.keys.begin() + static_cast<std::ptrdiff_t>(last), b.keys.begin(), b.keys.end());
 }
+
+// The pool of samples: generated, and drawn scattered only from more than one.
+void pool_rules(const Job& job, std::vector<std::string>& err) {
+  if (job.has("dem.initial_state.samples") && job.integer("dem.initial_state.samples") > 1 &&
+      job.has("dem.sample.packing")) {
+    err.push_back(job.message("dem.initial_state.samples",
+                              "a pool of samples is generated (seeds seed, seed + 1, ...): not "
+                              "with dem.sample.packing, one given packing"));
+  }
+  // A scattered draw from one sample is asked for in vain; in_turn is the default, which the
+  // resolved job writes whatever the pool.
+  if (written(job, "dem.initial_state.sample_draw") &&
+      choice_of(job, "dem.initial_state.sample_draw", kSampleDrawNames) == SampleDraw::scattered &&
+      !(job.has("dem.initial_state.samples") && job.integer("dem.initial_state.samples") > 1)) {
+    err.push_back(job.message("dem.initial_state.sample_draw",
+                              "only with dem.initial_state.samples > 1 (with one sample every "
+                              "point draws it)"));
+  }
+}
 }  // namespace
 
 void add_insitu_sections(Schema& s) {
@@ -72,9 +91,16 @@ void add_insitu_sections(Schema& s) {
       .or_default(0.01);
   s.add("dem.initial_state.samples", Type::Int,
         "Pool of independently generated samples (seeds seed, seed + 1, ...); point id draws "
-        "sample id mod samples. 1: every RVE from the one sample.")
+        "one of them as sample_draw says. 1: every RVE from the one sample.")
       .in(1, 1000)
       .or_default(std::int64_t{1});
+  s.add("dem.initial_state.sample_draw", Type::String,
+        "How point id draws its sample: in_turn, id mod samples (points are numbered row by "
+        "row, x fastest: when a row's length is a multiple of samples, each vertical line of "
+        "points has one sample); scattered, a hash of id and dem.sample.seed mod samples (no "
+        "pattern in space; another seed, another draw).")
+      .one_of(kSampleDrawNames)
+      .or_default(std::string("in_turn"));
 }
 
 std::vector<std::string> check_insitu_rules(const Job& job) {
@@ -142,12 +168,7 @@ std::vector<std::string> check_insitu_rules(const Job& job) {
       }
     }
   }
-  if (job.has("dem.initial_state.samples") && job.integer("dem.initial_state.samples") > 1 &&
-      job.has("dem.sample.packing")) {
-    err.push_back(job.message("dem.initial_state.samples",
-                              "a pool of samples is generated (seeds seed, seed + 1, ...): not "
-                              "with dem.sample.packing, one given packing"));
-  }
+  pool_rules(job, err);
   return err;
 }
 

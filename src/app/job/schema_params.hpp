@@ -131,4 +131,10 @@ template <class E, std::size_t N>
   return job.has(key) ? choice_of(job, key, names) : fallback;
 }
 
+/// True when the job file gives `key` (not a default the schema filled in).
+[[nodiscard]] inline bool written(const Job& job, const std::string& key) {
+  const auto it = job.entries().find(key);
+  return it != job.entries().end() && !it->second.defaulted && it->second.line > 0;
+}
+
 }  // namespace app

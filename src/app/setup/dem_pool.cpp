@@ -202,7 +202,7 @@ void DemPool::add_sample(std::int64_t k, dem::Simulation sim) {
 }
 
 const dem::Rve& DemPool::get(std::int64_t id) {
-  const Key key{plan_.group_of(id), sample_of(id, plan_.options.samples)};
+  const Key key{plan_.group_of(id), sample_of(id, plan_.options)};
   auto it = rves_.find(key);
   if (it != rves_.end()) return *it->second;
   dem::Simulation sim = sample(key.second);
@@ -261,7 +261,7 @@ void DemPool::prepare(const std::vector<std::int64_t>& ids, MPI_Comm comm) {
   // What each rank lacks (the RVEs of its points) and holds (its RVEs and samples).
   std::set<Key> lack;
   for (const std::int64_t id : ids) {
-    const Key key{plan_.group_of(id), sample_of(id, plan_.options.samples)};
+    const Key key{plan_.group_of(id), sample_of(id, plan_.options)};
     if (rves_.count(key) == 0) lack.insert(key);
   }
   std::set<Key> held;

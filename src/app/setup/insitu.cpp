@@ -15,6 +15,7 @@
 #include "app/job/schema_params.hpp"
 #include "app/setup/mpm_setup.hpp"
 #include "common/errors.hpp"
+#include "farm/checksum.hpp"
 
 namespace app {
 
@@ -82,10 +83,16 @@ std::int32_t InsituPlan::group_of(std::int64_t id) const {
   return group[static_cast<std::size_t>(it - ids.begin())];
 }
 
+std::int64_t sample_of(std::int64_t id, const InsituOptions& o) {
+  if (o.draw == SampleDraw::in_turn) return sample_of(id, o.samples);
+  const std::uint64_t h = farm::splitmix64(farm::splitmix64(static_cast<std::uint64_t>(id)) ^
+                                           static_cast<std::uint64_t>(o.draw_seed));
+  return static_cast<std::int64_t>(h % static_cast<std::uint64_t>(o.samples));
+}
+
 std::int64_t InsituPlan::preparations() const {
   std::set<std::pair<std::int32_t, std::int64_t>> pairs;
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    pairs.emplace(group[i], sample_of(ids[i], options.samples));
+  for (std::size_t i = 0; i < ids.size(); ++i) pairs.emplace(group[i], sample_of(ids[i], options));
   return static_cast<std::int64_t>(pairs.size());
 }
 
@@ -159,6 +166,8 @@ InsituPlan insitu_plan(const Job& job, const MpmSetup& setup) {
   if (job.has("dem.initial_state.stress_tolerance"))
     o.stress_tolerance = job.number("dem.initial_state.stress_tolerance");
   if (job.has("dem.initial_state.samples")) o.samples = job.integer("dem.initial_state.samples");
+  o.draw = choice_of(job, "dem.initial_state.sample_draw", kSampleDrawNames, SampleDraw::in_turn);
+  if (job.has("dem.sample.seed")) o.draw_seed = job.integer("dem.sample.seed");
 
   const mpm::MaterialPoints& pts = setup.points;
   MPMXDEM_CHECK(setup.body.size() == pts.size(), "one body index per point");

@@ -32,6 +32,16 @@ inline constexpr std::array<common::Named<InitialState>, 3> kInitialStateNames{
      {"uniform", InitialState::uniform},
      {"geostatic", InitialState::geostatic}}};
 
+/// How a point draws its sample from the pool (dem.initial_state.sample_draw).
+enum class SampleDraw {
+  in_turn,    ///< id mod samples: on a row of points whose length is a multiple of samples, one
+              ///< sample per vertical line of points
+  scattered,  ///< a hash of (id, dem.sample.seed) mod samples: no pattern in space
+};
+/// The job's names (dem.initial_state.sample_draw).
+inline constexpr std::array<common::Named<SampleDraw>, 2> kSampleDrawNames{
+    {{"in_turn", SampleDraw::in_turn}, {"scattered", SampleDraw::scattered}}};
+
 /// [dem.initial_state]: the knobs shared by every DEM body (defaults: the job defaults).
 struct InsituOptions {
   double pressure_floor = 1e3;     ///< targets with p below this are scaled up to it [Pa], > 0
@@ -39,6 +49,8 @@ struct InsituOptions {
                                    ///< one preparation [-], >= 0
   double stress_tolerance = 0.01;  ///< servo tolerance (dem::stress_reached) [-]
   std::int64_t samples = 1;        ///< pool of independently generated samples [-], >= 1
+  SampleDraw draw = SampleDraw::in_turn;  ///< how a point draws its sample
+  std::int64_t draw_seed = 0;             ///< scattered: the hash's seed (dem.sample.seed)
 };
 
 /// Geostatic stress at `depth` below the free surface: sigma_v = -rho |g| depth along gravity,
@@ -71,6 +83,11 @@ struct Grouping {
 [[nodiscard]] inline std::int64_t sample_of(std::int64_t id, std::int64_t samples) {
   return ((id % samples) + samples) % samples;
 }
+
+/// Sample of the pool point `id` draws as `o` says: in turn, id mod samples; scattered,
+/// splitmix64(splitmix64(id) ^ draw_seed) mod samples. A pure function of the id and the options,
+/// so the same on every rank and after a restart.
+[[nodiscard]] std::int64_t sample_of(std::int64_t id, const InsituOptions& o);
 
 struct MpmSetup;
 

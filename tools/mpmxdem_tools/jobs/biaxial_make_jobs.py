@@ -97,9 +97,10 @@ def self_test():
 
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
-        smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0, softening=None):
+        smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0, softening=None,
+        draw="in_turn"):
     """softening: None, or (residual friction angle [deg], softening strain [-]) of the frictional
-    continuum."""
+    continuum. draw: how the points draw the samples (dem.initial_state.sample_draw)."""
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
@@ -148,8 +149,10 @@ friction_angle = "1 deg"
 inertial_number = 1e-2
 
 [dem.initial_state]
-samples = {samples}                   # distinct RVEs (point id mod {samples}): the imperfection that lets a band form
-
+""" + (f"""samples = {samples}                   # distinct RVEs (point id mod {samples}): the imperfection that lets a band form
+""" if draw == "in_turn" else f"""samples = {samples}                   # distinct RVEs, scattered over the points: the imperfection that lets a band form
+sample_draw = "scattered"      # (point id mod {samples} would give each vertical line of points one sample)
+""") + f"""
 [dem.coupling]
 inertial_number = 4e-3         # I_n of eq. 11 (as jobs/triaxial_mpmxdem_distinct.toml)
 pressure_floor = "10 kPa"      # T_p of an RVE that loses its contacts (the corners under the rough
@@ -233,6 +236,9 @@ def main():
     ap.add_argument("--strain", type=float, default=0.12)
     ap.add_argument("--rate", type=float, default=0.03, help="axial strain rate V/H [1/s]")
     ap.add_argument("--samples", type=int, default=16)
+    ap.add_argument("--draw", default="in_turn", choices=["in_turn", "scattered"],
+                    help="dem.initial_state.sample_draw: in_turn (point id mod samples, the jobs in "
+                         "jobs/) or scattered (no pattern in space)")
     ap.add_argument("--pad", type=int, default=None,
                     help="empty cells each side in x (default: enough for 25 mm, half the width)")
     ap.add_argument("--mass-scaling", type=float, default=1e4)
@@ -264,7 +270,7 @@ def main():
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
                a.mass_scaling, a.every, a.header, a.platen,
                a.smoothing, a.shape, a.regularisation[0], a.regularisation[1], a.material, a.friction_angle,
-               a.softening)
+               a.softening, a.draw)
     open(a.out, "w").write(text)
 
 

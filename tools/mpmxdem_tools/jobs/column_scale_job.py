@@ -125,13 +125,14 @@ def first_in(text, section, lines):
 
 
 def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), spheres=None,
-          coupling=(), sets=(), continuum=(), preparation=()):
+          coupling=(), sets=(), continuum=(), preparation=(), initial_state=()):
     """The job text of `text` at column length l0_new [m] (and the RVEs' Cundall damping, the
     grains' contact modulus [Pa] with the preparation pressure scaled by the same factor, the
     [mpm] lines `mpm` ("key = value", dimensionless or names: not scaled) added first in [mpm],
     the number of spheres per RVE, dem.sample.spheres, with the title's "of N spheres", and the
-    [dem.coupling] lines `coupling` and the [dem.preparation] lines `preparation` (e.g. a target
-    void ratio), added first there, not scaled; and `sets`,
+    [dem.coupling] lines `coupling`, the [dem.preparation] lines `preparation` (e.g. a target
+    void ratio) and the [dem.initial_state] lines `initial_state` (e.g. how the points draw a pool
+    of samples), added first there, not scaled; and `sets`,
     "section.key = value" lines whose value replaces that key's in the scaled job, e.g. gravity
     changed by 1e-6 for a family of runs: ValueError if the job has no such key); with
     `continuum` ([mpm.elastic] lines) the column of a Drucker-Prager continuum instead of RVEs."""
@@ -146,7 +147,15 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
         text = as_continuum(text, continuum)
     if damping is not None:
         text = set_damping(text, damping)
-    for section, lines in (("mpm", mpm), ("dem.coupling", coupling), ("dem.preparation", preparation)):
+    for section, lines in (("mpm", mpm), ("dem.coupling", coupling), ("dem.preparation", preparation),
+                           ("dem.initial_state", initial_state)):
+        if lines and not re.search(rf"^\[{re.escape(section)}\]\s*$", text, re.M):
+            raise ValueError(f"no table [{section}] in {source_name} to add {lines[0]!r} to")
+        for line in lines:
+            key = line.partition("=")[0].strip()
+            if section_value(text, section, key) is not None:
+                raise ValueError(f"[{section}] of {source_name} has {key} already: --set "
+                                 f"'{section}.{key} = ...' replaces it")
         text = first_in(text, section, lines)
     stiffness = 1.0
     if young is not None:
@@ -215,6 +224,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
             + (f" --spheres {spheres}" if spheres is not None else "")
             + "".join(f" --coupling '{line}'" for line in coupling)
             + "".join(f" --preparation '{line}'" for line in preparation)
+            + "".join(f" --initial-state '{line}'" for line in initial_state)
             + "".join(f" --set '{line}'" for line in sets)
             + "".join(f" --continuum '{line}'" for line in continuum)
             + (f" --tag '{tag}'" if tag else "") + " --out THIS_FILE"]
@@ -225,7 +235,8 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
 
 def options_of_scaled(text):
     """(source, l0, tag, damping, young, mpm lines, spheres, coupling lines, set lines, continuum
-    lines, preparation lines) from the header of a scaled job; None when it has none."""
+    lines, preparation lines, initial-state lines) from the header of a scaled job; None when it
+    has none."""
     cmd = re.search(r"^# Do not edit: tools/mpmxdem-tools column_scale_job (\S+) (.*) --out THIS_FILE$",
                     text, re.M)
     if not cmd:
@@ -241,7 +252,8 @@ def options_of_scaled(text):
             tuple(re.findall(r"--coupling '([^']*)'", cmd.group(2))),
             tuple(re.findall(r"--set '([^']*)'", cmd.group(2))),
             tuple(re.findall(r"--continuum '([^']*)'", cmd.group(2))),
-            tuple(re.findall(r"--preparation '([^']*)'", cmd.group(2))))
+            tuple(re.findall(r"--preparation '([^']*)'", cmd.group(2))),
+            tuple(re.findall(r"--initial-state '([^']*)'", cmd.group(2))))
 
 
 def self_test():
@@ -282,7 +294,7 @@ every = 50
         print("self-test FAILED; missing:", missing, "\n" + out)
         return 1
     if options_of_scaled(out) != ("src.toml", 0.005, "", 0.05, 3e6, ('wall_impulse = "points"',), None,
-                                  (), (), (), ()):
+                                  (), (), (), (), ()):
         print("self-test FAILED: the header does not name --l0")
         return 1
     more = scale('title = "a, 512 RVEs of 100 spheres"\n[dem.sample]\nspheres = 100\n' + src, 0.005,
@@ -302,6 +314,25 @@ every = 50
             or options_of_scaled("\n".join(more))[10] != ("void_ratio = 0.565",)):
         print("self-test FAILED: --preparation\n" + "\n".join(more))
         return 1
+    draw = ("samples = 16", 'sample_draw = "scattered"')
+    more = scale(src + "[dem.initial_state]\ngroup_tolerance = 0.05\n", 0.005, "src.toml",
+                 initial_state=draw).split("\n")
+    at = more.index("[dem.initial_state]")
+    if more[at + 1:at + 3] != list(draw) or options_of_scaled("\n".join(more))[11] != draw:
+        print("self-test FAILED: --initial-state\n" + "\n".join(more))
+        return 1
+    try:
+        scale(src + "[dem.initial_state]\nsamples = 1\n", 0.005, "src.toml", initial_state=("samples = 4",))
+        print("self-test FAILED: --initial-state of a key the table has was accepted (a TOML duplicate)")
+        return 1
+    except ValueError:
+        pass
+    try:
+        scale(src, 0.005, "src.toml", initial_state=draw)
+        print("self-test FAILED: --initial-state without [dem.initial_state] in the job was accepted")
+        return 1
+    except ValueError:
+        pass
     g = 'mpm.dt = 1.000001e-4'
     more = scale(src, 0.005, "src.toml", sets=(g,))
     if "dt = 1.000001e-4" not in more.split("\n") or options_of_scaled(more)[8] != (g,):
@@ -358,6 +389,10 @@ def main():
     ap.add_argument("--preparation", action="append", default=[], metavar="'KEY = VALUE'",
                     help="a line added first to [dem.preparation], not scaled (e.g. 'void_ratio = "
                          "0.565', a target void ratio of the RVEs' packing); repeat for several")
+    ap.add_argument("--initial-state", action="append", default=[], metavar="'KEY = VALUE'",
+                    help="a line added first to [dem.initial_state], not scaled (e.g. 'sample_draw = "
+                         "\"scattered\"', a pool of RVE packings scattered over the points); a key "
+                         "the table has already: --set; repeat for several")
     ap.add_argument("--set", action="append", default=[], metavar="'SECTION.KEY = VALUE'",
                     help="replace the value of a key of the scaled job (not scaled), e.g. "
                          "'mpm.gravity = [0.0, 0.0, \"-9.81001 m/s^2\"]' for a family of runs "
@@ -384,9 +419,10 @@ def main():
                 print(f"{scaled}: no 'Do not edit' line of tools/mpmxdem-tools column_scale_job in its header")
                 fails += 1
                 continue
-            source, l0, tag, damping, young, mpm, spheres, coupling, sets, continuum, preparation = options
+            (source, l0, tag, damping, young, mpm, spheres, coupling, sets, continuum, preparation,
+             initial_state) = options
             if have != scale(open(source).read(), l0, source, tag, damping, young, mpm, spheres,
-                             coupling, sets, continuum, preparation):
+                             coupling, sets, continuum, preparation, initial_state):
                 print(f"{scaled}: not what tools/mpmxdem-tools column_scale_job writes from {source} at "
                       f"L0 = {l0} m; regenerate it with the command in its header")
                 fails += 1
@@ -396,13 +432,15 @@ def main():
     if not (args.job and args.l0 and args.out):
         ap.error("JOB, --l0 and --out are required (or --check / --self-test)")
     if args.continuum and (args.damping is not None or args.young_modulus is not None
-                           or args.spheres is not None or args.coupling or args.preparation):
+                           or args.spheres is not None or args.coupling or args.preparation
+                           or args.initial_state):
         ap.error("--continuum replaces the RVEs: --damping, --young-modulus, --spheres, "
-                 "--coupling and --preparation set the RVEs and do not apply")
+                 "--coupling, --preparation and --initial-state set the RVEs and do not apply")
     try:
         text = scale(open(args.job).read(), args.l0, args.job, args.tag, args.damping,
                      args.young_modulus, tuple(args.mpm), args.spheres, tuple(args.coupling),
-                     tuple(args.set), tuple(args.continuum), tuple(args.preparation))
+                     tuple(args.set), tuple(args.continuum), tuple(args.preparation),
+                     tuple(args.initial_state))
     except ValueError as e:
         print(f"column_scale_job.py: {e}", file=sys.stderr)
         return 2
