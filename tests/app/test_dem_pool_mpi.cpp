@@ -7,21 +7,24 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "app/job/job.hpp"
 #include "app/setup/coupled_setup.hpp"
+#include "app/setup/insitu.hpp"
 #include "farm/dem_micro.hpp"
 #include "insitu_test_job.hpp"
 
 namespace {
 
-// The job of test_insitu.cpp with a pool of 2 samples: 4 points (a geostatic column of 2, one
-// uniform, one prepared), 3 groups; 4 (group, sample) RVEs from 2 samples. Rank r creates the
+// The job of test_insitu.cpp with a pool of samples (`pool`: the [dem.initial_state] lines that
+// set it): 4 points (a geostatic column of 2, one uniform, one prepared), 3 groups; with 2 samples
+// in turn, 4 (group, sample) RVEs from 2 samples. Rank r creates the
 // points id with id mod 2 = r (ranks 0 and 1) and point 3 as well (two ranks need one RVE); with
 // 3 ranks the last creates none but still makes its share. 2 threads per rank. Compared: the
 // stress, the step count and every sphere's position, velocity and spin.
-TEST(DemPool, PreparationsSpreadOverRanksAndThreadsGiveTheSameRves) {
+void check_pool(const std::string& pool) {
   int rank = 0;
   int size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -31,8 +34,7 @@ TEST(DemPool, PreparationsSpreadOverRanksAndThreadsGiveTheSameRves) {
 [dem.initial_state]
 pressure_floor = "10 kPa"
 group_tolerance = 0.01
-samples = 2
-)"),
+)" + pool),
                                        "insitu.toml");
   std::vector<std::int64_t> ids;
   if (!(size >= 3 && rank == size - 1)) {
@@ -61,6 +63,21 @@ samples = 2
     EXPECT_EQ(sa.spheres().u, sb.spheres().u) << id;
     EXPECT_EQ(sa.spheres().w, sb.spheres().w) << id;
   }
+}
+
+TEST(DemPool, PreparationsSpreadOverRanksAndThreadsGiveTheSameRves) { check_pool("samples = 2\n"); }
+
+// The same with 3 samples scattered over the points (sample_draw, a hash of the id and the job's
+// seed 5): points 0-3 draw samples 2, 1, 0, 1 where in turn they would draw 0, 1, 2, 0, and every
+// rank must draw them as the lazy path does.
+TEST(DemPool, ScatteredSamplesGiveTheSameRvesOnEveryRank) {
+  app::InsituOptions o;
+  o.samples = 3;
+  o.draw = app::SampleDraw::scattered;
+  o.draw_seed = 5;
+  ASSERT_EQ(app::sample_of(0, o), 2);
+  ASSERT_EQ(app::sample_of(3, o), 1);
+  check_pool("samples = 3\nsample_draw = \"scattered\"\n");
 }
 
 }  // namespace
