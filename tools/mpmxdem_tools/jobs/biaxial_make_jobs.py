@@ -98,9 +98,10 @@ def self_test():
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
         smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0, softening=None,
-        draw="in_turn"):
+        draw="in_turn", seed=1):
     """softening: None, or (residual friction angle [deg], softening strain [-]) of the frictional
-    continuum. draw: how the points draw the samples (dem.initial_state.sample_draw)."""
+    continuum. draw: how the points draw the samples (dem.initial_state.sample_draw); seed: the first
+    sample's seed (dem.sample.seed; scattered, also the draw's)."""
     h = W / nx
     assert abs(H / nz - h) < 1e-12, "square cells: nz = 2 nx"
     v = rate * H  # platen speed [m/s]
@@ -137,11 +138,11 @@ friction_angle = "30 deg"
 rolling_stiffness = 2.0
 rolling_strength = 0.3
 
-""" + f"""[dem.sample]                   # generated; sample k of the pool has seed 1 + k
+""" + f"""[dem.sample]                   # generated; sample k of the pool has seed {seed} + k
 spheres = {spheres}
 psd_diameters = ["130 um", "270 um"]
 psd_passing = [0.0, 1.0]
-seed = 1
+seed = {seed}
 
 [dem.preparation]              # isotropic compaction at 1 deg friction to 100 kPa (e0 about 0.56)
 pressure = "100 kPa"
@@ -239,6 +240,9 @@ def main():
     ap.add_argument("--draw", default="in_turn", choices=["in_turn", "scattered"],
                     help="dem.initial_state.sample_draw: in_turn (point id mod samples, the jobs in "
                          "jobs/) or scattered (no pattern in space)")
+    ap.add_argument("--seed", type=int, default=1,
+                    help="dem.sample.seed: the samples are seeds SEED to SEED + samples - 1 (and a "
+                         "scattered draw depends on it); default 1, the pure-DEM reference's samples")
     ap.add_argument("--pad", type=int, default=None,
                     help="empty cells each side in x (default: enough for 25 mm, half the width)")
     ap.add_argument("--mass-scaling", type=float, default=1e4)
@@ -270,7 +274,7 @@ def main():
     text = job(a.mesh[0], a.mesh[1], a.spheres, a.strain, a.rate, a.samples, a.pad,
                a.mass_scaling, a.every, a.header, a.platen,
                a.smoothing, a.shape, a.regularisation[0], a.regularisation[1], a.material, a.friction_angle,
-               a.softening, a.draw)
+               a.softening, a.draw, a.seed)
     open(a.out, "w").write(text)
 
 
