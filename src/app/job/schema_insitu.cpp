@@ -43,8 +43,9 @@ void add_body_keys(Schema& s) {
 
 // The pool of samples: generated, and drawn scattered only from more than one.
 void pool_rules(const Job& job, std::vector<std::string>& err) {
-  if (job.has("dem.initial_state.samples") && job.integer("dem.initial_state.samples") > 1 &&
-      job.has("dem.sample.packing")) {
+  const bool pool =
+      job.has("dem.initial_state.samples") && job.integer("dem.initial_state.samples") > 1;
+  if (pool && job.has("dem.sample.packing")) {
     err.push_back(job.message("dem.initial_state.samples",
                               "a pool of samples is generated (seeds seed, seed + 1, ...): not "
                               "with dem.sample.packing, one given packing"));
@@ -53,7 +54,7 @@ void pool_rules(const Job& job, std::vector<std::string>& err) {
   // resolved job writes whatever the pool.
   if (written(job, "dem.initial_state.sample_draw") &&
       choice_of(job, "dem.initial_state.sample_draw", kSampleDrawNames) == SampleDraw::scattered &&
-      !(job.has("dem.initial_state.samples") && job.integer("dem.initial_state.samples") > 1)) {
+      !pool) {
     err.push_back(job.message("dem.initial_state.sample_draw",
                               "only with dem.initial_state.samples > 1 (with one sample every "
                               "point draws it)"));

@@ -130,6 +130,9 @@ def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header
 length = "{reg_mm:g} mm"              # (docs/design/mpm.md, Regularisation)
 modulus = "{reg_mpa:g} MPa"
 """)
+    layout = f" (point id mod {samples})" if draw == "in_turn" else ", scattered over the points"
+    draw_line = "" if draw == "in_turn" else (
+        f'sample_draw = "scattered"      # (point id mod {samples} would give each vertical line of points one sample)\n')
     dem_tables = """[dem.material]                 # the reference material (docs/validation/triaxial.md)
 density = "2650 kg/m^3"
 young_modulus = "300 MPa"
@@ -150,10 +153,8 @@ friction_angle = "1 deg"
 inertial_number = 1e-2
 
 [dem.initial_state]
-""" + (f"""samples = {samples}                   # distinct RVEs (point id mod {samples}): the imperfection that lets a band form
-""" if draw == "in_turn" else f"""samples = {samples}                   # distinct RVEs, scattered over the points: the imperfection that lets a band form
-sample_draw = "scattered"      # (point id mod {samples} would give each vertical line of points one sample)
-""") + f"""
+samples = {samples}                   # distinct RVEs{layout}: the imperfection that lets a band form
+{draw_line}
 [dem.coupling]
 inertial_number = 4e-3         # I_n of eq. 11 (as jobs/triaxial_mpmxdem_distinct.toml)
 pressure_floor = "10 kPa"      # T_p of an RVE that loses its contacts (the corners under the rough

@@ -116,10 +116,18 @@ def as_continuum(text, elastic):
                   count=1, flags=re.M)
 
 
-def first_in(text, section, lines):
-    """`text` with `lines` added first in its table [section] (none: unchanged)."""
+def first_in(text, section, lines, source_name="the job"):
+    """`text` with `lines` added first in its table [section] (none: unchanged). ValueError when
+    the job has no such table, or the table has a line's key already (a TOML duplicate: --set)."""
     if not lines:
         return text
+    if not re.search(rf"^\[{re.escape(section)}\]\s*$", text, re.M):
+        raise ValueError(f"no table [{section}] in {source_name} to add {lines[0]!r} to")
+    for line in lines:
+        key = line.partition("=")[0].strip()
+        if section_value(text, section, key) is not None:
+            raise ValueError(f"[{section}] of {source_name} has {key} already: --set "
+                             f"'{section}.{key} = ...' replaces it")
     return re.sub(rf"^\[{re.escape(section)}\]\s*$", f"[{section}]\n" + "\n".join(lines), text,
                   count=1, flags=re.M)
 
@@ -149,14 +157,7 @@ def scale(text, l0_new, source_name, tag="", damping=None, young=None, mpm=(), s
         text = set_damping(text, damping)
     for section, lines in (("mpm", mpm), ("dem.coupling", coupling), ("dem.preparation", preparation),
                            ("dem.initial_state", initial_state)):
-        if lines and not re.search(rf"^\[{re.escape(section)}\]\s*$", text, re.M):
-            raise ValueError(f"no table [{section}] in {source_name} to add {lines[0]!r} to")
-        for line in lines:
-            key = line.partition("=")[0].strip()
-            if section_value(text, section, key) is not None:
-                raise ValueError(f"[{section}] of {source_name} has {key} already: --set "
-                                 f"'{section}.{key} = ...' replaces it")
-        text = first_in(text, section, lines)
+        text = first_in(text, section, lines, source_name)
     stiffness = 1.0
     if young is not None:
         stiffness = young / si(section_value(text, "dem.material", "young_modulus"))
