@@ -12,7 +12,7 @@
 #      unbound, then 1-16 threads bound to cores (OMP_PROC_BIND=spread, OMP_PLACES=cores);
 #   B. mpmxdem bench mpm at 10^4 and 10^5 points on 1-16 threads (rank 0's MPM step);
 #   C. bench_farm exchange --rves 10000 on 2, 4, 8, 16 ranks (the scatter and gather);
-#   D. strong scaling of a coupled job (jobs/biaxial_plane_strain_8x16.toml: 512 RVEs of 300
+#   D. strong scaling of a coupled job (docs/data/biaxial_in_turn/biaxial_plane_strain_8x16_in_turn.toml: 512 RVEs of 300
 #      spheres, 400 MPM steps) on ranks x threads 1x1 ... 16x1, 1x16, 2x8, 4x4;
 #   E. bench_farm checkpoint --micro dem --rves 64 on 16 ranks.
 set -u
@@ -93,7 +93,7 @@ for p in 2 4 8 16; do
 done
 
 # D. strong scaling of a coupled job
-say "## D. jobs/biaxial_plane_strain_8x16.toml, $STEPS MPM steps (wall of the steps, from the log)"
+say "## D. docs/data/biaxial_in_turn/biaxial_plane_strain_8x16_in_turn.toml, $STEPS MPM steps (wall of the steps, from the log)"
 tmp=$(mktemp -d)
 base=""
 for lay in 1x1 2x1 4x1 8x1 16x1 1x16 2x8 4x4; do
@@ -102,7 +102,7 @@ for lay in 1x1 2x1 4x1 8x1 16x1 1x16 2x8 4x4; do
   rm -rf "$tmp/run"
   t0=$(date +%s.%N)
   done_line=$(OMP_NUM_THREADS=$t timeout 200 mpirun -n "$p" --bind-to none -x OMP_NUM_THREADS \
-    "$MPMXDEM" run jobs/biaxial_plane_strain_8x16.toml --out "$tmp/run" --max-steps "$STEPS" 2>&1 |
+    "$MPMXDEM" run docs/data/biaxial_in_turn/biaxial_plane_strain_8x16_in_turn.toml --out "$tmp/run" --max-steps "$STEPS" 2>&1 |
     log | grep "info: done:")
   total=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}')
   w=$(echo "$done_line" | sed -n 's/.*wall \([0-9.]*\) s;.*/\1/p')

@@ -211,6 +211,29 @@ def biaxial_compare(o, tmp):
     check(all(abs(e) < 10 for e in errors), f"errors against the 300-sphere DEM {errors} %")
 
 
+def biaxial_family(o, tmp):
+    need("h5py", "numpy", "matplotlib")
+    run = run_dir(o, "biaxial_small")
+    # The same run twice: one family of two draws whose mean and range are the run's own figures.
+    table = os.path.join(tmp, "family.csv")
+    out = tool("biaxial_family", run + ":a", run + ":b", "--strains", "0.005,0.5", "--csv", table,
+               "--dem", os.path.join(DATA, "biaxial_dem", "dem_series_300.csv"),
+               "--figure", os.path.join(tmp, "family.png"))
+    rows = [x for x in out.splitlines() if x.startswith("| a |") or x.startswith("| b |")]
+    check(len(rows) == 2 and rows[0].split("|")[2:] == rows[1].split("|")[2:], "two identical run rows")
+    peak = float(rows[0].split("|")[3].split()[0])
+    check(rows[0].split("|")[5].strip() == "-", "no band past the run's end (50 %)")
+    fam = [x for x in out.splitlines() if x.startswith("| 2 x 4 (")]
+    check(len(fam) == 1, "one family row for the one mesh")
+    cols = [c.strip() for c in fam[0].split("|")[1:-1]]
+    check(cols[1] == "2", f"two draws: {cols[1]}")
+    check(cols[2] == f"{peak:.2f} ({peak:.2f}-{peak:.2f})", f"the family's peak {cols[2]} against {peak}")
+    png(os.path.join(tmp, "family.png"))
+    # The manual's tables come from the CSV alone (standard library): the same family row.
+    again = tool("biaxial_family", "--table", table)
+    check(fam[0] in again.splitlines(), "--table prints the family row of the runs")
+
+
 def biaxial_dem_seeds(o, tmp):
     need("numpy", "pandas")
     # Two samples of 100 spheres to 0.5 % at I = 4e-3 (about 1 s), then their mean.
@@ -463,7 +486,7 @@ def yade_hertz_mindlin_pair(o, tmp):
 
 CASES = {f.__name__: f for f in (
     bench_contact_laws, bench_coupling, bench_dem_pairs, bench_dem_speedup, bench_sparing,
-    bench_speed_error, biaxial_analysis, biaxial_compare, biaxial_dem_seeds, biaxial_j_maps,
+    bench_speed_error, biaxial_analysis, biaxial_compare, biaxial_dem_seeds, biaxial_family, biaxial_j_maps,
     biaxial_paraview, biaxial_seed_mean, column_frictional_family, column_resolution_figure,
     coupling_bias, dem_against_yade, footing_sparing_map, plot_column_collapse, plot_triaxial,
     render_column_collapse, render_points, render_rve, rve_low_pressure_strength, triaxial_errors,

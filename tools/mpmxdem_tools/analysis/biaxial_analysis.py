@@ -113,6 +113,36 @@ class Run:
         return hencky_dev(self.F[row])
 
 
+def first_peak(r):
+    """The output row of run r's first peak of sigma_a / sigma_r: its running maximum before the
+    ratio first falls 5 % below it (post-peak the ratio oscillates and may come back above it)."""
+    runmax = np.maximum.accumulate(r.ratio)
+    drop = np.nonzero(r.ratio < 0.95 * runmax)[0]
+    return int(np.argmax(r.ratio[: drop[0]])) if drop.size else int(np.argmax(r.ratio))
+
+
+def band_at(r, row):
+    """The shear band of run r at output row `row`, fitted to the points' accumulated deviatoric
+    strain (band_fit) away from the platens: the points of the first and last cell rows (the rough
+    platens' dead zones and corners) are left out. Returns theta (deg from +x), d0 and width [m]
+    of the single band, its angle from the horizontal (`incl`), the conjugate X's angle, its other
+    band's width and balance, the strain field and the mask of the points fitted."""
+    x, z = r.x[row][:, 0], r.x[row][:, 2]
+    e = r.eps_dev(row)
+    top = r.H * math.exp(-r.eps[row])
+    inner = (z > r.h) & (z < top - r.h)
+    th, d0, _ = band_fit.single(x[inner], z[inner], e[inner], r.h)
+    width = band_fit.thickness(x[inner], z[inner], e[inner], r.h, th, d0)
+    # The conjugate pair (an X of two mirror bands, as rough platens make).
+    c = band_fit.conjugate(x[inner], z[inner], e[inner], r.h)
+    th2 = c["angle"] if th >= 90 else 180.0 - c["angle"]  # the other sense than `th`
+    d2 = c["d_rising"] if th >= 90 else c["d_falling"]
+    width2 = band_fit.thickness(x[inner], z[inner], e[inner], r.h, th2, d2)
+    return {"theta": th, "d0": d0, "width": width, "incl": min(th, 180.0 - th),
+            "conjugate": c["angle"], "conjugate_width": width2, "balance": c["balance"],
+            "eps_dev": e, "inner": inner}
+
+
 # Axial-strain windows over which the stress ratio is averaged (it swings by +-2-5 % from row to row
 # on a localising specimen): docs/design/mpm.md, "Mass scaling" and "Regularisation".
 WINDOWS = [(0.01, 0.02), (0.04, 0.06), (0.09, 0.105)]
@@ -190,11 +220,7 @@ def main():
           "| conjugate X: angle, other band's thickness, balance | band measured at eps_a |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in runs:
-        # The run's first peak: its running maximum before the ratio first falls 5 % below it
-        # (post-peak the ratio oscillates and may come back above it).
-        runmax = np.maximum.accumulate(r.ratio)
-        drop = np.nonzero(r.ratio < 0.95 * runmax)[0]
-        i = int(np.argmax(r.ratio[: drop[0]])) if drop.size else int(np.argmax(r.ratio))
+        i = first_peak(r)
         # Before the peak: from pre_peak_from to the first of the two peaks (the DEM's, the run's).
         m = (r.eps >= a.pre_peak_from) & (r.eps <= min(fd["eps_peak"], r.eps[i]))
         rel = r.ratio[m] / np.interp(r.eps[m], ref["eps"], ref["ratio"]) - 1.0
@@ -205,20 +231,10 @@ def main():
         bal = np.sqrt(np.mean(((r.sig_a[post] - r.sig_int[post]) / r.sig_int[post]) ** 2))
         r.row = r.row_at(a.at_strain)
         x, z = r.x[r.row][:, 0], r.x[r.row][:, 2]
-        e = r.eps_dev(r.row)
-        # The band is sought away from the platens: the points of the first and last cell rows
-        # (the rough platens' dead zones and corners) are left out of the fit.
-        top = r.H * math.exp(-r.eps[r.row])
-        inner = (z > r.h) & (z < top - r.h)
-        th, d0, _ = band_fit.single(x[inner], z[inner], e[inner], r.h)
-        width = band_fit.thickness(x[inner], z[inner], e[inner], r.h, th, d0)
+        b = band_at(r, r.row)
+        th, d0, width, e, inner = b["theta"], b["d0"], b["width"], b["eps_dev"], b["inner"]
         r.band = (th, d0, width, e)
-        # The conjugate pair (an X of two mirror bands, as rough platens make).
-        c = band_fit.conjugate(x[inner], z[inner], e[inner], r.h)
-        th2 = c["angle"] if th >= 90 else 180.0 - c["angle"]  # the other sense than `th`
-        d2 = c["d_rising"] if th >= 90 else c["d_falling"]
-        width2 = band_fit.thickness(x[inner], z[inner], e[inner], r.h, th2, d2)
-        r.conj = (c["angle"], width2, c["balance"])
+        r.conj = (b["conjugate"], b["conjugate_width"], b["balance"])
         t = math.radians(th)
         dist = np.abs(-x * math.sin(t) + z * math.cos(t) - d0)
         r.in_band = inner & (dist <= max(width, r.h) / 2.0)

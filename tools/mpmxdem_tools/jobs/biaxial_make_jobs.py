@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Write jobs/biaxial_plane_strain_<nx>x<nz>.toml: the plane-strain biaxial test
-(section 2) on one mesh. The jobs in jobs/ (2 x 4 to 8 x 16) were written by this script; a
+(section 2) on one mesh. The jobs in jobs/ (2 x 4 to 16 x 32) were written by this script; a
 user changes the mesh, the RVE size or the rate here, or edits a written job.
 
     tools/mpmxdem-tools biaxial_make_jobs --mesh 8 16 --strain 0.105 --every 40 --out x.toml
@@ -98,7 +98,7 @@ def self_test():
 
 def job(nx, nz, spheres, strain, rate, samples, pad, mass_scaling, every, header, platen="rough",
         smoothing="cell", shape="ugimp", reg_mm=0.0, reg_mpa=0.0, material="dem", friction_angle=40.0, softening=None,
-        draw="in_turn", seed=1):
+        draw="scattered", seed=1):
     """softening: None, or (residual friction angle [deg], softening strain [-]) of the frictional
     continuum. draw: how the points draw the samples (dem.initial_state.sample_draw); seed: the first
     sample's seed (dem.sample.seed; scattered, also the draw's)."""
@@ -132,7 +132,8 @@ modulus = "{reg_mpa:g} MPa"
 """)
     layout = f" (point id mod {samples})" if draw == "in_turn" else ", scattered over the points"
     draw_line = "" if draw == "in_turn" else (
-        f'sample_draw = "scattered"      # (point id mod {samples} would give each vertical line of points one sample)\n')
+        f'sample_draw = "scattered"      # not "in_turn" (point id mod {samples}): that lays them out in a pattern set\n'
+        '                               # by the row\'s length (stripes on 8 x 16)\n')
     dem_tables = """[dem.material]                 # the reference material (docs/validation/triaxial.md)
 density = "2650 kg/m^3"
 young_modulus = "300 MPa"
@@ -238,9 +239,9 @@ def main():
     ap.add_argument("--strain", type=float, default=0.12)
     ap.add_argument("--rate", type=float, default=0.03, help="axial strain rate V/H [1/s]")
     ap.add_argument("--samples", type=int, default=16)
-    ap.add_argument("--draw", default="in_turn", choices=["in_turn", "scattered"],
-                    help="dem.initial_state.sample_draw: in_turn (point id mod samples, the jobs in "
-                         "jobs/) or scattered (no pattern in space)")
+    ap.add_argument("--draw", default="scattered", choices=["in_turn", "scattered"],
+                    help="dem.initial_state.sample_draw: scattered (no pattern in space, the jobs in jobs/) or "
+                         "in_turn (point id mod samples: stripes where a row holds a multiple of samples)")
     ap.add_argument("--seed", type=int, default=1,
                     help="dem.sample.seed: the samples are seeds SEED to SEED + samples - 1 (and a "
                          "scattered draw depends on it); default 1, the pure-DEM reference's samples")
