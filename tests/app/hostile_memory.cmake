@@ -10,7 +10,13 @@ file(READ jobs/biaxial_plane_strain_8x16.toml text)
 string(REPLACE "points_per_cell = [2, 1, 2]" "points_per_cell = [8, 1, 8]" text "${text}")
 string(REPLACE "spheres = 300" "spheres = 500000" text "${text}")
 file(WRITE "${DIR}/huge.toml" "${text}")
-set(fragments "huge.toml:65: mpm.body[0].points_per_cell = [8, 1, 8]: the run's 8192 DEM RVEs of 500000 spheres need at least 4.19e+03 GB of memory"
+# The key's line in the job (its header may grow): the newlines before it, plus one.
+string(FIND "${text}" "points_per_cell = [8, 1, 8]" at)
+string(SUBSTRING "${text}" 0 ${at} before)
+string(REGEX MATCHALL "\n" newlines "${before}")
+list(LENGTH newlines line)
+math(EXPR line "${line} + 1")
+set(fragments "huge.toml:${line}: mpm.body[0].points_per_cell = [8, 1, 8]: the run's 8192 DEM RVEs of 500000 spheres need at least 4.19e+03 GB of memory"
               "rank(s) on the node of rank 0 would hold 8192 of them at the start"
               "use more nodes (ranks on separate nodes), fewer material points or smaller RVEs")
 execute_process(COMMAND "${MPIEXEC}" -n 2 --bind-to none "${EXE}" run "${DIR}/huge.toml" --out "${DIR}/new"
