@@ -58,9 +58,9 @@ SCENES = {
     "element": ("jobs/triaxial_mpmxdem_small.toml", [], "element"),
     # The column collapse a = 0.5 to rest (10 t*): the deposit idles for its last ~7 t*.
     "collapse": ("jobs/column_collapse_a0.5.toml", [], "collapse"),
-    # The plane-strain biaxial on 4 x 8 cells to 10.5 % (its samples drawn in turn, as measured in
-    # docs/validation/speed.md): the rough platens' dead zones and, after
-    # the peak, the blocks outside the band load little.
+    # The plane-strain biaxial on 4 x 8 cells to 10.5 %, its samples drawn in turn as when
+    # docs/validation/speed.md measured it: the rough platens' dead zones and, after the peak, the
+    # blocks outside the band load little.
     "biaxial": ("docs/data/biaxial_in_turn/biaxial_plane_strain_4x8_in_turn.toml", [], "biaxial"),
     # The strip footing (tools/mpmxdem_tools/jobs/footing_make_job.py): 512 RVEs on a 200 x 100 mm layer, and the
     # same footing on layers 2 and 3 times as wide and deep (2048 and 4608 RVEs), whose far field
