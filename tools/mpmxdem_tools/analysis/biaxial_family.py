@@ -188,6 +188,7 @@ def main():
         rows.append(measures(runs[-1], strains))
     if a.csv:
         write_csv(a.csv, rows)
+    # Print what the CSV holds (its rounding), so these tables are the ones `--table` generates.
     rows, keys = read_csv(a.csv) if a.csv else (rows, [f"{s:g}" for s in strains])
     print("\n".join(run_table(rows, keys)))
     print()
