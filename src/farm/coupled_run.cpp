@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -106,6 +107,37 @@ class Master {
   CheckpointSchedule checkpoints_;
   BalanceSchedule balance_;
   mpm::QuasiStaticWatch quasi_static_;  ///< energy ratio of a mass-scaled run (docs/design/mpm.md)
+  bool drift_warned_ = false;           ///< the energy balance's drift was warned of
+
+  /// Warns once when the energy balance has held more than EnergyGuard::kDriftWarn of its scale
+  /// for the guard's persistence, in whatever form (the guard stops only on motion), naming the
+  /// point whose stress power is the largest now.
+  void warn_drift(std::int64_t s) {
+    const mpm::EnergyGuard& g = solver_.energy_guard();
+    if (drift_warned_ || !g.enabled() || !(g.drift() > mpm::EnergyGuard::kDriftWarn)) return;
+    drift_warned_ = true;
+    const mpm::MaterialPoints& pts = solver_.points();
+    if (pts.size() == 0) return;
+    std::size_t top = 0;
+    double power = -std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < pts.size(); ++p) {
+      const common::Mat3 D = 0.5 * (pts.L[p] + pts.L[p].transpose());
+      const double w = pts.volume[p] * pts.stress[p].cwiseProduct(D).sum();
+      if (w > power) {
+        power = w;
+        top = p;
+      }
+    }
+    spdlog::warn(
+        "mpm step {} (t = {:.6g} s): the energy balance drifts: the steps created {:.4g} J, {:.3g} "
+        "of the energy scale {:.4g} J, that no load, wall or gravity put in (kinetic energy now "
+        "{:.4g} J; the rest is in the materials' work); the point taking the most work now is id "
+        "{} at x = ({:.6g}, {:.6g}, {:.6g}) m ({:.4g} W). Work from nothing is not the material's: "
+        "results from here on are suspect (under a footing a row of points settling on a node "
+        "plane did this; a smaller mpm.cfl removed it: docs/design/mpm.md, Energy-growth guard)",
+        s, solver_.time(), g.created(), g.drift(), g.scale(), solver_.energies().kinetic,
+        pts.id[top], pts.x[top][0], pts.x[top][1], pts.x[top][2], power);
+  }
 };
 
 /// The MPM solver around the farm, at the start state: the checkpoint's, or for a fresh run
@@ -168,6 +200,7 @@ void Master::run(RunSummary& sum) {
       const std::string w = quasi_static_.observe(s, solver_.time(), solver_.energies());
       if (!w.empty()) spdlog::warn("{}", w);
     }
+    warn_drift(s);
     if (output_.due(s)) output();
     if (grains_.due(s)) grains_.write(farm_, s, solver_.time());
     if (balance_.due(s)) balance(s);
@@ -191,8 +224,10 @@ void Master::run(RunSummary& sum) {
     spdlog::info(
         "energy guard: the steps created at most {:.3g} of the energy scale (now {:.4g} J created "
         "of {:.4g} J; work of gravity, loads and walls {:.4g} J); it stops a run beyond "
-        "mpm.energy_guard = {:.3g}",
-        g.max_share(), g.created(), g.scale(), g.external_work(), g.share());
+        "mpm.energy_guard = {:.3g}; the balance held at most {:.3g} of the scale in any form "
+        "(warned beyond {:.3g})",
+        g.max_share(), g.created(), g.scale(), g.external_work(), g.share(), g.max_drift(),
+        mpm::EnergyGuard::kDriftWarn);
   }
   if (output_.due_at_end(solver_.step_count(), results_.rows())) output();
   if (grains_.due_at_end(solver_.step_count())) {

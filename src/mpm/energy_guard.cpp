@@ -24,11 +24,14 @@ bool EnergyGuard::observe(double kinetic, double internal_work, double external_
   const double s = scale_ > 0.0 && kinetic >= 0.5 * created_ ? created_ / scale_ : 0.0;
   const auto slot = static_cast<std::size_t>(observed_ % kPersist);
   last_share_[slot] = s;
+  last_drift_[slot] = scale_ > 0.0 ? created_ / scale_ : 0.0;
   last_kin_[slot] = kinetic;
   ++observed_;
   if (observed_ < kPersist) return false;
   const double held = *std::min_element(last_share_.begin(), last_share_.end());
   max_share_ = std::max(max_share_, held);
+  drift_ = *std::min_element(last_drift_.begin(), last_drift_.end());
+  max_drift_ = std::max(max_drift_, drift_);
   // The oldest of the kPersist steps is the next slot of the ring.
   const double kin_first = last_kin_[static_cast<std::size_t>(observed_ % kPersist)];
   return enabled() && held > share_ && kinetic > kin_first;

@@ -40,6 +40,29 @@ TEST(EnergyGuardRule, MotionFromNothingTripsAfterThePersistence) {
   EXPECT_GT(g.max_share(), 0.5);
 }
 
+// The drift the log warns of: a balance that holds more than kDriftWarn of its scale for the
+// persistence, in the materials' work (which the rule leaves alone) or in motion; a balanced
+// scene and a short burst stay below it.
+TEST(EnergyGuardRule, DriftIsTheBalanceHeldInAnyForm) {
+  mpm::EnergyGuard g(0.5);
+  g.start(0.0, 0.0);
+  // The materials take 1.3 times the work put in: created / scale = 0.3 / 1.3.
+  for (int k = 1; k <= 50; ++k) EXPECT_FALSE(g.observe(1e-3, 1.3 * k, 1.0));
+  EXPECT_NEAR(g.drift(), (0.3 * 50 + 1e-3) / (1.3 * 50), 1e-3);
+  EXPECT_GT(g.drift(), mpm::EnergyGuard::kDriftWarn);
+  EXPECT_EQ(g.max_share(), 0.0);  // not motion: the stopping rule stays at 0
+  mpm::EnergyGuard b(0.5);
+  b.start(0.0, 0.0);
+  for (int k = 1; k <= 50; ++k) EXPECT_FALSE(b.observe(1e-3, 0.999 * k, 1.0));
+  EXPECT_LT(b.max_drift(), 0.01);
+  mpm::EnergyGuard h(0.5);
+  h.start(0.0, 0.0);
+  // A burst shorter than the persistence, then the materials' work back to the work put in.
+  for (int k = 1; k < mpm::EnergyGuard::kPersist; ++k) EXPECT_FALSE(h.observe(0.0, 10.0 * k, 1.0));
+  for (int k = 1; k <= 50; ++k) EXPECT_FALSE(h.observe(0.0, 9.0 + k, 1.0));
+  EXPECT_LT(h.max_drift(), mpm::EnergyGuard::kDriftWarn);
+}
+
 TEST(EnergyGuardRule, ADriftWithoutMotionOrAShortBurstDoesNotTrip) {
   mpm::EnergyGuard g(0.5);
   g.start(0.0, 0.0);

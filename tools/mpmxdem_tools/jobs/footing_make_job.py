@@ -23,6 +23,10 @@ over the boxes (tools/mpmxdem_tools/analysis/footing_curves.py).
 the grid's top, and drag the material that heaves beside the footing's edge); --footing-base
 smooth imposes only the footing's vertical velocity (no x = 0 on its nodes).
 
+--cfl sets mpm.cfl (0.5 by default). The RVE layer pushed deep needs 0.25: with 0.5 a row of
+points settling on a node plane under the footing absorbed work no load gave, somewhere between
+s/B = 0.08 and 0.31 in the runs of docs/validation/footing.md ("The RVEs' footing").
+
 --material frictional puts the Drucker-Prager continuum of [mpm.elastic] (plane-strain
 Mohr-Coulomb, no dilatancy) in place of the RVEs, at the same isotropic initial stress: the
 footing whose limit load bearing-capacity theory gives (tools/mpmxdem_tools/analysis/bearing_capacity.py).
@@ -44,7 +48,7 @@ DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
                 friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0,
                 footing_side="held", footing_base="rough", regularisation_length=0.0,
-                regularisation_modulus=0.0)
+                regularisation_modulus=0.0, cfl=0.5)
 LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
 
 
@@ -179,7 +183,7 @@ name = "{name}"
 def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
              material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0,
              dilatancy_angle=0.0, footing_side="held", footing_base="rough", regularisation_length=0.0,
-             regularisation_modulus=0.0):
+             regularisation_modulus=0.0, cfl=0.5):
     nx, nz = round(width / cell), round(depth / cell)
     if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
         raise ValueError("width and depth must be whole numbers of cells")
@@ -256,7 +260,7 @@ damping = {damping:g}                  # Cundall damping (eq. 8): a force on the
                                # reaction reports (with 0.2 the reactions and the surcharge miss
                                # equilibrium by 1-2 % of the footing's load; with 0: 0.2 %)
 mass_scaling = {mass_scaling:g}{' ' * (16 - len('%g' % mass_scaling))}# quasi-static: inertia x {mass_scaling:g}, time step x {math.sqrt(mass_scaling):.3g}
-cfl = 0.5
+cfl = {cfl:g}
 end_time = "{t_end:g} s"
 {reg_table}
 [mpm.grid]                     # one empty cell left of the symmetry plane, beyond the far side and
