@@ -10,7 +10,7 @@ balance stays at or a little below zero; a balance that rises by joules while th
 a fraction of that is energy from nothing, not the material's response (docs/design/mpm.md,
 "Energy-growth guard"; docs/validation/footing.md, "The RVEs' footing"). Prints one line per
 progress line kept (--every) and the largest rise of the balance: how much, over which
-settlements, and the footing's work over the same settlements. Standard library only.
+settlements, and the footing's work over the same settlements.
 
     tools/mpmxdem-tools footing_energy RUN LOG [--every N]
     tools/mpmxdem-tools footing_energy docs/data/footing_dem/dem_w0.2_h12.5 \\
@@ -18,32 +18,27 @@ settlements, and the footing's work over the same settlements. Standard library 
 """
 import argparse
 import bisect
-import csv
 import os
 import re
 
-from .. import readers
+import pandas as pd
+from . import footing_curves
 
 PROGRESS = re.compile(r"t = ([0-9.eE+-]+) s .*E_kin ([0-9.eE+-]+) J, W_int ([0-9.eE+-]+) J")
 
 
 def footing_work(run):
-    """[(time, s/B, q [Pa], W_footing [J])] from reactions.csv: the staircase's boxes summed
-    (tools/mpmxdem_tools/analysis/footing_curves.py), the trapezoid over the settlement."""
-    job = readers.job(run)
-    box = [v for v in job["mpm"]["velocity"] if v.get("name") == "footing"][0]
-    half, thick = box["max"][0], job["mpm"]["grid"]["spacing"][1]
+    """[(time, s/B, q [Pa], W_footing [J])]: the footing's curve (footing_curves.curve, the
+    staircase's boxes summed) and the trapezoid of its force over its settlement."""
+    half, thick = footing_curves.footing_geometry(run)
+    sb, q = footing_curves.curve(run)
+    times = pd.read_csv(os.path.join(run, "reactions.csv"))["time_s"]
     out = []
     work = 0.0
-    prev = None
-    with open(os.path.join(run, "reactions.csv"), newline="") as f:
-        for r in csv.DictReader(f):
-            force = sum(float(v) for k, v in r.items() if re.fullmatch(r"footing(_\d+)?_rz_N", k))
-            u = float(r["footing_uz_m"])
-            if prev is not None:
-                work += 0.5 * (force + prev[0]) * (u - prev[1])
-            prev = (force, u)
-            out.append((float(r["time_s"]), -u / (2 * half), -force / (half * thick), work))
+    for k in range(len(sb)):
+        if k > 0:  # force q half thick [N] over the settlement 2 half d(s/B) [m]
+            work += 0.5 * (q[k] + q[k - 1]) * half * thick * 2 * half * (sb[k] - sb[k - 1])
+        out.append((float(times[k]), float(sb[k]), float(q[k]), work))
     return out
 
 
