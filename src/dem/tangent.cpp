@@ -2,6 +2,7 @@
 #include "dem/tangent.hpp"
 
 #include <array>
+#include <cmath>
 
 #include "common/tensor.hpp"
 
@@ -17,39 +18,53 @@ using Row9 = Eigen::Matrix<double, 9, 1>;
 Tangent contact_stiffness_tangent(const Simulation& sim) {
   const Contacts& c = sim.contacts();
   const Spheres& s = sim.spheres();
-  // Unsymmetrised sum A(ij, kl) = sum_c K_ik d_l d_j with K = k_n n n + a k_s (I - n n): the
-  // stress increment (1/V) sum (K deps d) (x) d of affine contact displacements deps d. Summed in
-  // pair order (deterministic, one thread: one pass over the contacts).
-  Tangent a = Tangent::Zero();
+  // The unsymmetrised sum A(ij, kl) = sum_c K_ik d_l d_j, K = k_n n n + a k_s (I - n n), d = |d| n:
+  // the stress increment (1/V) sum (K deps d) (x) d of affine contact displacements deps d. It is
+  // A(ij, kl) = F_ijkl + delta_ik B_jl with F = sum |d|^2 (k_n - a k_s) n n n n (symmetric in all
+  // four indices) and B = sum |d|^2 a k_s n n, so each contact adds to the 21 entries of F on the
+  // 6 index pairs and the 6 of B instead of the 81 of A (a fifth of the time of a spared step
+  // went here). Summed in pair order (deterministic, one thread: one pass over the contacts).
+  constexpr std::array<std::array<int, 2>, 6> kPair = {
+      {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+  Eigen::Matrix<double, 6, 6> f = Eigen::Matrix<double, 6, 6>::Zero();  // upper triangle used
+  Mat3 b = Mat3::Zero();
   for (std::size_t p = 0; p < c.size(); ++p) {
     if (c.active[p] == 0) continue;
     const Vec3& d = c.branch[p];
-    const double len = d.norm();
+    const double len2 = d.squaredNorm();
+    const double len = std::sqrt(len2);
     if (!(len > 0.0)) continue;
     const Vec3 n = d / len;
     const double shear_factor =
         (s.r[static_cast<std::size_t>(c.i[p])] + s.r[static_cast<std::size_t>(c.j[p])]) / len;
     const ContactProps pr = sim.contact_props(p);
     const double kt = shear_factor * pr.ks;
-    const Mat3 k = (pr.kn - kt) * (n * n.transpose()) + kt * Mat3::Identity();
-    const Mat3 dd = d * d.transpose();
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        for (int kk = 0; kk < 3; ++kk) {
-          const double kik = k(i, kk);
-          for (int l = 0; l < 3; ++l) a(3 * i + j, 3 * kk + l) += kik * dd(l, j);
-        }
-      }
+    const double w_normal = len2 * (pr.kn - kt);
+    const double w_shear = len2 * kt;
+    std::array<double, 6> m{};
+    for (int a = 0; a < 6; ++a) m[a] = n(kPair[a][0]) * n(kPair[a][1]);
+    for (int a = 0; a < 6; ++a) {
+      const double wa = w_normal * m[a];
+      for (int e = a; e < 6; ++e) f(a, e) += wa * m[e];
+    }
+    for (int j = 0; j < 3; ++j) {
+      for (int l = j; l < 3; ++l) b(j, l) += w_shear * n(j) * n(l);
     }
   }
-  // Minor symmetries: symmetric stress out, symmetric strain in.
-  Tangent t = Tangent::Zero();
+  // The index pair (i, j) -> its row of f; f and b filled out by symmetry.
+  constexpr std::array<std::array<int, 3>, 3> kVoigt = {{{0, 3, 4}, {3, 1, 5}, {4, 5, 2}}};
+  f.triangularView<Eigen::StrictlyLower>() = f.transpose();
+  b.triangularView<Eigen::StrictlyLower>() = b.transpose();
+  // Minor symmetries (symmetric stress out, symmetric strain in): F has them already; the
+  // delta_ik B_jl part is averaged over (i, j) and (k, l).
+  Tangent t;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       for (int kk = 0; kk < 3; ++kk) {
         for (int l = 0; l < 3; ++l) {
-          t(3 * i + j, 3 * kk + l) = 0.25 * (a(3 * i + j, 3 * kk + l) + a(3 * j + i, 3 * kk + l) +
-                                             a(3 * i + j, 3 * l + kk) + a(3 * j + i, 3 * l + kk));
+          const double delta_b = (i == kk ? b(j, l) : 0.0) + (j == kk ? b(i, l) : 0.0) +
+                                 (i == l ? b(j, kk) : 0.0) + (j == l ? b(i, kk) : 0.0);
+          t(3 * i + j, 3 * kk + l) = f(kVoigt[i][j], kVoigt[kk][l]) + 0.25 * delta_b;
         }
       }
     }

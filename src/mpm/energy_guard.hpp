@@ -45,8 +45,9 @@ class EnergyGuard {
   /// logged at the end, so that a scene's margin can be read.
   [[nodiscard]] double max_share() const { return max_share_; }
   /// Share of the balance's scale that `created` has held for the last kPersist steps, wherever
-  /// the energy sits (motion or the materials' work; 0 before kPersist steps) [-]. The rule above
-  /// leaves a drift into the materials' work alone; the run's log warns of it beyond
+  /// the energy sits (motion or the materials' work; 0 before kPersist steps, and a step counts
+  /// only where `created` exceeds kPersist mean steps' work, scale / steps observed) [-]. The rule
+  /// above leaves a drift into the materials' work alone; the run's log warns of it beyond
   /// kDriftWarn (a point crossing cells under a held plane absorbed work that no load gave:
   /// docs/design/mpm.md, "Energy-growth guard").
   [[nodiscard]] double drift() const { return drift_; }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "dem/loading.hpp"
 #include "dem/rve.hpp"
 #include "dem/tangent.hpp"
 #include "dem_test_util.hpp"
@@ -86,6 +87,51 @@ TEST(Tangent, PredictsTheDemIncrementOfTheLattice) {
                                                                 << predicted;
     EXPECT_GT(predicted.norm(), 100.0);  // a real increment (about 150 Pa), not two zeros
   }
+}
+
+// The sum as the header writes it, term by term over the 81 entries (the function sums 27 on
+// the index pairs): the same operator on a disordered packing of 1000 spheres to round-off.
+dem::Tangent tangent_by_definition(const dem::Simulation& sim) {
+  const dem::Contacts& c = sim.contacts();
+  dem::Tangent a = dem::Tangent::Zero();
+  for (std::size_t p = 0; p < c.size(); ++p) {
+    if (c.active[p] == 0) continue;
+    const Vec3& d = c.branch[p];
+    const Vec3 n = d.normalized();
+    const double kt = (sim.spheres().r[static_cast<std::size_t>(c.i[p])] +
+                       sim.spheres().r[static_cast<std::size_t>(c.j[p])]) /
+                      d.norm() * sim.contact_props(p).ks;
+    const Mat3 k =
+        sim.contact_props(p).kn * n * n.transpose() + kt * (Mat3::Identity() - n * n.transpose());
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int kk = 0; kk < 3; ++kk)
+          for (int l = 0; l < 3; ++l) a(idx(i, j), idx(kk, l)) += k(i, kk) * d(l) * d(j);
+  }
+  dem::Tangent t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int kk = 0; kk < 3; ++kk)
+        for (int l = 0; l < 3; ++l)
+          t(idx(i, j), idx(kk, l)) = 0.25 * (a(idx(i, j), idx(kk, l)) + a(idx(j, i), idx(kk, l)) +
+                                             a(idx(i, j), idx(l, kk)) + a(idx(j, i), idx(l, kk)));
+  return t / sim.cell().volume();
+}
+
+TEST(Tangent, IsTheContactSumOnADisorderedPacking) {
+  dem::Simulation sim = dem::make_simulation(dem_test::reference_packing(),
+                                             dem_test::reference_material(), dem::Numerics{});
+  sim.set_dt(0.0);
+  sim.compute_forces();
+  std::int64_t active = 0;
+  for (auto a : sim.contacts().active) active += a;
+  ASSERT_GT(active, 1000);  // a real network, every direction
+  const dem::Tangent c = dem::contact_stiffness_tangent(sim);
+  const dem::Tangent ref = tangent_by_definition(sim);
+  // Sums of a few thousand terms in another order: round-off, 1e-12 of the largest entry.
+  EXPECT_LT((c - ref).cwiseAbs().maxCoeff(), 1e-12 * ref.cwiseAbs().maxCoeff());
+  EXPECT_LT((c - c.transpose()).cwiseAbs().maxCoeff(), 1e-12 * c.cwiseAbs().maxCoeff());
+  EXPECT_GT(ref(idx(0, 1), idx(0, 1)), 0.0);  // a shear stiffness, not zeros
 }
 
 TEST(Tangent, NoContactsGivesZero) {

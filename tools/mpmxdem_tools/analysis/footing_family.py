@@ -126,6 +126,13 @@ FAMILIES = {
         # half the time step (the CFL number): no energy created where a row of points under
         # the footing settles on a node plane
         "dem_w0.2_h12.5_cfl0.25": dict(width=0.2, depth=0.1, cell=0.0125, setting=("cfl", "0.25")),
+        # the idle far field spared (dem.sparing.tolerance 1e-5): the 400 x 200 mm layer against its
+        # run without sparing above, then the layer doubled again (8192 RVEs)
+        "dem_w0.4_h12.5_spared": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5),
+        "dem_w0.8_h12.5_spared": dict(width=0.8, depth=0.4, cell=0.0125, sparing=1e-5),
+        # the scene's own noise: the grid's damping changed by 1e-6 of itself
+        "dem_w0.4_h12.5_spared_perturbed": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5,
+                                                setting=("damping", "0.2000002")),
     },
 }
 COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",

@@ -27,6 +27,10 @@ smooth imposes only the footing's vertical velocity (no x = 0 on its nodes).
 points settling on a node plane under the footing absorbed work no load gave, somewhere between
 s/B = 0.08 and 0.31 in the runs of docs/validation/footing.md ("The RVEs' footing").
 
+--sparing TOL (RVEs only) writes [dem.sparing] tolerance = TOL: the idle far field of a large layer
+is predicted by its RVEs' tangents instead of stepped (docs/design/sparing.md; 1e-5 spares about
+four in five RVE steps on layers of 400 x 200 mm and more, docs/validation/speed.md).
+
 --material frictional puts the Drucker-Prager continuum of [mpm.elastic] (plane-strain
 Mohr-Coulomb, no dilatancy) in place of the RVEs, at the same isotropic initial stress: the
 footing whose limit load bearing-capacity theory gives (tools/mpmxdem_tools/analysis/bearing_capacity.py).
@@ -48,7 +52,7 @@ DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
                 friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0,
                 footing_side="held", footing_base="rough", regularisation_length=0.0,
-                regularisation_modulus=0.0, cfl=0.5)
+                regularisation_modulus=0.0, cfl=0.5, sparing=0.0)
 LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
 
 
@@ -183,7 +187,7 @@ name = "{name}"
 def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
              material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0,
              dilatancy_angle=0.0, footing_side="held", footing_base="rough", regularisation_length=0.0,
-             regularisation_modulus=0.0, cfl=0.5):
+             regularisation_modulus=0.0, cfl=0.5, sparing=0.0):
     nx, nz = round(width / cell), round(depth / cell)
     if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
         raise ValueError("width and depth must be whole numbers of cells")
@@ -209,6 +213,16 @@ initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{press
     flags += "" if mass_scaling == 10000 else f" --mass-scaling {mass_scaling:g}"
     flags += "" if footing_side == "held" else f" --footing-side {footing_side}"
     flags += "" if footing_base == "rough" else f" --footing-base {footing_base}"
+    flags += "" if cfl == 0.5 else f" --cfl {cfl:g}"
+    sparing_table = ""
+    if sparing > 0:
+        if frictional:
+            raise ValueError("sparing is for the RVEs (material dem)")
+        flags += f" --sparing {sparing:g}"
+        sparing_table = f"""
+[dem.sparing]                  # idle RVEs (the far field) predicted by their tangent (docs/design/sparing.md)
+tolerance = {sparing:g}
+"""
     if (regularisation_length > 0) != (regularisation_modulus > 0):
         raise ValueError("regularisation_length and regularisation_modulus go together")
     reg_table = ""
@@ -248,7 +262,7 @@ modulus = "{regularisation_modulus / 1e6:g} MPa"
 # Validate:   mpmxdem check jobs/footing_plane_strain.toml
 title = "{title}"
 
-{material_tables(material, spheres, pressure, friction_angle, young, dilatancy_angle)}
+{material_tables(material, spheres, pressure, friction_angle, young, dilatancy_angle)}{sparing_table}
 [mpm]
 shape_function = "ugimp"       # in the plane; linear through the thickness
 update = "usf"
