@@ -24,12 +24,12 @@ bool EnergyGuard::observe(double kinetic, double internal_work, double external_
   const double s = scale_ > 0.0 && kinetic >= 0.5 * created_ ? created_ / scale_ : 0.0;
   const auto slot = static_cast<std::size_t>(observed_ % kPersist);
   last_share_[slot] = s;
-  // The drift counts beyond kPersist mean steps' work (scale / steps): a consistent step errs by
-  // about one step's work, and in a run's first steps the scale is only a few of them (a spared
-  // footing's first 17 steps held 0.1 of a 2.5e-4 J scale, then closed to -4 J of 46 J).
+  // The drift counts beyond kDriftSteps mean steps' work (scale / steps): a consistent step errs
+  // by about one step's work, and in a run's first steps the scale is only a few of them (a
+  // spared footing's first 27 steps held half of a 4e-4 J scale, then closed to -2 J of 40 J).
   const double steps = static_cast<double>(observed_ + 1);
   last_drift_[slot] =
-      scale_ > 0.0 && created_ * steps > kPersist * scale_ ? created_ / scale_ : 0.0;
+      scale_ > 0.0 && created_ * steps > kDriftSteps * scale_ ? created_ / scale_ : 0.0;
   last_kin_[slot] = kinetic;
   ++observed_;
   if (observed_ < kPersist) return false;

@@ -46,14 +46,17 @@ class EnergyGuard {
   [[nodiscard]] double max_share() const { return max_share_; }
   /// Share of the balance's scale that `created` has held for the last kPersist steps, wherever
   /// the energy sits (motion or the materials' work; 0 before kPersist steps, and a step counts
-  /// only where `created` exceeds kPersist mean steps' work, scale / steps observed) [-]. The rule
-  /// above leaves a drift into the materials' work alone; the run's log warns of it beyond
+  /// only where `created` exceeds kDriftSteps mean steps' work, scale / steps observed) [-]. The
+  /// rule above leaves a drift into the materials' work alone; the run's log warns of it beyond
   /// kDriftWarn (a point crossing cells under a held plane absorbed work that no load gave:
   /// docs/design/mpm.md, "Energy-growth guard").
   [[nodiscard]] double drift() const { return drift_; }
   /// Largest drift() over the steps observed [-].
   [[nodiscard]] double max_drift() const { return max_drift_; }
   static constexpr double kDriftWarn = 0.1;
+  /// A drift must exceed this many mean steps' work: it leaves a run's first few hundred steps
+  /// alone (a start-up whose scale is a few steps' work), and from step 1000 on kDriftWarn decides.
+  static constexpr double kDriftSteps = 100.0;
   [[nodiscard]] double share() const { return share_; }
 
  private:
