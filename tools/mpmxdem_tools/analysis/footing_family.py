@@ -140,6 +140,10 @@ FAMILIES = {
         # the 400 x 200 mm layer doubled in width only, and in depth only
         "dem_w0.8_d0.2_h12.5_spared_cfl0.25": dict(width=0.8, depth=0.2, cell=0.0125, sparing=1e-5, cfl=0.25),
         "dem_w0.4_d0.4_h12.5_spared_cfl0.25": dict(width=0.4, depth=0.4, cell=0.0125, sparing=1e-5, cfl=0.25),
+        "dem_w0.8_d0.2_h12.5_spared_cfl0.25_perturbed": dict(width=0.8, depth=0.2, cell=0.0125, sparing=1e-5,
+                                                           cfl=0.25, setting=("damping", "0.2000002")),
+        "dem_w0.4_d0.4_h12.5_spared_cfl0.25_perturbed": dict(width=0.4, depth=0.4, cell=0.0125, sparing=1e-5,
+                                                           cfl=0.25, setting=("damping", "0.2000002")),
     },
 }
 COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",
