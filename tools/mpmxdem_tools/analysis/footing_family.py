@@ -52,6 +52,8 @@ WINDOWS = {"associated": (0.02, 0.06)}
 # An associated flow dilates as much as it shears: its surface heaves like the RVEs'.
 HEADROOM = {"dem": 0.06, "frictional": 0.025, "regularised": 0.025, "associated": 0.05}
 # name: footing_make_job options (besides settlement)
+# The scene's own noise: the grid's damping changed by 1e-6 of itself (the `_perturbed` runs).
+PERTURBED = ("damping", "0.2000002")
 FAMILIES = {
     "frictional": {
         "phi40_w0.2_h12.5": dict(width=0.2, depth=0.1, cell=0.0125),
@@ -132,18 +134,18 @@ FAMILIES = {
         "dem_w0.8_h12.5_spared": dict(width=0.8, depth=0.4, cell=0.0125, sparing=1e-5),
         # the scene's own noise: the grid's damping changed by 1e-6 of itself
         "dem_w0.4_h12.5_spared_perturbed": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5,
-                                                setting=("damping", "0.2000002")),
+                                                setting=PERTURBED),
         "dem_w0.8_h12.5_spared_perturbed": dict(width=0.8, depth=0.4, cell=0.0125, sparing=1e-5,
-                                                setting=("damping", "0.2000002")),
+                                                setting=PERTURBED),
         # and with half the time step (no numerical event: the balance closed)
         "dem_w0.4_h12.5_spared_cfl0.25": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5, cfl=0.25),
         # the 400 x 200 mm layer doubled in width only, and in depth only
         "dem_w0.8_d0.2_h12.5_spared_cfl0.25": dict(width=0.8, depth=0.2, cell=0.0125, sparing=1e-5, cfl=0.25),
         "dem_w0.4_d0.4_h12.5_spared_cfl0.25": dict(width=0.4, depth=0.4, cell=0.0125, sparing=1e-5, cfl=0.25),
         "dem_w0.8_d0.2_h12.5_spared_cfl0.25_perturbed": dict(width=0.8, depth=0.2, cell=0.0125, sparing=1e-5,
-                                                           cfl=0.25, setting=("damping", "0.2000002")),
+                                                           cfl=0.25, setting=PERTURBED),
         "dem_w0.4_d0.4_h12.5_spared_cfl0.25_perturbed": dict(width=0.4, depth=0.4, cell=0.0125, sparing=1e-5,
-                                                           cfl=0.25, setting=("damping", "0.2000002")),
+                                                           cfl=0.25, setting=PERTURBED),
     },
 }
 COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",
