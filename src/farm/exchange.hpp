@@ -47,7 +47,7 @@ struct RveRecord {
   double stress[9] = {};    ///< Cauchy stress, row-major [Pa, tension positive]
   MicroReport report;       ///< the step's report
   double wave_speed = 0.0;  ///< MicroModel::wave_speed after the step [m/s]
-  double cpu_s = 0.0;       ///< CPU time of the thread that stepped it (the RVE's cost) [s]
+  double cpu_s = 0.0;       ///< CPU time of its step (the RVE's cost: RveFarm::exec_step) [s]
   ErrorKind error = ErrorKind::none;  ///< the step failed: the text follows on request
   std::int32_t dilute = 0;            ///< MicroModel::dilute after the step (1) or not (0)
 };

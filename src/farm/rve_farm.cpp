@@ -17,8 +17,8 @@ namespace farm {
 
 namespace {
 
-/// CPU time of the calling thread [s]. An RVE's cost for balancing: unlike wall time it leaves
-/// out the time its thread was not running (another rank on the same core, a preemption).
+/// CPU time of the calling thread [s]: a system call (about a microsecond on a VM), so it is read
+/// once per thread and step, not once per RVE (exec_step).
 double thread_cpu_s() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
@@ -236,28 +236,49 @@ void RveFarm::exec_step(const CommandHeader& h, std::span<common::Mat3> stress) 
   const std::vector<std::size_t>& local = placement_.local();
   const double t_loop = now();
   const auto nl = static_cast<std::int64_t>(local.size());
-#pragma omp parallel for schedule(dynamic, 1) if (options_.omp_over_rves && nl > 1)
-  for (std::int64_t jj = 0; jj < nl; ++jj) {
-    const auto j = static_cast<std::size_t>(jj);
-    MicroModel& m = model(local[j]);
-    RveRecord rec;
-    errors_[j].clear();
-    try {
-      const double cpu0 = thread_cpu_s();
-      rec.report = m.step(exchange_.L_in(j), dt);
-      rec.cpu_s = thread_cpu_s() - cpu0;
-      const common::Mat3 s = m.stress();
-      if (!s.allFinite())
-        throw common::NumericalError("non-finite stress (trace = " + std::to_string(s.trace()) +
-                                     " Pa)");
-      common::row_major_out(rec.stress) = s;
-      rec.wave_speed = m.wave_speed();
-      rec.dilute = m.dilute() ? 1 : 0;
-    } catch (const std::exception& e) {
-      rec.error = current_error_kind();
-      errors_[j] = e.what();
+  // An RVE's cost for balancing is the CPU time its step took: its wall time times the share of
+  // the loop its thread was running (its CPU time over its wall time), which leaves out the time
+  // the thread was not running (another rank on the same core, a preemption). The thread's CPU
+  // clock is a system call, longer than a spared RVE's step: read once per thread, not per RVE.
+  const bool team = options_.omp_over_rves && nl > 1;
+  records_.assign(local.size(), RveRecord{});
+  stepped_by_.assign(local.size(), 0);
+  std::vector<double> running(static_cast<std::size_t>(team ? omp_get_max_threads() : 1), 1.0);
+#pragma omp parallel if (team)
+  {
+    const int t = omp_get_thread_num();
+    const double cpu0 = thread_cpu_s();
+    const double wall0 = now();
+#pragma omp for schedule(dynamic, 1) nowait
+    for (std::int64_t jj = 0; jj < nl; ++jj) {
+      const auto j = static_cast<std::size_t>(jj);
+      MicroModel& m = model(local[j]);
+      RveRecord& rec = records_[j];
+      stepped_by_[j] = t;
+      errors_[j].clear();
+      try {
+        const double w0 = now();
+        rec.report = m.step(exchange_.L_in(j), dt);
+        rec.cpu_s = now() - w0;  // its wall time: scaled below
+        const common::Mat3 s = m.stress();
+        if (!s.allFinite())
+          throw common::NumericalError("non-finite stress (trace = " + std::to_string(s.trace()) +
+                                       " Pa)");
+        common::row_major_out(rec.stress) = s;
+        rec.wave_speed = m.wave_speed();
+        rec.dilute = m.dilute() ? 1 : 0;
+      } catch (const std::exception& e) {
+        rec.error = current_error_kind();
+        errors_[j] = e.what();
+      }
     }
-    exchange_.put(j, rec);
+    const double wall = now() - wall0;
+    const double cpu = thread_cpu_s() - cpu0;
+    running[static_cast<std::size_t>(t)] = wall > 0.0 ? std::clamp(cpu / wall, 0.0, 1.0) : 1.0;
+  }
+  for (std::size_t j = 0; j < local.size(); ++j) {
+    records_[j].cpu_s *= running[static_cast<std::size_t>(stepped_by_[j])];
+    exchange_.put(j, records_[j]);
   }
   exchange_.set_busy(now() - t_loop);
   exchange_.gather();

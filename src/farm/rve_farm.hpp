@@ -196,6 +196,8 @@ class RveFarm final : public mpm::MaterialModel {
   std::vector<std::unique_ptr<MicroModel>> models_;  ///< by index; null if not mine
   StepExchange exchange_;
   std::vector<std::string> errors_;     ///< my failures of the last step, by local position
+  std::vector<RveRecord> records_;      ///< my records of the last step, by local position
+  std::vector<int> stepped_by_;         ///< the OpenMP thread that stepped each of them
   PointIndex points_;                   ///< rank 0: solver slot <-> RVE index
   std::vector<MicroReport> reports_;    ///< rank 0, by index
   std::vector<common::Mat3> stresses_;  ///< rank 0, by index

@@ -75,6 +75,7 @@ SparedMicro::SparedMicro(std::unique_ptr<MicroModel> inner, const SparingOptions
   MPMXDEM_CHECK(inner_ != nullptr, "SparedMicro: no inner model");
   options_.validate();
   base_ = inner_->report();
+  dilute_ = inner_->dilute();
   allowance_ = options_.tolerance;
   cap_ = options_.max_spared_steps;
 }
@@ -123,6 +124,7 @@ MicroReport SparedMicro::step(const Mat3& L, double dt) {
   }
   after_update(g_applied, sigma_before, had_spared);
   base_ = r;
+  dilute_ = inner_->dilute();
   return r;
 }
 

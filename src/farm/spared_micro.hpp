@@ -90,8 +90,9 @@ class SparedMicro final : public MicroModel {
   void save(common::StateWriter& writer) const override;
   [[nodiscard]] double cost_estimate() const override { return inner_->cost_estimate(); }
   [[nodiscard]] double wave_speed() const override { return inner_->wave_speed(); }
-  /// The wrapped model's state as of its last DEM step.
-  [[nodiscard]] bool dilute() const override { return inner_->dilute(); }
+  /// The wrapped model's state as of its last DEM step (kept: a spared step leaves it as it is,
+  /// and the farm asks every step).
+  [[nodiscard]] bool dilute() const override { return dilute_; }
 
   /// Rebuilds a SparedMicro around inner_load(reader) with the spare/* fields of the reader
   /// (options from the caller: a restart may change them).
@@ -133,6 +134,7 @@ class SparedMicro final : public MicroModel {
   common::Mat3 e_fit_ = common::Mat3::Zero();  ///< strain increment alpha was fitted on [-]
   double last_drift_ = -1.0;
   common::Mat3 sigma_ = common::Mat3::Zero();  ///< the prediction while spared (not saved)
+  bool dilute_ = false;                        ///< inner_->dilute() since its last step (not saved)
 };
 
 /// Which models a kind spares (e.g. the DEM ones: is_dem_micro).

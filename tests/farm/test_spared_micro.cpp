@@ -257,6 +257,35 @@ TEST(SparedMicro, RveWithoutContactsPredictsZeroStress) {
   EXPECT_NE(r.guards & farm::kGuardSpared, 0u);
   EXPECT_NE(r.guards & dem::kGuardNoContacts, 0u);
   EXPECT_EQ(m->stress(), Mat3::Zero());
+  // Two grains in a 64 mm^3 cell are a spray: dilute, as its DEM model says, while spared.
+  const auto& sm = dynamic_cast<const farm::SparedMicro&>(*m);
+  EXPECT_TRUE(sm.inner().dilute());
+  EXPECT_TRUE(m->dilute());
+}
+
+// SparedMicro keeps its inner model's dilute() (the farm asks it of every RVE every step): the
+// inner's own answer after creation, after each spared step and after each update.
+TEST(SparedMicro, DiluteIsTheInnerModelsAtEveryStep) {
+  farm::SparingOptions o;
+  o.tolerance = 1e-4;
+  o.max_spared_steps = 3;
+  auto m = spared(dem_kind().create(0), o, farm::dem_micro_tangent);
+  const auto& sm = dynamic_cast<const farm::SparedMicro&>(*m);
+  EXPECT_FALSE(m->dilute());  // the dense packing
+  // Small increments (spared) around an expansion by e^0.6 that makes it a spray (updated) and a
+  // compression back (updated).
+  int spared_steps = 0;
+  int dilute_steps = 0;
+  for (int s = 0; s < 12; ++s) {
+    const double big = s == 3 ? 200.0 : s == 8 ? -200.0 : 0.0;
+    const farm::MicroReport r = m->step(path_l(s) * 1e-2 + big * Mat3::Identity(), 1e-3);
+    spared_steps += (r.guards & farm::kGuardSpared) != 0;
+    dilute_steps += sm.inner().dilute();
+    EXPECT_EQ(m->dilute(), sm.inner().dilute()) << "step " << s;
+  }
+  EXPECT_GT(spared_steps, 4);
+  EXPECT_GT(dilute_steps, 0);
+  EXPECT_LT(dilute_steps, 12);
 }
 
 }  // namespace
