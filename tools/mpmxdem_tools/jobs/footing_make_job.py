@@ -19,6 +19,13 @@ the top row of points under the footing never leaves the cells whose upper plane
 (--self-test checks it), and the settlement may be many cells. The footing's reaction is the sum
 over the boxes (tools/mpmxdem_tools/analysis/footing_curves.py).
 
+--lead L (0.25-0.75 cells, default 0.5) holds each plane L cells before the material's top
+reaches it. With 0.5 the lowest held plane is on average at the footing's base, but just before
+the next plane takes over the top row of points lies 0.75 of a cell under it, weakly held; with
+0.75 it is never more than half a cell under, and the footing is on average a quarter cell
+deeper (docs/validation/footing.md, "The RVEs' footing": the RVE layer's deep collapse after its
+peak is that weak grip's; the load before it 6-9 % higher with 0.75).
+
 --footing-side free ends the footing's held node columns at the surface (by default they reach
 the grid's top, and drag the material that heaves beside the footing's edge); --footing-base
 smooth imposes only the footing's vertical velocity (no x = 0 on its nodes).
@@ -52,14 +59,20 @@ DEFAULTS = dict(width=0.2, depth=0.1, cell=0.0125, half_width=0.025, settlement=
                 speed=0.001, spheres=100, pressure=50e3, every=10, damping=0.2, material="dem",
                 friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0, dilatancy_angle=0.0,
                 footing_side="held", footing_base="rough", regularisation_length=0.0,
-                regularisation_modulus=0.0, cfl=0.5, sparing=0.0)
-LEAD = 0.5  # a plane is held this many cells before the material's top reaches it
+                regularisation_modulus=0.0, cfl=0.5, sparing=0.0, lead=0.5)
+# lead: a plane is held this many cells before the material's top reaches it. The top row of points
+# under the footing (a quarter cell under the material's top) then lies down to 1.25 - lead cells
+# under the lowest held plane before the next one takes over (0.75 with the default 0.5); with a lead
+# above 0.5 a plane engages lead - 0.5 cells deeper inside the material than the default.
 
 
-def footing_boxes(depth, cell, speed, t_end):
+def footing_boxes(depth, cell, speed, t_end, lead=0.5):
     """The footing's boxes (k, z_k, t_k): box k holds the node planes z >= depth - k cell from
-    t_k = (k - LEAD) cell / speed (box 0 from the start)."""
-    return staircase(depth, cell, speed, t_end, LEAD)
+    t_k = (k - lead) cell / speed (box 0 from the start)."""
+    if not 0.25 <= lead <= 0.75:
+        raise ValueError("lead must be in [0.25, 0.75] cells: with less the top row of points leaves the held "
+                         "planes' cells, with more a plane engages with a whole row of points above it")
+    return staircase(depth, cell, speed, t_end, lead)
 
 
 def footing_grip_failures(depth, cell, speed, t_end, boxes, samples=4000):
@@ -72,8 +85,22 @@ def self_test():
     for cell in (0.025, 0.0125, 0.00625):
         for settlement in (0.005, 0.015, 0.03):
             t_end = settlement / 0.001
-            bad = footing_grip_failures(0.1, cell, 0.001, t_end, footing_boxes(0.1, cell, 0.001, t_end))
-            assert not bad, f"cell {cell} to {settlement}: {bad[:3]}"
+            for lead in (0.25, 0.375, 0.5):
+                bad = footing_grip_failures(0.1, cell, 0.001, t_end, footing_boxes(0.1, cell, 0.001, t_end, lead))
+                assert not bad, f"cell {cell} to {settlement}, lead {lead}: {bad[:3]}"
+    # A lead of 0.75 keeps the top row within half a cell of a held plane; its planes engage a
+    # quarter cell deeper than grip_failures' half a cell (the only failures it reports).
+    bad = footing_grip_failures(0.1, 0.0125, 0.001, 30.0, footing_boxes(0.1, 0.0125, 0.001, 30.0, 0.75))
+    assert bad and all(kind == "deep" for kind, _ in bad), bad
+    # Below 0.25 the top row leaves the held planes' cells: refused, as is a lead above 0.75.
+    bad = footing_grip_failures(0.1, 0.0125, 0.001, 30.0, staircase(0.1, 0.0125, 0.001, 30.0, 0.2))
+    assert bad and all(kind == "loose" for kind, _ in bad), bad
+    for lead in (0.2, 0.8):
+        try:
+            footing_boxes(0.1, 0.0125, 0.001, 30.0, lead)
+            raise AssertionError("lead %g was accepted" % lead)
+        except ValueError:
+            pass
     # One plane (no staircase) loses the grip three quarters of a cell down: the check sees it.
     t_end = 0.03 / 0.001
     bad = footing_grip_failures(0.1, 0.0125, 0.001, t_end, [(0, 0.1, 0.0)])
@@ -154,7 +181,7 @@ pressure_floor = "5 kPa"       # T_p of an RVE that loses its contacts (by the f
 '''
 
 
-def footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, side="held", base="rough"):
+def footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, side="held", base="rough", lead=0.5):
     """The footing: box 0 on the surface's node plane, then one box per plane down (staircase).
     side "held": each box holds its node columns from its plane up to the grid's top zt, so the
     material that heaves beside the footing's edge above the surface is dragged by the edge column
@@ -169,7 +196,7 @@ def footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, side=
         raise ValueError("footing_base must be rough or smooth, not %r" % base)
     slip = "x = 0.0\n" if base == "rough" else ""
     out = []
-    for k, zk, tk in footing_boxes(depth, cell, speed, t_end):
+    for k, zk, tk in footing_boxes(depth, cell, speed, t_end, lead):
         top = zt if side == "held" else zk
         head = (f"[[mpm.velocity]]               # the footing: rigid, {base}{' (no slip)' if base == 'rough' else ''}, pushed down" if k == 0
                 else f"[[mpm.velocity]]               # the footing's next node plane, held from {tk:g} s")
@@ -187,7 +214,7 @@ name = "{name}"
 def job_text(width, depth, cell, half_width, settlement, speed, spheres, pressure, every, damping,
              material="dem", friction_angle=40.0, young=50e6, above=2, mass_scaling=10000.0,
              dilatancy_angle=0.0, footing_side="held", footing_base="rough", regularisation_length=0.0,
-             regularisation_modulus=0.0, cfl=0.5, sparing=0.0):
+             regularisation_modulus=0.0, cfl=0.5, sparing=0.0, lead=0.5):
     nx, nz = round(width / cell), round(depth / cell)
     if abs(nx * cell - width) > 1e-9 * width or abs(nz * cell - depth) > 1e-9 * depth:
         raise ValueError("width and depth must be whole numbers of cells")
@@ -214,6 +241,7 @@ initial_stress = ["-{pressure / 1e3:g} kPa", "-{pressure / 1e3:g} kPa", "-{press
     flags += "" if footing_side == "held" else f" --footing-side {footing_side}"
     flags += "" if footing_base == "rough" else f" --footing-base {footing_base}"
     flags += "" if cfl == 0.5 else f" --cfl {cfl:g}"
+    flags += "" if lead == 0.5 else f" --lead {lead:g}"
     sparing_table = ""
     if sparing > 0:
         if frictional:
@@ -308,7 +336,7 @@ max = [{fmt(xt)}, {fmt(cell)}, {fmt(zt)}]
 x = 0.0
 name = "far"
 
-{footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, footing_side, footing_base)}
+{footing_velocity_tables(x0, zt, depth, cell, half_width, speed, t_end, footing_side, footing_base, lead)}
 [[mpm.traction]]               # the surcharge on the surface's current area (under the footing too:
 face = "z+"                    # the footing's reaction includes it over its half-width)
 pressure = "{pressure / 1e3:g} kPa"
