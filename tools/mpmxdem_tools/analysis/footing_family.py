@@ -153,6 +153,7 @@ FAMILIES = {
         # more than half a cell under a held plane): does it move the collapse at s/B 0.36?
         "dem_w0.4_h12.5_spared_cfl0.25_lead0.75": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5, cfl=0.25,
                                                      lead=0.75),
+        "dem_w0.8_h12.5_spared_lead0.75": dict(width=0.8, depth=0.4, cell=0.0125, sparing=1e-5, lead=0.75),
     },
 }
 COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",
