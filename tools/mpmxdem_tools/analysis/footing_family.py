@@ -149,6 +149,8 @@ FAMILIES = {
         # the 800 x 400 mm layer doubled again (32,768 RVEs; outputs every 100 steps: the peak read
         # every 100 steps is the one read every 20 within 0.2 % on the 800 x 400 mm runs)
         "dem_w1.6_h12.5_spared": dict(width=1.6, depth=0.8, cell=0.0125, sparing=1e-5, every=100),
+        "dem_w1.6_h12.5_spared_perturbed": dict(width=1.6, depth=0.8, cell=0.0125, sparing=1e-5, every=100,
+                                                setting=PERTURBED),
         # the staircase's next plane held 0.75 cells ahead instead of 0.5 (the top row of points never
         # more than half a cell under a held plane): does it move the collapse at s/B 0.36?
         "dem_w0.4_h12.5_spared_cfl0.25_lead0.75": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5, cfl=0.25,
