@@ -25,6 +25,10 @@ namespace farm {
 
 namespace {
 
+/// RVEs per rank below which the RVEs' step-to-step cost swings cap the balance (docs/design/
+/// farm.md, "Choosing ranks, threads and RVEs per rank"): the start-up log says so.
+constexpr std::size_t kRvesPerRankForBalance = 64;
+
 double wall_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -342,6 +346,16 @@ RunSummary CoupledRun::run() {
                      ? (sum.wait == WaitMode::spin ? "auto: every thread of the node has a core"
                                                    : "auto: the node's threads share cores")
                      : "as configured");
+    const auto workers = static_cast<std::size_t>(farm_->placement().workers());
+    if (workers > 1 && ids_.size() < kRvesPerRankForBalance * workers) {
+      spdlog::info(
+          "farm: {:.0f} RVEs per rank: a rank's sum of fewer than {} RVE step costs still swings "
+          "from step to step and the slowest rank sets the step (on the 8 x 16 biaxial 16 ranks "
+          "of 32 balance at 0.85, 4 ranks x 4 threads at 0.97): fewer ranks with more threads "
+          "each balance better (docs/design/farm.md, \"Choosing ranks, threads and RVEs per "
+          "rank\")",
+          static_cast<double>(ids_.size()) / static_cast<double>(workers), kRvesPerRankForBalance);
+    }
   }
   if (rank_ != 0) {
     farm_->serve();  // throws the error rank 0 reports

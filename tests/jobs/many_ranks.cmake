@@ -4,7 +4,8 @@
 #  - a checkpoint written by 32 ranks restarts on 3, and one written by 3 restarts on 32, both equal
 #    to the straight run;
 #  - 8 RVEs on 16 ranks (8 ranks own nothing) equal the 1-rank run;
-#  - with farm.rank0_rves = false (rank 0 runs the MPM only) on 8 ranks, the 1-rank run again.
+#  - with farm.rank0_rves = false (rank 0 runs the MPM only) on 8 ranks, the 1-rank run again;
+#  - with fewer than 64 RVEs per rank the start-up log says so (8 ranks), on one rank it does not.
 # Rank-count-dependent datasets are left out of the comparison: the measured costs, the partition and
 # wall times. Usage: cmake -DEXE -DMPIEXEC -DH5DIFF -DDIR -P ... (from the source root)
 file(REMOVE_RECURSE "${DIR}")
@@ -27,6 +28,16 @@ foreach(np 1 2 8 16 32)
     same("${DIR}/np1/results.h5" "${DIR}/np${np}/results.h5" "64 RVEs on ${np} ranks")
   endif()
 endforeach()
+
+# Fewer than 64 RVEs per rank: the start-up log says so, with the count per rank; one rank does not.
+file(STRINGS "${DIR}/np8/log.txt" line REGEX "farm: 8 RVEs per rank: .*fewer ranks with more threads")
+if(NOT line)
+  message(FATAL_ERROR "np8: the log does not say that 8 RVEs per rank balance badly")
+endif()
+file(STRINGS "${DIR}/np1/log.txt" line REGEX "RVEs per rank")
+if(line)
+  message(FATAL_ERROR "np1: the log speaks of RVEs per rank on one rank: ${line}")
+endif()
 
 # Restarts across rank counts: 32 -> 3 and 3 -> 32.
 file(COPY "${DIR}/np32/checkpoint_0000000005.h5" DESTINATION "${DIR}/from32")
