@@ -8,6 +8,8 @@ figure of every run's curve.
     tools/mpmxdem-tools footing_curves RUN [RUN ...] [--label NAME ...] [--out curves.png]
         [--theory LABEL=PHI_DEG ...] [--q0 50e3]   (horizontal lines at Prandtl's q0 N_q(phi),
                                                      tools/mpmxdem_tools/analysis/bearing_capacity.py)
+        [--compliance]   (also the secant compliance d(s/B)/dq [1/MPa] over intervals of s/B, and
+                          its change from each run to the next: how a layer's size softens it)
 """
 import argparse
 import os
@@ -35,6 +37,33 @@ def curve(run):
     return -r["footing_uz_m"] / (2 * half), -r[boxes].sum(axis=1) / (half * thick)
 
 
+COMPLIANCE_INTERVALS = ((0.0, 0.01), (0.01, 0.02), (0.02, 0.05), (0.05, 0.1))
+
+
+def compliance(sb, q, lo, hi):
+    """Secant d(s/B)/dq [1/MPa] between the rows nearest s/B = lo and hi (None where the run
+    has no row within 0.005 of either)."""
+    a, b = (sb - lo).abs().idxmin(), (sb - hi).abs().idxmin()
+    if abs(sb[a] - lo) > 0.005 or abs(sb[b] - hi) > 0.005 or q[b] == q[a]:
+        return None
+    return float(sb[b] - sb[a]) / float((q[b] - q[a]) / 1e6)
+
+
+def print_compliance(labels, curves):
+    print("secant compliance d(s/B)/dq [1/MPa] over s/B " +
+          ", ".join("%g-%g" % iv for iv in COMPLIANCE_INTERVALS) + " (change from the run above)")
+    before = None
+    for lab, (sb, q) in zip(labels, curves):
+        vals = [compliance(sb, q, lo, hi) for lo, hi in COMPLIANCE_INTERVALS]
+        cells = []
+        for k, v in enumerate(vals):
+            prev = before[k] if before else None
+            cells.append("%8s" % "-" if v is None else
+                         "%.4f" % v + (" (%+.4f)" % (v - prev) if prev is not None else " " * 10))
+        print("%-40s " % lab + "  ".join(cells))
+        before = vals
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+")
@@ -44,6 +73,8 @@ def main():
                     help="a line at q0 N_q(phi) on the figure")
     ap.add_argument("--q0", type=float, default=50e3, help="surcharge [Pa] of the theory lines")
     ap.add_argument("--title")
+    ap.add_argument("--compliance", action="store_true",
+                    help="print the secant compliance d(s/B)/dq over intervals of s/B")
     a = ap.parse_args()
     labels = a.label + [os.path.basename(r.rstrip("/")) for r in a.runs[len(a.label):]]
     curves = [curve(r) for r in a.runs]
@@ -55,6 +86,8 @@ def main():
             k = (sb - m).abs().idxmin()
             vals.append("%15.3f" % (q[k] / 1e6) if abs(sb[k] - m) < 0.005 else "%15s" % "-")
         print("%-40s " % lab + " ".join(vals))
+    if a.compliance:
+        print_compliance(labels, curves)
     if a.out:
         import matplotlib
         matplotlib.use("Agg")
