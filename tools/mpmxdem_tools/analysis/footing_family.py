@@ -156,6 +156,16 @@ FAMILIES = {
         "dem_w0.4_h12.5_spared_cfl0.25_lead0.75": dict(width=0.4, depth=0.2, cell=0.0125, sparing=1e-5, cfl=0.25,
                                                      lead=0.75),
         "dem_w0.8_h12.5_spared_lead0.75": dict(width=0.8, depth=0.4, cell=0.0125, sparing=1e-5, lead=0.75),
+        # the 400 x 200 mm layer on three meshes (cells of 25, 12.5 and 6.25 mm: the footing's
+        # half-width 1, 2 and 4 cells), spared, cfl 0.25; outputs every 40 steps on the finest (its
+        # steps are half as long: the same rows per settlement as every 20 on 12.5 mm)
+        "dem_w0.4_h25_spared_cfl0.25": dict(width=0.4, depth=0.2, cell=0.025, sparing=1e-5, cfl=0.25, every=10),
+        "dem_w0.4_h6.25_spared_cfl0.25": dict(width=0.4, depth=0.2, cell=0.00625, sparing=1e-5, cfl=0.25,
+                                            every=40),
+        # and the 200 x 100 mm layer on 6.25 mm cells with half the time step (the run above on those
+        # cells, with cfl 0.5, ended in a numerical event before its peak)
+        "dem_w0.2_h6.25_spared_cfl0.25": dict(width=0.2, depth=0.1, cell=0.00625, sparing=1e-5, cfl=0.25,
+                                            every=40),
     },
 }
 COLUMNS = ["name", "material", "phi_deg", "psi_deg", "width_m", "depth_m", "cell_m", "points", "s_end", "q_0.1_MPa",

@@ -279,7 +279,7 @@ modulus = "{regularisation_modulus / 1e6:g} MPa"
 # half-width {half_width * 1e3:g} mm (B = {B_mm:g} mm: the node columns x = 0 ... {half_width * 1e3:g} mm of the surface)
 # pushed down at {speed * 1e3:g} mm/s to a settlement of {settlement * 1e3:g} mm ({settlement / (2 * half_width):g} B). No gravity: a
 # {pressure / 1e3:g} kPa surcharge on the surface and an isotropic initial state at {pressure / 1e3:g} kPa {state}; rollers on the sides (x = 0: symmetry; x = {width * 1e3:g} mm: far field),
-# a rough rigid base. Mass scaling 1e4 (quasi-static: the log reports E_kin/W_int).
+# a rough rigid base. Mass scaling {"1e4" if mass_scaling == 1e4 else f"{mass_scaling:g}"} (quasi-static: the log reports E_kin/W_int).
 # Reference quantity: the footing's reaction (reactions.csv footing_rz_N) against its settlement
 # (footing_uz_m); its bearing pressure is -footing_rz_N / (half-width x thickness {cell * 1e3:g} mm)
 # (tools/mpmxdem_tools/analysis/footing_curves.py). The default layer (200 x 100 mm, 2 B deep on a rough base) is small:
