@@ -15,10 +15,8 @@ using common::Mat3;
 using common::Vec3;
 
 namespace {
-using Row9 = Eigen::Matrix<double, 9, 1>;
-}  // namespace
 
-namespace {
+using Row9 = Eigen::Matrix<double, 9, 1>;
 
 constexpr std::array<std::array<int, 2>, 6> kPair = {
     {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
