@@ -56,7 +56,15 @@ std::vector<std::int64_t> StateStore::read_i64(std::string_view name) const {
 bool StateStore::has(std::string_view name) const { return fields_.find(name) != fields_.end(); }
 
 std::vector<char> StateStore::serialize() const {
+  // The exact size first: one allocation, written once (a growing buffer of a 1 MB RVE state
+  // reallocates a dozen times, each into fresh pages).
+  std::size_t size = sizeof(std::uint64_t);
+  for (const auto& [name, field] : fields_) {
+    size += 2 * sizeof(std::uint64_t) + name.size() + sizeof(std::uint8_t);
+    size += std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, field);
+  }
   std::vector<char> out;
+  out.reserve(size);
   append_pod(out, static_cast<std::uint64_t>(fields_.size()));
   for (const auto& [name, field] : fields_) {
     append_pod(out, static_cast<std::uint64_t>(name.size()));
@@ -92,7 +100,9 @@ StateStore StateStore::deserialize(std::span<const char> bytes) {
       std::vector<T> v(n);
       if (n > 0) std::memcpy(v.data(), bytes.data() + pos, n * sizeof(T));
       pos += n * sizeof(T);
-      store.write(name, std::span<const T>(v));
+      // Moved in, not copied again (write() copies its span).
+      if (!store.fields_.try_emplace(name, std::move(v)).second)
+        throw InputError("state buffer holds field '" + name + "' twice");
     };
     if (kind == 0) {
       read_vec(double{});

@@ -191,6 +191,11 @@ std::vector<std::vector<std::vector<char>>> exchange_blobs(
   // One buffer by destination: [u64 length][bytes] per blob.
   std::vector<int> scount(size, 0);
   std::vector<char> sbuf;
+  std::size_t bytes = 0;
+  for (const auto& blobs : to) {
+    for (const std::vector<char>& b : blobs) bytes += sizeof(std::uint64_t) + b.size();
+  }
+  sbuf.reserve(bytes);  // one allocation: a growing buffer of MBs reallocates into fresh pages
   std::vector<int> sdispl(size, 0);
   for (std::size_t r = 0; r < size; ++r) {
     sdispl[r] = to_count(sbuf.size());

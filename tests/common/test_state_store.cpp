@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 
@@ -65,6 +68,37 @@ TEST(StateStore, TruncatedBufferIsRefused) {
   auto bytes = s.serialize();
   bytes.resize(bytes.size() - 3);
   EXPECT_THROW((void)StateStore::deserialize(bytes), common::InputError);
+}
+
+// serialize() sizes its buffer before writing it: the buffer is exactly the bytes written (a
+// wrong size count would leave capacity over or reallocate).
+TEST(StateStore, SerializedBufferIsSizedExactly) {
+  StateStore s;
+  const std::vector<double> x(1000, 0.5);
+  const std::vector<std::int64_t> n{1, 2, 3};
+  s.write("contacts/force", std::span<const double>(x));
+  s.write("k", std::span<const std::int64_t>(n));
+  const auto bytes = s.serialize();
+  EXPECT_EQ(bytes.size(), 8U + (8 + 14 + 1 + 8 + 8000) + (8 + 1 + 1 + 8 + 24));
+  EXPECT_EQ(bytes.capacity(), bytes.size());
+}
+
+// A buffer that holds one field twice is malformed input, refused naming the field.
+TEST(StateStore, BufferWithAFieldTwiceIsRefusedNamingIt) {
+  StateStore s;
+  const std::vector<double> x{1.0};
+  s.write("a", std::span<const double>(x));
+  auto bytes = s.serialize();
+  std::uint64_t two = 2;
+  std::memcpy(bytes.data(), &two, sizeof two);  // two fields, the second a copy of the first
+  const std::vector<char> field(bytes.begin() + 8, bytes.end());
+  bytes.insert(bytes.end(), field.begin(), field.end());
+  try {
+    (void)StateStore::deserialize(bytes);
+    FAIL() << "a duplicated field was read";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("field 'a' twice"), std::string::npos) << e.what();
+  }
 }
 
 // A named scalar is a field of one value; anything else is refused naming the field.

@@ -6,6 +6,8 @@
 //   mpiexec -n 2 --bind-to none bench_farm checkpoint [--rves 8] [--micro dem|elastic]
 //       [--owners metis|blocks]
 //   mpiexec -n 4 --bind-to none bench_farm exchange --rves 10000 [--steps 50] [--migrate 1]
+//   mpiexec -n 2 --bind-to none bench_farm move [--steps 40] [--reps 20] (a migration's cost,
+//       then its phases on rank 0: save, serialise, deserialise, load)
 //   bench_farm partition --rves 10000 [--parts 1024] [--bytes-per-rve 266000]
 //       [--perturb noise|overload] [--overload 0.1] [--threshold 1.0]
 // (exchange, partition, checkpoint --micro elastic: what grows with the RVE count;
@@ -21,9 +23,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bench_farm_args.hpp"
 #include "common/state_store.hpp"
@@ -426,6 +430,55 @@ void exchange(const Args& a, MPI_Comm comm) {
   f.stop();
 }
 
+// Where a move's time goes, on this rank alone: one DEM RVE of the packing, stepped --steps times
+// under the paper's strain rate (contacts with history), then saved, serialised, deserialised
+// and loaded --reps times; the median of each phase and the state's size.
+void move_phases(const Args& a, int steps) {
+  const farm::MicroKind kind = dem_kind(a.get("packing", MPMXDEM_DEFAULT_PACKING));
+  std::unique_ptr<farm::MicroModel> m = kind.create(0);
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -2.5e-4 * std::sqrt(100e3 / 1600.0);
+  for (int k = 0; k < steps; ++k) (void)m->step(l, 1.5e-3);
+  const int reps = std::stoi(a.get("reps", "20"));
+  std::map<std::string, std::vector<double>> t;
+  std::size_t bytes = 0;
+  for (int r = 0; r < reps; ++r) {
+    double t0 = now();
+    common::StateStore st;
+    m->save(st);
+    double t1 = now();
+    const std::vector<char> blob = st.serialize();
+    double t2 = now();
+    const common::StateStore back = common::StateStore::deserialize(blob);
+    double t3 = now();
+    std::unique_ptr<farm::MicroModel> loaded = kind.load(back);
+    double t4 = now();
+    t["save"].push_back(t1 - t0);
+    t["serialize"].push_back(t2 - t1);
+    t["deserialize"].push_back(t3 - t2);
+    t["load"].push_back(t4 - t3);
+    bytes = blob.size();
+  }
+  std::printf("move phases (one RVE, %d reps, median): state %.0f kB;", reps, 1e-3 * double(bytes));
+  {
+    common::StateStore st;
+    m->save(st);
+    std::vector<std::pair<std::size_t, std::string>> sizes;
+    for (const auto& [name, field] : st.fields())
+      sizes.emplace_back(std::visit([](const auto& v) { return v.size() * sizeof(v[0]); }, field),
+                         name);
+    std::sort(sizes.rbegin(), sizes.rend());
+    std::printf(" largest fields:");
+    for (std::size_t i = 0; i < std::min<std::size_t>(sizes.size(), 6); ++i)
+      std::printf(" %s %.0f kB,", sizes[i].second.c_str(), 1e-3 * double(sizes[i].first));
+  }
+  for (auto& [name, v] : t) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    std::printf(" %s %.3f ms", name.c_str(), 1e3 * v[v.size() / 2]);
+  }
+  std::printf("\n");
+}
+
 // What moving an RVE costs: 8 DEM RVEs of the reference packing under the paper's strain rate;
 // after --steps steps every RVE changes rank (owner 1 - owner), then --steps more. Prints the
 // migration's wall time per RVE and the moved RVEs' CPU time per step before and after the move
@@ -475,6 +528,7 @@ void move(const Args& a, MPI_Comm comm) {
   std::printf(" ms ...\n  excess over the %d steps after the move: %.2f ms per RVE\n", steps,
               1e3 * excess);
   f.stop();
+  move_phases(a, steps);
 }
 
 }  // namespace
