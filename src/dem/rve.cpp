@@ -250,7 +250,9 @@ void Rve::advance(const Mat3& g, double dt, StepReport& rep) {
     n = 1;
     rep.guards |= kGuardFreeFlight;
   }
+  const std::int64_t builds = sim_.verlet().builds;
   run_dem_steps(g, t_p, n);
+  rep.rebuilds = static_cast<std::uint32_t>(sim_.verlet().builds - builds);
   rep.dem_steps = n;
   rep.t_p = t_p;
 }

@@ -187,6 +187,7 @@ struct StepReport {
   double t_p = 0.0;            ///< quasi-static time T_p [s]
   double dt_dem = 0.0;         ///< DEM time step used [s]
   std::uint32_t guards = 0;    ///< RveGuard bits
+  std::uint32_t rebuilds = 0;  ///< neighbour-list builds during the DEM steps [-]
   double p = 0.0;              ///< mean pressure, compression positive [Pa]
   double q = 0.0;              ///< deviatoric stress sqrt(3/2 s:s) [Pa]
   double void_ratio = 0.0;     ///< [-]

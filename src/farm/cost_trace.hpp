@@ -4,7 +4,9 @@
 //
 // <path>: one CSV row per MPM step and RVE:
 //   step, rve (index), id (point id), rank (owner during the step), cpu_s (thread CPU time of the
-//   RVE's step [s]), busy_s (wall time of its rank's RVE loop in that step [s])
+//   RVE's step [s]), busy_s (wall time of its rank's RVE loop in that step [s]), dem_steps and
+//   rebuilds (the DEM steps and neighbour-list builds the RVE ran in that step: the work its cost
+//   follows; traces written before these two columns were added read back without them)
 // <path>.graph.csv: the RVE graph the partitions are made on (rve, neighbour: both directions),
 // as it was at the start of the run (cell_graph of the start-up positions).
 // <path>.start.csv: rve, id, weight: what the start-up partition was weighted by (the models'
@@ -32,9 +34,11 @@ class CostTrace {
   /// reason.
   CostTrace(std::string path, const RveGraph& graph, std::vector<std::int64_t> ids,
             const std::vector<double>& start_weight);
-  /// One MPM step: owner and cpu_s by RVE index, busy_s by rank. Throws common::IoError.
+  /// One MPM step: owner, cpu_s, dem_steps and rebuilds by RVE index, busy_s by rank. Throws
+  /// common::IoError.
   void record(std::int64_t step, std::span<const int> owner, std::span<const double> cpu_s,
-              std::span<const double> busy_s);
+              std::span<const double> busy_s, std::span<const std::int64_t> dem_steps,
+              std::span<const std::int64_t> rebuilds);
   [[nodiscard]] const std::string& path() const { return path_; }
 
  private:
@@ -48,6 +52,9 @@ struct CostTraceData {
   std::vector<std::int64_t> steps;
   std::vector<std::vector<double>> cpu_s;   ///< [step row][rve index]
   std::vector<std::vector<double>> busy_s;  ///< [step row][rank] as recorded
+  /// [step row][rve index]; both empty for a trace written without the columns.
+  std::vector<std::vector<std::int64_t>> dem_steps;
+  std::vector<std::vector<std::int64_t>> rebuilds;
   RveGraph graph;
   std::vector<double> start_weight;  ///< by RVE index
 };

@@ -23,6 +23,7 @@ MicroReport to_micro(const dem::StepReport& s) {
   r.dem_steps = s.dem_steps;
   r.t_p = s.t_p;
   r.guards = s.guards;
+  r.rebuilds = s.rebuilds;
   r.wall_s = s.wall_s;
   return r;
 }

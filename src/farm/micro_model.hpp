@@ -31,7 +31,10 @@ struct MicroReport {
   std::int64_t dem_steps = 0;  ///< DEM steps (or sub-steps) done [-]
   double t_p = 0.0;            ///< quasi-static time of the step, eq. (11) [s]
   std::uint32_t guards = 0;    ///< guard bits (dem::RveGuard for DemMicro) [-]
-  double wall_s = 0.0;         ///< wall-clock seconds of the step [s] (timing only, never state)
+  /// Neighbour-list builds in the step [-]: a cost (a build costs ~20 DEM steps of a 300-sphere
+  /// RVE), for cost traces (farm/cost_trace.hpp); never output.
+  std::uint32_t rebuilds = 0;
+  double wall_s = 0.0;  ///< wall-clock seconds of the step [s] (timing only, never state)
 };
 
 /// How a member of MicroReport is stored (a count and the guard bits are written as int64).

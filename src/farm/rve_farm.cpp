@@ -182,6 +182,8 @@ void RveFarm::initial_costs_and_partition(const std::vector<common::Vec3>& x,
         trace_ = std::make_unique<CostTrace>(path, graph, placement_.ids(),
                                              measured ? ledger_.total() : est);
         step_cpu_.assign(n, 0.0);
+        step_dem_steps_.assign(n, 0);
+        step_rebuilds_.assign(n, 0);
       } catch (const std::exception& e) {
         trace_err = current_error_kind();
         trace_msg = std::string("farm: MPMXDEM_COST_TRACE: ") + e.what();
@@ -313,14 +315,18 @@ void RveFarm::collect_records(std::span<common::Mat3> stress) {
       wave_[k] = rec.wave_speed;
       dilute_[k] = static_cast<std::uint8_t>(rec.dilute);
       ledger_.add_rve(k, rec.cpu_s);
-      if (trace_) step_cpu_[k] = rec.cpu_s;
+      if (trace_) {
+        step_cpu_[k] = rec.cpu_s;
+        step_dem_steps_[k] = rec.report.dem_steps;
+        step_rebuilds_[k] = rec.report.rebuilds;
+      }
     }
   }
   ledger_.add_step(busy_max, busy_sum / placement_.workers());
   if (trace_ && failures.empty()) {
     std::vector<double> busy(static_cast<std::size_t>(size_));
     for (int r = 0; r < size_; ++r) busy[static_cast<std::size_t>(r)] = exchange_.busy(r);
-    trace_->record(step_, placement_.owner(), step_cpu_, busy);
+    trace_->record(step_, placement_.owner(), step_cpu_, busy, step_dem_steps_, step_rebuilds_);
   }
   if (!failures.empty()) {
     // Rare: fetch the texts with a command of their own (the step exchange carries none).

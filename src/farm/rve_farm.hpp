@@ -208,9 +208,11 @@ class RveFarm final : public mpm::MaterialModel {
   std::int64_t step_ = 0;
   RebalancePlan last_plan_;  ///< rank 0
   /// Rank 0, with MPMXDEM_COST_TRACE set: the per-step cost trace (cost_trace.hpp) and the
-  /// step's RVE costs by index.
+  /// step's RVE costs, DEM steps and neighbour-list builds by index.
   std::unique_ptr<CostTrace> trace_;
   std::vector<double> step_cpu_;
+  std::vector<std::int64_t> step_dem_steps_;
+  std::vector<std::int64_t> step_rebuilds_;
   bool stopped_ = true;  ///< the workers left serve() (or never entered it)
 };
 

@@ -54,6 +54,27 @@ TEST(Rve, StepAppliesExactIncrementAndReturnsCompressiveStress) {
   EXPECT_LT(s(2, 2), s(0, 0));  // axial compression loads z more
 }
 
+// StepReport::rebuilds counts the neighbour-list builds of the step's DEM steps (the farm's cost
+// traces read it): none for a tiny increment, at least one when the strain outruns the skin, and
+// always the list's own counter's growth.
+TEST(Rve, StepReportsItsNeighbourListBuilds) {
+  dem::Rve rve(dem_test::reference_packing(), params());
+  Mat3 l = Mat3::Zero();
+  l(2, 2) = -1.0;
+  std::int64_t builds = rve.simulation().verlet().builds;
+  const dem::StepReport tiny = rve.step(l, 1e-7);
+  EXPECT_EQ(tiny.rebuilds, 0U);
+  EXPECT_EQ(rve.simulation().verlet().builds, builds);
+  std::uint32_t total = 0;
+  for (int k = 0; k < 20; ++k) {
+    builds = rve.simulation().verlet().builds;
+    const dem::StepReport big = rve.step(l, 2e-4);  // 0.4 % of the cell, 20 times: 4 %
+    EXPECT_EQ(static_cast<std::int64_t>(big.rebuilds), rve.simulation().verlet().builds - builds);
+    total += big.rebuilds;
+  }
+  EXPECT_GE(total, 1U);
+}
+
 // Eq. (11) takes the strain increment: adding a spin to the same strain leaves T_p unchanged, and a
 // pure spin has T_p of one DEM step (a rigid rotation is not a deformation); only the strain-split
 // guard, which bounds the whole increment (spin included), cuts it into

@@ -53,9 +53,11 @@ TEST(CostTrace, WritesAndReadsBack) {
   {
     farm::CostTrace t(path, g, {10, 11, 12}, {1.0, 2.0, 3.0});
     t.record(1, std::vector<int>{0, 0, 1}, std::vector<double>{0.5, 0.25, 0.125},
-             std::vector<double>{0.75, 0.125});
+             std::vector<double>{0.75, 0.125}, std::vector<std::int64_t>{4, 2, 1},
+             std::vector<std::int64_t>{0, 1, 0});
     t.record(2, std::vector<int>{0, 1, 1}, std::vector<double>{0.5, 0.5, 0.5},
-             std::vector<double>{0.5, 1.0});
+             std::vector<double>{0.5, 1.0}, std::vector<std::int64_t>{4, 4, 0},
+             std::vector<std::int64_t>{0, 0, 2});
   }
   const farm::CostTraceData d = farm::read_cost_trace(path);
   EXPECT_EQ(d.steps, (std::vector<std::int64_t>{1, 2}));
@@ -63,8 +65,32 @@ TEST(CostTrace, WritesAndReadsBack) {
   EXPECT_EQ(d.cpu_s[0], (std::vector<double>{0.5, 0.25, 0.125}));
   EXPECT_EQ(d.busy_s[1], (std::vector<double>{0.5, 1.0}));
   EXPECT_EQ(d.start_weight, (std::vector<double>{1.0, 2.0, 3.0}));
+  ASSERT_EQ(d.dem_steps.size(), 2U);
+  EXPECT_EQ(d.dem_steps[1], (std::vector<std::int64_t>{4, 4, 0}));
+  ASSERT_EQ(d.rebuilds.size(), 2U);
+  EXPECT_EQ(d.rebuilds[0], (std::vector<std::int64_t>{0, 1, 0}));
+  EXPECT_EQ(d.rebuilds[1], (std::vector<std::int64_t>{0, 0, 2}));
   EXPECT_EQ(d.graph.xadj, g.xadj);
   EXPECT_EQ(d.graph.adjncy, g.adjncy);
+}
+
+TEST(CostTrace, ReadsATraceWrittenWithoutTheWorkColumns) {
+  // Traces recorded before dem_steps and rebuilds (docs/data/balance) read back without them.
+  const std::string path = temp_path("old.csv");
+  { farm::CostTrace t(path, chain(2), {1, 2}, {1.0, 1.0}); }
+  {
+    std::ofstream out(path, std::ios::trunc);
+    out << "step,rve,id,rank,cpu_s,busy_s\n1,0,1,0,0.5,0.5\n1,1,2,0,0.25,0.5\n";
+  }
+  const farm::CostTraceData d = farm::read_cost_trace(path);
+  EXPECT_EQ(d.cpu_s[0], (std::vector<double>{0.5, 0.25}));
+  EXPECT_TRUE(d.dem_steps.empty());
+  EXPECT_TRUE(d.rebuilds.empty());
+  {
+    std::ofstream out(path, std::ios::app);
+    out << "2,0,1,0,0.5,0.5,3,0\n";  // eight fields where the header has six
+  }
+  EXPECT_THROW((void)farm::read_cost_trace(path), common::InputError);
 }
 
 TEST(CostTrace, RefusesAMalformedRowNamingFileAndLine) {
@@ -72,7 +98,7 @@ TEST(CostTrace, RefusesAMalformedRowNamingFileAndLine) {
   { farm::CostTrace t(path, chain(2), {1, 2}, {1.0, 1.0}); }
   {
     std::ofstream out(path, std::ios::app);
-    out << "1,0,1,0,0.5,0.5\n1,1,2,0,oops,0.5\n";
+    out << "1,0,1,0,0.5,0.5,2,0\n1,1,2,0,oops,0.5,2,0\n";
   }
   try {
     (void)farm::read_cost_trace(path);
