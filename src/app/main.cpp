@@ -14,8 +14,12 @@
 #include "app/run/logging.hpp"
 #include "app/run/output_dir.hpp"
 #include "common/errors.hpp"
+#include "common/heap.hpp"
 
 int main(int argc, char** argv) {
+  // Before anything allocates: freed memory stays with the process (neighbour-list builds and
+  // migrations reuse it instead of faulting fresh pages in; common/heap.hpp).
+  common::keep_freed_memory();
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   app::Comm comm;
