@@ -162,6 +162,8 @@ FAMILIES = {
         "dem_w0.4_h25_spared_cfl0.25": dict(width=0.4, depth=0.2, cell=0.025, sparing=1e-5, cfl=0.25, every=10),
         "dem_w0.4_h6.25_spared_cfl0.25": dict(width=0.4, depth=0.2, cell=0.00625, sparing=1e-5, cfl=0.25,
                                             every=40),
+        "dem_w0.4_h6.25_spared_cfl0.25_perturbed": dict(width=0.4, depth=0.2, cell=0.00625, sparing=1e-5,
+                                                      cfl=0.25, every=40, setting=PERTURBED),
         # and the 200 x 100 mm layer on 6.25 mm cells with half the time step (the run above on those
         # cells, with cfl 0.5, ended in a numerical event before its peak)
         "dem_w0.2_h6.25_spared_cfl0.25": dict(width=0.2, depth=0.1, cell=0.00625, sparing=1e-5, cfl=0.25,
